@@ -1,0 +1,56 @@
+// Wire dialects, frame roles and direction hints shared by every part of the core.
+#pragma once
+
+#include <cstdint>
+#include <string_view>
+
+namespace pvtap {
+
+// Dialect: one of the three wire dialects of PROTOCOLS.md.
+enum class Dialect : std::uint8_t { Ascii = 0, Hybrid = 1, Gsl = 2 };
+
+// Role: who sent a frame. A master sends requests, an inverter sends responses.
+enum class Role : std::uint8_t { Request = 0, Response = 1 };
+
+// RoleHint: what the caller knows about the sender of some bytes.
+enum class RoleHint : std::uint8_t { Unknown = 0, Request = 1, Response = 2 };
+
+// DialectSet: the dialects a decoder should recognize (all of them unless told).
+class DialectSet {
+ public:
+  constexpr DialectSet() = default;
+  static constexpr DialectSet all() { return DialectSet(0b111); }
+  static constexpr DialectSet only(Dialect d) { return DialectSet(bit(d)); }
+  static constexpr DialectSet none() { return DialectSet(0); }
+  constexpr bool contains(Dialect d) const { return (bits_ & bit(d)) != 0; }
+  constexpr bool rtu() const { return contains(Dialect::Hybrid) || contains(Dialect::Gsl); }
+  constexpr DialectSet with(Dialect d) const {
+    return DialectSet(static_cast<std::uint8_t>(bits_ | bit(d)));
+  }
+  constexpr bool operator==(const DialectSet&) const = default;
+
+ private:
+  constexpr explicit DialectSet(std::uint8_t bits) : bits_(bits) {}
+  static constexpr std::uint8_t bit(Dialect d) {
+    return static_cast<std::uint8_t>(1u << static_cast<unsigned>(d));
+  }
+  std::uint8_t bits_ = 0b111;
+};
+
+constexpr std::string_view to_string(Dialect d) {
+  switch (d) {
+    case Dialect::Ascii:
+      return "ascii";
+    case Dialect::Hybrid:
+      return "hybrid";
+    case Dialect::Gsl:
+      return "gsl";
+  }
+  return "?";
+}
+
+constexpr std::string_view to_string(Role r) {
+  return r == Role::Request ? "request" : "response";
+}
+
+}  // namespace pvtap

@@ -1,0 +1,38 @@
+#include "pvtap/frame_codec.h"
+
+#include "ascii_codec.h"
+#include "hex_digits.h"
+#include "rtu_codec.h"
+
+namespace pvtap {
+
+ParseOutcome parse_frame(std::span<const std::uint8_t> bytes, Dialect dialect, Role role) {
+  if (dialect == Dialect::Ascii) return detail::parse_ascii(bytes, role);
+  return detail::parse_rtu(bytes, dialect, role);
+}
+
+FrameCheck verify_check(std::span<const std::uint8_t> bytes, Dialect dialect) {
+  if (dialect == Dialect::Ascii) return detail::verify_ascii_check(bytes);
+  return detail::verify_rtu_check(bytes);
+}
+
+std::vector<std::uint8_t> check_wire_bytes(Dialect dialect, std::uint16_t expected) {
+  if (dialect == Dialect::Ascii) {
+    return {detail::hex_char(expected >> 12u), detail::hex_char(expected >> 8u),
+            detail::hex_char(expected >> 4u), detail::hex_char(expected)};
+  }
+  return {static_cast<std::uint8_t>(expected & 0xFFu), static_cast<std::uint8_t>(expected >> 8)};
+}
+
+bool encode_frame(const Frame& frame, std::vector<std::uint8_t>& out) {
+  if (frame.dialect == Dialect::Ascii) return detail::encode_ascii(frame, out);
+  return detail::encode_rtu(frame, out);
+}
+
+std::vector<std::uint8_t> encode_frame(const Frame& frame) {
+  std::vector<std::uint8_t> out;
+  encode_frame(frame, out);
+  return out;
+}
+
+}  // namespace pvtap

@@ -1,0 +1,103 @@
+#include "rtu_candidates.h"
+
+#include "pvtap/function_codes.h"
+
+namespace pvtap::detail {
+namespace {
+
+constexpr std::size_t kFixedLength = 8;
+constexpr unsigned kMaxReadCount = 125;  // a reply must fit its data in one byte count
+
+// Collects readings; a reading whose length needs a byte not yet seen records that need.
+struct Reader {
+  std::span<const std::uint8_t> b;
+  Dialect dialect;
+  CandidateList& out;
+
+  bool has(std::size_t i) {
+    if (i < b.size()) return true;
+    const std::size_t need = i + 1 - b.size();
+    if (out.need_header == 0 || need < out.need_header) out.need_header = need;
+    return false;
+  }
+  unsigned word(std::size_t at) const { return (unsigned{b[at]} << 8) | b[at + 1]; }
+  void add(std::size_t length, Role role) { out.add({length, dialect, role}); }
+};
+
+bool is_hybrid_read(std::uint8_t f) {
+  return f == fc::kHybridDeviceInfo || f == fc::kHybridRunningData || f == fc::kHybridSettings ||
+         f == fc::kHybridManufacturer || f == fc::kHybridRestoreFactory;
+}
+
+void hybrid_request(Reader& r, std::uint8_t f) {
+  if (f == fc::kHybridError) return;
+  if (is_hybrid_read(f) && r.has(5)) {
+    const unsigned count = r.word(4);
+    if (count == 0 || count > kMaxReadCount) return;
+  }
+  r.add(kFixedLength, Role::Request);
+}
+
+// Every reply carries the 4-byte device number and then whole registers.
+void hybrid_response(Reader& r) {
+  if (r.b[0] == fc::kHybridBroadcast || !r.has(2)) return;
+  const std::size_t n = r.b[2];
+  if (n < 4 || n % 2 != 0) return;
+  r.add(5 + n, Role::Response);
+}
+
+void gsl_request(Reader& r, std::uint8_t f) {
+  if (fc::is_gsl_exception(f)) return;
+  if (f == fc::kGslWriteMultiple) {
+    if (!r.has(6)) return;
+    const unsigned count = r.word(4);
+    if (count == 0 || count > 123 || r.b[6] != 2 * count) return;
+    r.add(9 + std::size_t{r.b[6]}, Role::Request);
+    return;
+  }
+  if (f != fc::kGslWriteSingle && r.has(5)) {
+    const unsigned count = r.word(4);
+    if (count == 0 || count > kMaxReadCount) return;
+  }
+  r.add(kFixedLength, Role::Request);
+}
+
+void gsl_response(Reader& r, std::uint8_t f) {
+  if (fc::is_gsl_exception(f)) {
+    r.add(5, Role::Response);
+  } else if (f == fc::kGslReadHolding || f == fc::kGslReadInput) {
+    if (!r.has(2)) return;
+    const std::size_t n = r.b[2];
+    if (n == 0 || n % 2 != 0) return;
+    r.add(5 + n, Role::Response);
+  } else {
+    r.add(kFixedLength, Role::Response);
+  }
+}
+
+}  // namespace
+
+void add_rtu_candidates(std::span<const std::uint8_t> b, RoleHint hint, DialectSet dialects,
+                        CandidateList& out) {
+  if (b.size() < 2) {
+    if (!b.empty() && b[0] == 0) return;
+    out.need_header = 2 - b.size();
+    return;
+  }
+  const std::uint8_t f = b[1];
+  const auto dialect = fc::rtu_dialect_of(f);
+  if (!dialect || !dialects.contains(*dialect) || b[0] == 0) return;
+  Reader r{b, *dialect, out};
+  const bool requests = hint != RoleHint::Response;
+  const bool responses = hint != RoleHint::Request;
+  if (*dialect == Dialect::Hybrid) {
+    if (requests) hybrid_request(r, f);
+    if (responses) hybrid_response(r);
+    return;
+  }
+  if (b[0] > 247) return;
+  if (requests) gsl_request(r, f);
+  if (responses) gsl_response(r, f);
+}
+
+}  // namespace pvtap::detail
