@@ -1,0 +1,103 @@
+// Turns chunks of raw bus bytes into frames and noise, accounting for every byte.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string_view>
+
+#include "pvtap/dialect.h"
+#include "pvtap/frame_codec.h"
+
+namespace pvtap {
+
+// Direction: what the capture path knows about who sent a chunk.
+enum class Direction : std::uint8_t { Unknown = 0, ToSlave = 1, FromSlave = 2 };
+
+// TimestampTrust: whether chunk timestamps are fine enough to use silent gaps as evidence.
+//   Auto starts trusting and stops at the first chunk that arrived faster than the baud
+//   rate allows (batched delivery by a USB adapter or a gateway).
+enum class TimestampTrust : std::uint8_t { Auto = 0, Trusted = 1, Untrusted = 2 };
+
+// BusChunk: bytes as one read delivered them; `time` is the capture time of the last byte.
+struct BusChunk {
+  std::span<const std::uint8_t> bytes;
+  double time = 0.0;
+  Direction direction = Direction::Unknown;
+};
+
+// FrameEvent: one frame found on the bus. `bytes` is valid only during the callback.
+struct FrameEvent {
+  std::uint64_t offset = 0;  // stream position of the first byte
+  std::span<const std::uint8_t> bytes;
+  double start_time = 0.0;     // estimated start of the first byte
+  double end_time = 0.0;       // estimated end of the last byte
+  double max_inner_gap = 0.0;  // longest silence inside the frame (only with trusted timing)
+  Dialect dialect = Dialect::Gsl;
+  Role role = Role::Request;
+  FrameCheck check;
+};
+
+// NoiseEvent: bytes that belong to no frame. `bytes` is valid only during the callback.
+struct NoiseEvent {
+  std::uint64_t offset = 0;
+  std::span<const std::uint8_t> bytes;
+  double start_time = 0.0;
+  double end_time = 0.0;
+};
+
+// ReassemblerSink: receives the reassembler's events in bus order.
+class ReassemblerSink {
+ public:
+  virtual ~ReassemblerSink() = default;
+  virtual void on_frame(const FrameEvent& frame) = 0;
+  virtual void on_noise(const NoiseEvent& noise) = 0;
+};
+
+// ReassemblerOptions: what the reassembler recognizes and how it reads time.
+struct ReassemblerOptions {
+  DialectSet dialects = DialectSet::all();
+  std::uint32_t baud = 9600;
+  TimestampTrust timestamps = TimestampTrust::Auto;
+};
+
+// ReassemblerTotals: byte accounting; bytes_in == frame_bytes + noise_bytes + pending bytes.
+struct ReassemblerTotals {
+  std::uint64_t bytes_in = 0;
+  std::uint64_t frame_bytes = 0;
+  std::uint64_t noise_bytes = 0;
+  std::uint64_t frames = 0;
+  std::uint64_t bad_frames = 0;
+  std::uint64_t noise_runs = 0;
+};
+
+// StreamReassembler: finds ASCII and RTU frames in a byte stream cut at arbitrary points.
+// Structure (framing, length rules, check) decides; a silent gap of t3.5 is used only as
+// evidence for where a frame with a bad check ends. A good frame is reported as soon as its
+// last byte arrives; a bad one once the bytes after it (or silence) confirm its length.
+class StreamReassembler {
+ public:
+  StreamReassembler(ReassemblerOptions options, ReassemblerSink& sink);
+  ~StreamReassembler();
+  StreamReassembler(const StreamReassembler&) = delete;
+  StreamReassembler& operator=(const StreamReassembler&) = delete;
+
+  void feed(const BusChunk& chunk);
+  // The bus has been silent up to `now` (live capture); may resolve pending bytes.
+  void idle(double now);
+  // Bytes were lost here (capture gap, unplugged adapter): nothing may span the break.
+  void discontinuity();
+  // End of input: every pending byte becomes part of a frame or noise.
+  void finish();
+
+  const ReassemblerTotals& totals() const;
+  std::uint64_t pending_bytes() const;
+  bool timing_trusted() const;
+  std::string_view timing_reason() const;  // why timing is not trusted; empty when it is
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace pvtap

@@ -1,0 +1,97 @@
+#include "chunk_timeline.h"
+
+#include <algorithm>
+
+namespace pvtap::detail {
+namespace {
+
+// Arrival-time noise allowed before calling a chunk "too early" for the baud rate.
+constexpr double kEarlyToleranceChars = 1.0;
+// A silence counts as t3.5 when it is within a tenth of a character of it.
+constexpr double kGapToleranceChars = 0.1;
+
+}  // namespace
+
+ChunkTimeline::ChunkTimeline(std::uint32_t baud, TimestampTrust trust)
+    : timing_(baud), mode_(trust), trusted_(trust != TimestampTrust::Untrusted) {
+  if (trust == TimestampTrust::Untrusted) reason_ = "timestamps declared too coarse by the source";
+}
+
+void ChunkTimeline::distrust(std::string_view why) {
+  if (mode_ != TimestampTrust::Auto || !trusted_) return;
+  trusted_ = false;
+  reason_ = why;
+}
+
+void ChunkTimeline::add(std::uint64_t end, std::size_t size, double time, Direction direction) {
+  if (size == 0) return;
+  double gap = -1.0;
+  if (have_previous_) {
+    const double first_start = time - static_cast<double>(size) * timing_.char_time;
+    gap = first_start - previous_time_;
+    if (gap < -kEarlyToleranceChars * timing_.char_time) {
+      distrust(
+          "chunks arrive faster than the baud rate allows: timestamps are batched (USB adapter "
+          "latency or a gateway's packing)");
+      gap = 0.0;
+    }
+    gap = std::max(gap, 0.0);
+  }
+  marks_.push_back(Mark{end - size, end, time, previous_time_, gap, direction});
+  previous_time_ = time;
+  have_previous_ = true;
+}
+
+void ChunkTimeline::drop_before(std::uint64_t offset) {
+  // Keep the last mark: the next chunk's gap is measured from it.
+  while (marks_.size() > 1 && marks_.front().end <= offset) marks_.pop_front();
+}
+
+const ChunkTimeline::Mark* ChunkTimeline::find(std::uint64_t offset) const {
+  auto it = std::upper_bound(marks_.begin(), marks_.end(), offset,
+                             [](std::uint64_t o, const Mark& m) { return o < m.end; });
+  if (it == marks_.end()) return marks_.empty() ? nullptr : &marks_.back();
+  return &*it;
+}
+
+double ChunkTimeline::byte_end_time(std::uint64_t offset) const {
+  const Mark* m = find(offset);
+  if (!m) return 0.0;
+  const double behind = static_cast<double>(m->end - 1 - std::min(offset, m->end - 1));
+  const double estimate = m->time - behind * timing_.char_time;
+  // Bytes of a batched chunk cannot have ended before the previous chunk's last byte.
+  return m->gap_before < 0 ? estimate : std::max(estimate, m->previous_time);
+}
+
+Direction ChunkTimeline::direction_at(std::uint64_t offset) const {
+  const Mark* m = find(offset);
+  return m ? m->direction : Direction::Unknown;
+}
+
+double ChunkTimeline::gap_before(std::uint64_t offset) const {
+  const Mark* m = find(offset);
+  if (!m || m->start != offset) return 0.0;
+  return m->gap_before;
+}
+
+double ChunkTimeline::max_gap_inside(std::uint64_t first, std::uint64_t last) const {
+  if (!trusted_) return 0.0;
+  double widest = 0.0;
+  auto it = std::upper_bound(marks_.begin(), marks_.end(), first,
+                             [](std::uint64_t o, const Mark& m) { return o < m.end; });
+  for (; it != marks_.end() && it->start <= last; ++it) {
+    if (it->start > first) widest = std::max(widest, it->gap_before);
+  }
+  return widest;
+}
+
+bool ChunkTimeline::silence_before(std::uint64_t offset) const {
+  return trusted_ && gap_before(offset) + kGapToleranceChars * timing_.char_time >= timing_.t35;
+}
+
+bool ChunkTimeline::silent_since_last_byte(double now) const {
+  return trusted_ && have_previous_ &&
+         now - previous_time_ + kGapToleranceChars * timing_.char_time >= timing_.t35;
+}
+
+}  // namespace pvtap::detail

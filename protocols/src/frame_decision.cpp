@@ -1,0 +1,100 @@
+#include "frame_decision.h"
+
+namespace pvtap::detail {
+namespace {
+
+enum class Evidence : std::uint8_t { Yes, No, Wait };
+
+RoleHint hint_at(const DecisionInput& in, std::size_t index) {
+  return role_hint(in.timeline->direction_at(in.offset + index));
+}
+
+// A complete frame with a good check starting at `index`, or nothing.
+bool good_frame_at(const DecisionInput& in, std::size_t index, bool& incomplete) {
+  const auto rest = in.bytes.subspan(index);
+  const CandidateList cands = frame_candidates(rest, hint_at(in, index), in.dialects);
+  incomplete = cands.need_header > 0;
+  for (std::size_t i = 0; i < cands.size; ++i) {
+    const FrameCandidate& c = cands.items[i];
+    if (c.length > rest.size()) {
+      incomplete = true;
+      continue;
+    }
+    if (verify_check(rest.first(c.length), c.dialect).ok) return true;
+  }
+  return false;
+}
+
+// A good frame that starts inside the candidate means the candidate is the misreading.
+bool good_frame_inside(const DecisionInput& in, std::size_t length) {
+  bool incomplete = false;
+  for (std::size_t q = 1; q < length; ++q) {
+    if (good_frame_at(in, q, incomplete)) return true;
+  }
+  return false;
+}
+
+Evidence end_evidence(const DecisionInput& in, std::size_t length) {
+  if (in.timeline->silence_before(in.offset + length)) return Evidence::Yes;
+  if (length == in.bytes.size()) {
+    return (in.final || in.silence_after) ? Evidence::Yes : Evidence::Wait;
+  }
+  bool incomplete = false;
+  if (good_frame_at(in, length, incomplete)) return Evidence::Yes;
+  return (incomplete && !in.final) ? Evidence::Wait : Evidence::No;
+}
+
+Evidence bad_frame_evidence(const DecisionInput& in, const FrameCandidate& c) {
+  // ENQ/ACK ... EOT delimit an ASCII frame by themselves.
+  if (c.dialect == Dialect::Ascii) return Evidence::Yes;
+  // RTU frames are sent without pauses: a t3.5 silence inside says this reading is wrong.
+  if (in.timeline->trusted() && in.timeline->max_gap_inside(in.offset, in.offset + c.length - 1) +
+                                        0.1 * in.timeline->timing().char_time >=
+                                    in.timeline->timing().t35) {
+    return Evidence::No;
+  }
+  const Evidence end = end_evidence(in, c.length);
+  if (end != Evidence::Yes) return end;
+  return good_frame_inside(in, c.length) ? Evidence::No : Evidence::Yes;
+}
+
+}  // namespace
+
+RoleHint role_hint(Direction d) {
+  switch (d) {
+    case Direction::ToSlave:
+      return RoleHint::Request;
+    case Direction::FromSlave:
+      return RoleHint::Response;
+    default:
+      return RoleHint::Unknown;
+  }
+}
+
+Decision decide_at(const DecisionInput& in) {
+  const CandidateList cands = frame_candidates(in.bytes, hint_at(in, 0), in.dialects);
+  // Silence after the last byte rules out RTU frames that would need more bytes.
+  const bool more_possible = !in.final && !in.silence_after;
+  bool waiting = cands.need_header > 0 && more_possible;
+  FrameCheck checks[CandidateList::kMax];
+  for (std::size_t i = 0; i < cands.size; ++i) {
+    const FrameCandidate& c = cands.items[i];
+    if (c.length > in.bytes.size()) {
+      waiting = waiting || more_possible;
+      continue;
+    }
+    checks[i] = verify_check(in.bytes.first(c.length), c.dialect);
+    if (checks[i].ok) return Decision{Decision::Kind::Frame, c, checks[i]};
+  }
+  if (waiting) return Decision{Decision::Kind::Wait, {}, {}};
+  for (std::size_t i = 0; i < cands.size; ++i) {
+    const FrameCandidate& c = cands.items[i];
+    if (c.length > in.bytes.size()) continue;
+    const Evidence e = bad_frame_evidence(in, c);
+    if (e == Evidence::Yes) return Decision{Decision::Kind::Frame, c, checks[i]};
+    if (e == Evidence::Wait) return Decision{Decision::Kind::Wait, {}, {}};
+  }
+  return Decision{Decision::Kind::Noise, {}, {}};
+}
+
+}  // namespace pvtap::detail

@@ -1,0 +1,37 @@
+// FrameDecision: what starts at one stream position: a frame, noise, or "wait for bytes".
+#pragma once
+
+#include <cstdint>
+#include <span>
+
+#include "chunk_timeline.h"
+#include "pvtap/framing_probe.h"
+
+namespace pvtap::detail {
+
+// DecisionInput: the buffered bytes from the position on, and what is known around them.
+struct DecisionInput {
+  std::span<const std::uint8_t> bytes;
+  std::uint64_t offset = 0;  // stream offset of bytes[0]
+  const ChunkTimeline* timeline = nullptr;
+  DialectSet dialects;
+  bool final = false;          // no further bytes will follow these
+  bool silence_after = false;  // trusted silence of t3.5 after the last buffered byte
+};
+
+// Decision: the verdict for the position.
+struct Decision {
+  enum class Kind : std::uint8_t { Frame, Noise, Wait };
+  Kind kind = Kind::Noise;
+  FrameCandidate frame;
+  FrameCheck check;
+};
+
+// A frame with a good check is taken at once. A frame with a bad check is taken only with
+// evidence for its end (a good frame right after it, a t3.5 silence, or the end of input),
+// no good frame inside it and no t3.5 silence inside it; otherwise the first byte is noise.
+Decision decide_at(const DecisionInput& in);
+
+RoleHint role_hint(Direction d);
+
+}  // namespace pvtap::detail

@@ -1,0 +1,164 @@
+#include "pvtap/stream_reassembler.h"
+
+#include <vector>
+
+#include "chunk_timeline.h"
+#include "frame_decision.h"
+
+namespace pvtap {
+namespace {
+
+// Noise is reported in runs; a run this long is reported even before it ends, so a bus
+// full of garbage never grows the buffer.
+constexpr std::size_t kMaxNoiseRun = 4096;
+// A decision never needs more than a frame and the frame after it; past that it is forced.
+constexpr std::size_t kMaxLookahead = 2 * kMaxFrameLength + 16;
+// Consumed bytes are dropped from the buffer front once they pass this size.
+constexpr std::size_t kCompactThreshold = 64 * 1024;
+
+}  // namespace
+
+struct StreamReassembler::Impl {
+  Impl(ReassemblerOptions o, ReassemblerSink& s)
+      : options(o), sink(s), timeline(o.baud, o.timestamps) {}
+
+  ReassemblerOptions options;
+  ReassemblerSink& sink;
+  detail::ChunkTimeline timeline;
+  ReassemblerTotals totals;
+  std::vector<std::uint8_t> buffer;
+  std::uint64_t buffer_offset = 0;  // stream offset of buffer[0]
+  std::size_t head = 0;             // first undecided byte
+  std::size_t noise_begin = 0;      // pending noise run is [noise_begin, head)
+  bool silence_after = false;
+
+  std::uint64_t offset_of(std::size_t index) const { return buffer_offset + index; }
+
+  void compact() {
+    if (noise_begin < kCompactThreshold || noise_begin * 2 < buffer.size()) return;
+    buffer.erase(buffer.begin(), buffer.begin() + static_cast<std::ptrdiff_t>(noise_begin));
+    buffer_offset += noise_begin;
+    head -= noise_begin;
+    noise_begin = 0;
+  }
+
+  void flush_noise() {
+    if (noise_begin == head) return;
+    NoiseEvent e;
+    e.offset = offset_of(noise_begin);
+    e.bytes = std::span(buffer).subspan(noise_begin, head - noise_begin);
+    e.start_time = timeline.byte_end_time(e.offset) - timeline.timing().char_time;
+    e.end_time = timeline.byte_end_time(offset_of(head - 1));
+    totals.noise_bytes += e.bytes.size();
+    ++totals.noise_runs;
+    sink.on_noise(e);
+    noise_begin = head;
+  }
+
+  void emit_frame(const detail::Decision& d) {
+    flush_noise();
+    FrameEvent e;
+    e.offset = offset_of(head);
+    e.bytes = std::span(buffer).subspan(head, d.frame.length);
+    const std::uint64_t last = e.offset + d.frame.length - 1;
+    e.start_time = timeline.byte_end_time(e.offset) - timeline.timing().char_time;
+    e.end_time = timeline.byte_end_time(last);
+    e.max_inner_gap = timeline.max_gap_inside(e.offset, last);
+    e.dialect = d.frame.dialect;
+    e.role = d.frame.role;
+    e.check = d.check;
+    totals.frame_bytes += d.frame.length;
+    ++totals.frames;
+    if (!d.check.ok) ++totals.bad_frames;
+    sink.on_frame(e);
+    head += d.frame.length;
+    noise_begin = head;
+  }
+
+  // Decides position after position until the bytes run out or a decision must wait.
+  void process(bool final) {
+    while (head < buffer.size()) {
+      detail::DecisionInput in;
+      in.bytes = std::span(buffer).subspan(head);
+      in.offset = offset_of(head);
+      in.timeline = &timeline;
+      in.dialects = options.dialects;
+      in.final = final || in.bytes.size() > kMaxLookahead;
+      in.silence_after = silence_after;
+      const detail::Decision d = detail::decide_at(in);
+      if (d.kind == detail::Decision::Kind::Wait) break;
+      if (d.kind == detail::Decision::Kind::Frame) {
+        emit_frame(d);
+      } else {
+        ++head;
+        if (head - noise_begin >= kMaxNoiseRun) flush_noise();
+      }
+    }
+    if (final) flush_noise();
+    timeline.drop_before(offset_of(noise_begin));
+  }
+
+  void reset_buffer() {
+    buffer_offset += buffer.size();
+    buffer.clear();
+    head = noise_begin = 0;
+  }
+};
+
+StreamReassembler::StreamReassembler(ReassemblerOptions options, ReassemblerSink& sink)
+    : impl_(std::make_unique<Impl>(options, sink)) {}
+
+StreamReassembler::~StreamReassembler() = default;
+
+void StreamReassembler::feed(const BusChunk& chunk) {
+  if (chunk.bytes.empty()) return;
+  Impl& m = *impl_;
+  m.compact();
+  m.buffer.insert(m.buffer.end(), chunk.bytes.begin(), chunk.bytes.end());
+  m.totals.bytes_in += chunk.bytes.size();
+  // A silence before this chunk was already judged; decisions now see the new bytes.
+  m.silence_after = false;
+  m.timeline.add(m.offset_of(m.buffer.size()), chunk.bytes.size(), chunk.time, chunk.direction);
+  m.process(false);
+}
+
+void StreamReassembler::idle(double now) {
+  Impl& m = *impl_;
+  if (m.head == m.buffer.size() && m.noise_begin == m.head) return;
+  if (!m.timeline.silent_since_last_byte(now)) return;
+  m.silence_after = true;
+  m.process(false);
+  // Noise ends where the silence begins: report it now rather than with the next frame.
+  if (m.head == m.buffer.size()) m.flush_noise();
+}
+
+void StreamReassembler::discontinuity() {
+  Impl& m = *impl_;
+  m.process(true);
+  m.reset_buffer();
+  m.timeline.break_continuity();
+}
+
+void StreamReassembler::finish() {
+  Impl& m = *impl_;
+  m.process(true);
+  m.reset_buffer();
+}
+
+const ReassemblerTotals& StreamReassembler::totals() const {
+  return impl_->totals;
+}
+
+std::uint64_t StreamReassembler::pending_bytes() const {
+  return impl_->buffer.size() - impl_->noise_begin;
+}
+
+bool StreamReassembler::timing_trusted() const {
+  return impl_->timeline.trusted();
+}
+
+std::string_view StreamReassembler::timing_reason() const {
+  return impl_->timeline.reason();
+}
+
+}  // namespace pvtap

@@ -1,0 +1,196 @@
+// Seeded randomized reassembly: random frames of all dialects, random noise and single-byte
+// corruptions, cut into random chunks; the reassembler must give back exactly what was sent.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <map>
+
+#include "hex_bytes.h"
+
+#include "bus_script.h"
+#include "pvtap/bus_timing.h"
+#include "pvtap/function_codes.h"
+#include "pvtap/stream_reassembler.h"
+
+namespace pvtap {
+namespace {
+
+using test::BusItem;
+
+enum class Feed { Untimed, Timed, TimedWithDirection };
+
+struct Outcome {
+  std::size_t frames_checked = 0;
+  std::size_t corrupt_recovered = 0;
+};
+
+// Cuts the stream into chunks; with timing, a chunk never spans a silence between frames
+// (a fine-timestamp source returns a read when the line goes quiet).
+void feed_script(const std::vector<BusItem>& items, Feed feed, test::RandomFrames& gen,
+                 StreamReassembler& r) {
+  const BusTiming timing(9600);
+  double t = 1.7e9;
+  std::vector<std::uint8_t> pending;
+  Direction pending_dir = Direction::Unknown;
+  auto flush = [&] {
+    if (pending.empty()) return;
+    r.feed(BusChunk{pending, feed == Feed::Untimed ? 0.0 : t, pending_dir});
+    pending.clear();
+  };
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const BusItem& it = items[i];
+    Direction dir = Direction::Unknown;
+    if (feed == Feed::TimedWithDirection && it.kind != BusItem::Kind::Noise) {
+      dir = it.frame.role == Role::Request ? Direction::ToSlave : Direction::FromSlave;
+    }
+    if (feed == Feed::TimedWithDirection && dir != pending_dir) flush();
+    pending_dir = dir;
+    for (auto b : it.bytes) {
+      pending.push_back(b);
+      t += timing.char_time;
+      if (gen.pick(1, 100) <= 8) flush();
+    }
+    if (it.kind != BusItem::Kind::Noise) {
+      flush();
+      t += timing.t35 + timing.char_time * gen.pick(0, 40);
+    }
+  }
+  flush();
+  r.finish();
+}
+
+bool role_is_ambiguous(const BusItem& it, Feed feed) {
+  return feed != Feed::TimedWithDirection && it.frame.dialect == Dialect::Gsl &&
+         it.frame.function == fc::kGslWriteSingle;
+}
+
+// A corrupted frame is owed back as a bad-check frame when its header survived and both its
+// ends are pinned down. Start: a clean frame before it (or, with timing, the silence after
+// any frame); a reading that began in noise could otherwise swallow it. End: silence after it
+// (timed feeds) or a clean frame (or nothing) right after it.
+bool recovery_owed(const std::vector<BusItem>& items, std::size_t i, Feed feed) {
+  if (!items[i].structure_survives) return false;
+  const bool after_noise = i > 0 && items[i - 1].kind == BusItem::Kind::Noise;
+  if (feed != Feed::Untimed) return !after_noise;
+  const bool start_pinned = i == 0 || items[i - 1].kind == BusItem::Kind::Frame;
+  const bool end_pinned = i + 1 == items.size() || items[i + 1].kind == BusItem::Kind::Frame;
+  return start_pinned && end_pinned;
+}
+
+Outcome check_events(const std::vector<BusItem>& items, const std::vector<test::CapturedEvent>& ev,
+                     std::uint64_t total, Feed feed) {
+  Outcome out;
+  std::map<std::uint64_t, const test::CapturedEvent*> by_offset;
+  std::uint64_t next = 0;
+  for (const auto& e : ev) {
+    EXPECT_EQ(e.offset, next) << "events must tile the stream";
+    next = e.offset + e.bytes.size();
+    by_offset[e.offset] = &e;
+  }
+  EXPECT_EQ(next, total) << "every byte is in a frame or in noise";
+  std::map<std::uint64_t, bool> clean_offsets;
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const BusItem& it = items[i];
+    if (it.kind == BusItem::Kind::Frame) clean_offsets[it.offset] = true;
+    const bool owed = it.kind == BusItem::Kind::Frame ||
+                      (it.kind == BusItem::Kind::CorruptFrame && recovery_owed(items, i, feed));
+    if (!owed) continue;
+    auto found = by_offset.find(it.offset);
+    const bool clean = it.kind == BusItem::Kind::Frame;
+    EXPECT_TRUE(found != by_offset.end() && found->second->is_frame)
+        << (clean ? "lost frame" : "unrecovered corrupt frame") << " at " << it.offset;
+    if (found == by_offset.end() || !found->second->is_frame) continue;
+    const FrameEvent& f = found->second->frame;
+    EXPECT_EQ(found->second->bytes, it.bytes) << "at " << it.offset;
+    EXPECT_EQ(f.check.ok, clean) << "at " << it.offset;
+    EXPECT_EQ(f.dialect, it.frame.dialect) << "at " << it.offset;
+    if (!role_is_ambiguous(it, feed)) {
+      EXPECT_EQ(f.role, it.frame.role) << "at " << it.offset;
+    }
+    clean ? ++out.frames_checked : ++out.corrupt_recovered;
+  }
+  for (const auto& e : ev) {
+    if (e.is_frame && e.frame.check.ok) {
+      EXPECT_TRUE(clean_offsets.count(e.offset)) << "phantom frame at " << e.offset;
+    }
+  }
+  return out;
+}
+
+// Printed on failure only: the script and what came back, to see the case at a glance.
+void dump(const std::vector<BusItem>& items, const std::vector<test::CapturedEvent>& ev) {
+  static const char* kinds[] = {"frame", "corrupt", "noise"};
+  for (const auto& it : items) {
+    std::printf("sent %5llu %-7s %s%s\n", static_cast<unsigned long long>(it.offset),
+                kinds[static_cast<int>(it.kind)], test::hex_text(it.bytes).c_str(),
+                it.structure_survives ? " (structure survives)" : "");
+  }
+  for (const auto& e : ev) {
+    std::printf("got  %5llu %-7s %s\n", static_cast<unsigned long long>(e.offset),
+                e.is_frame ? (e.frame.check.ok ? "frame" : "bad") : "noise",
+                test::hex_text(e.bytes).c_str());
+  }
+}
+
+void run_cases(Feed feed, std::uint32_t first_seed, std::size_t cases,
+               const test::ScriptOptions& script) {
+  Outcome total;
+  for (std::uint32_t seed = first_seed; seed < first_seed + cases; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    test::RandomFrames gen(seed, script.dialects);
+    const auto items = test::make_script(gen, script);
+    test::CapturingSink sink;
+    ReassemblerOptions options;
+    options.dialects = script.dialects;
+    options.timestamps = feed == Feed::Untimed ? TimestampTrust::Untrusted : TimestampTrust::Auto;
+    StreamReassembler r(options, sink);
+    feed_script(items, feed, gen, r);
+    const auto stream = test::concatenate(items);
+    const auto& t = r.totals();
+    ASSERT_EQ(t.bytes_in, stream.size());
+    ASSERT_EQ(t.bytes_in, t.frame_bytes + t.noise_bytes);
+    if (feed != Feed::Untimed) {
+      ASSERT_TRUE(r.timing_trusted()) << r.timing_reason();
+    }
+    const Outcome o = check_events(items, sink.events, stream.size(), feed);
+    total.frames_checked += o.frames_checked;
+    total.corrupt_recovered += o.corrupt_recovered;
+    if (::testing::Test::HasFailure()) {
+      dump(items, sink.events);
+      return;
+    }
+  }
+  // The scripts must really exercise both paths, or the test proves nothing.
+  EXPECT_GT(total.frames_checked, cases * script.items / 2);
+  // Most single-byte hits on ASCII text break its structure, hence the low floor.
+  if (script.corrupt_percent > 0) {
+    EXPECT_GT(total.corrupt_recovered, cases / 10);
+  }
+  std::printf("%zu cases: %zu clean frames and %zu corrupt frames given back exactly\n", cases,
+              total.frames_checked, total.corrupt_recovered);
+}
+
+TEST(StreamReassemblerRandom, CleanStreamsUntimed) {
+  run_cases(Feed::Untimed, 1, 500, {30, 0, 0, DialectSet::all()});
+}
+
+TEST(StreamReassemblerRandom, NoiseAndCorruptionUntimed) {
+  run_cases(Feed::Untimed, 1000, 2000, {30, 20, 15, DialectSet::all()});
+}
+
+TEST(StreamReassemblerRandom, NoiseAndCorruptionWithFineTimestamps) {
+  run_cases(Feed::Timed, 5000, 1500, {30, 20, 15, DialectSet::all()});
+}
+
+TEST(StreamReassemblerRandom, NoiseAndCorruptionWithDirection) {
+  run_cases(Feed::TimedWithDirection, 9000, 1500, {30, 20, 15, DialectSet::all()});
+}
+
+TEST(StreamReassemblerRandom, SingleDialectBuses) {
+  run_cases(Feed::Untimed, 20000, 500, {30, 20, 15, DialectSet::only(Dialect::Ascii)});
+  run_cases(Feed::Untimed, 21000, 500, {30, 20, 15, DialectSet::only(Dialect::Hybrid)});
+  run_cases(Feed::Untimed, 22000, 500, {30, 20, 15, DialectSet::only(Dialect::Gsl)});
+}
+
+}  // namespace
+}  // namespace pvtap

@@ -1,0 +1,184 @@
+// Specific behaviours of the stream reassembler: silence, data loss, timing, noise runs.
+#include "pvtap/stream_reassembler.h"
+
+#include <gtest/gtest.h>
+
+#include "bus_script.h"
+#include "hex_bytes.h"
+#include "pvtap/bus_timing.h"
+
+namespace pvtap {
+namespace {
+
+using test::hex_bytes;
+
+const auto kGoodRequest = hex_bytes("01 03 00 00 00 0A C5 CD");
+const auto kBadEcho = hex_bytes("06 18 08 31 00 00 67 10 2A 09 3C 2A 86");
+const auto kAsciiRequest = hex_bytes("05 30 31 52 30 30 30 34 30 34 30 31 64 62 04");
+
+std::vector<std::uint8_t> join(std::initializer_list<std::vector<std::uint8_t>> parts) {
+  std::vector<std::uint8_t> out;
+  for (const auto& p : parts) out.insert(out.end(), p.begin(), p.end());
+  return out;
+}
+
+TEST(StreamReassembler, ByteAtATimeMixedDialectsOnOneBus) {
+  test::CapturingSink sink;
+  StreamReassembler r({}, sink);
+  const auto stream = join({kAsciiRequest, kGoodRequest, kAsciiRequest});
+  for (auto b : stream) r.feed(BusChunk{std::span(&b, 1), 0.0, Direction::Unknown});
+  ASSERT_EQ(sink.events.size(), 3u);  // good frames are reported without waiting for finish
+  EXPECT_EQ(sink.events[0].frame.dialect, Dialect::Ascii);
+  EXPECT_EQ(sink.events[1].frame.dialect, Dialect::Gsl);
+  EXPECT_EQ(sink.events[2].frame.dialect, Dialect::Ascii);
+  EXPECT_EQ(r.pending_bytes(), 0u);
+}
+
+TEST(StreamReassembler, BadFrameWaitsForEvidenceThenFinishResolvesIt) {
+  test::CapturingSink sink;
+  StreamReassembler r({}, sink);
+  r.feed(BusChunk{kBadEcho, 0.0, Direction::FromSlave});
+  EXPECT_TRUE(sink.events.empty()) << "a bad frame needs evidence for its end";
+  r.finish();
+  ASSERT_EQ(sink.events.size(), 1u);
+  EXPECT_TRUE(sink.events[0].is_frame);
+  EXPECT_FALSE(sink.events[0].frame.check.ok);
+  EXPECT_EQ(sink.events[0].frame.check.expected, 0x8A2B);
+}
+
+TEST(StreamReassembler, SilenceAfterABadFrameResolvesItWhileLive) {
+  const BusTiming timing(9600);
+  test::CapturingSink sink;
+  StreamReassembler r({}, sink);
+  const double t = 1000.0;
+  r.feed(BusChunk{kBadEcho, t, Direction::FromSlave});
+  r.idle(t + timing.t15);
+  EXPECT_TRUE(sink.events.empty()) << "t1.5 is not a frame boundary";
+  r.idle(t + timing.t35);
+  ASSERT_EQ(sink.events.size(), 1u);
+  EXPECT_FALSE(sink.events[0].frame.check.ok);
+  EXPECT_EQ(sink.events[0].bytes, kBadEcho);
+}
+
+TEST(StreamReassembler, SilenceReportsTrailingNoiseAtOnce) {
+  const BusTiming timing(9600);
+  test::CapturingSink sink;
+  StreamReassembler r({}, sink);
+  const auto noise = hex_bytes("00 00 07");
+  r.feed(BusChunk{noise, 5.0, Direction::Unknown});
+  r.idle(5.0 + 2 * timing.t35);
+  ASSERT_EQ(sink.events.size(), 1u);
+  EXPECT_FALSE(sink.events[0].is_frame);
+  EXPECT_EQ(sink.events[0].bytes, noise);
+}
+
+TEST(StreamReassembler, DiscontinuityKeepsFramesFromSpanningLostData) {
+  test::CapturingSink sink;
+  StreamReassembler r({}, sink);
+  const std::span<const std::uint8_t> req(kGoodRequest);
+  r.feed(BusChunk{req.first(4), 0.0, Direction::Unknown});
+  r.discontinuity();
+  r.feed(BusChunk{req.subspan(4), 0.0, Direction::Unknown});
+  r.feed(BusChunk{kGoodRequest, 0.0, Direction::Unknown});
+  r.finish();
+  ASSERT_EQ(sink.events.size(), 3u);
+  EXPECT_FALSE(sink.events[0].is_frame);
+  EXPECT_EQ(sink.events[0].bytes.size(), 4u);
+  EXPECT_FALSE(sink.events[1].is_frame);
+  EXPECT_TRUE(sink.events[2].is_frame);
+  EXPECT_EQ(sink.events[2].offset, 8u);
+  EXPECT_EQ(r.totals().bytes_in, r.totals().frame_bytes + r.totals().noise_bytes);
+}
+
+TEST(StreamReassembler, EstimatesFrameTimesFromTheLastByteStamp) {
+  const BusTiming timing(9600);
+  test::CapturingSink sink;
+  StreamReassembler r({}, sink);
+  r.feed(BusChunk{kGoodRequest, 10.0, Direction::ToSlave});
+  ASSERT_EQ(sink.events.size(), 1u);
+  EXPECT_DOUBLE_EQ(sink.events[0].frame.end_time, 10.0);
+  EXPECT_NEAR(sink.events[0].frame.start_time, 10.0 - 8 * timing.char_time, 1e-9);
+}
+
+TEST(StreamReassembler, MeasuresAGapInsideAFrame) {
+  const BusTiming timing(9600);
+  test::CapturingSink sink;
+  StreamReassembler r({}, sink);
+  const std::span<const std::uint8_t> req(kGoodRequest);
+  const double first_end = 1.0;
+  const double pause = 2 * timing.char_time;
+  r.feed(BusChunk{req.first(3), first_end, Direction::Unknown});
+  r.feed(BusChunk{req.subspan(3), first_end + pause + 5 * timing.char_time, Direction::Unknown});
+  ASSERT_EQ(sink.events.size(), 1u);
+  EXPECT_NEAR(sink.events[0].frame.max_inner_gap, pause, 1e-9);
+  EXPECT_TRUE(r.timing_trusted());
+}
+
+TEST(StreamReassembler, BatchedTimestampsAreDetectedAndExplained) {
+  test::CapturingSink sink;
+  StreamReassembler r({}, sink);
+  // 64 bytes cannot arrive in 1 ms at 9600 baud: these stamps are batched.
+  std::vector<std::uint8_t> bytes(64, 0x00);
+  r.feed(BusChunk{bytes, 1.000, Direction::Unknown});
+  r.feed(BusChunk{bytes, 1.001, Direction::Unknown});
+  EXPECT_FALSE(r.timing_trusted());
+  EXPECT_NE(r.timing_reason().find("batched"), std::string_view::npos);
+}
+
+TEST(StreamReassembler, UntrustedTimestampsNeverActAsEvidence) {
+  const BusTiming timing(9600);
+  test::CapturingSink sink;
+  ReassemblerOptions options;
+  options.timestamps = TimestampTrust::Untrusted;
+  StreamReassembler r(options, sink);
+  r.feed(BusChunk{kBadEcho, 1.0, Direction::FromSlave});
+  r.idle(2.0);
+  EXPECT_TRUE(sink.events.empty());
+  EXPECT_FALSE(r.timing_trusted());
+}
+
+TEST(StreamReassembler, LongGarbageIsReportedInBoundedRuns) {
+  test::CapturingSink sink;
+  StreamReassembler r({}, sink);
+  std::vector<std::uint8_t> garbage(100000, 0x00);  // address 0 never starts a frame
+  r.feed(BusChunk{garbage, 0.0, Direction::Unknown});
+  EXPECT_LT(r.pending_bytes(), 8192u) << "noise must not pile up in the buffer";
+  r.finish();
+  std::uint64_t noise = 0;
+  for (const auto& e : sink.events) {
+    EXPECT_FALSE(e.is_frame);
+    EXPECT_LE(e.bytes.size(), 4096u);
+    noise += e.bytes.size();
+  }
+  EXPECT_EQ(noise, garbage.size());
+}
+
+TEST(StreamReassembler, DialectRestrictionTurnsOtherDialectsIntoNoise) {
+  test::CapturingSink sink;
+  ReassemblerOptions options;
+  options.dialects = DialectSet::only(Dialect::Hybrid);
+  StreamReassembler r(options, sink);
+  const auto stream = join({kAsciiRequest, kGoodRequest});
+  r.feed(BusChunk{stream, 0.0, Direction::Unknown});
+  r.finish();
+  for (const auto& e : sink.events) EXPECT_FALSE(e.is_frame);
+  EXPECT_EQ(r.totals().noise_bytes, stream.size());
+}
+
+TEST(StreamReassembler, FrameSplitAtEveryPointIsReassembled) {
+  const auto stream = join({kGoodRequest, kAsciiRequest});
+  for (std::size_t cut = 1; cut < stream.size(); ++cut) {
+    test::CapturingSink sink;
+    StreamReassembler r({}, sink);
+    const std::span<const std::uint8_t> all(stream);
+    r.feed(BusChunk{all.first(cut), 0.0, Direction::Unknown});
+    r.feed(BusChunk{all.subspan(cut), 0.0, Direction::Unknown});
+    r.finish();
+    ASSERT_EQ(sink.events.size(), 2u) << "cut " << cut;
+    EXPECT_TRUE(sink.events[0].frame.check.ok);
+    EXPECT_TRUE(sink.events[1].frame.check.ok);
+  }
+}
+
+}  // namespace
+}  // namespace pvtap
