@@ -1,0 +1,30 @@
+// When a frame was on the bus, and whether the capture's clock can tell.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "pvtap/dialect.h"
+
+namespace pvtap {
+
+// FrameTiming: one frame's place in time, as the reassembler estimated it.
+struct FrameTiming {
+  std::uint64_t id = 0;
+  Dialect dialect = Dialect::Gsl;
+  Role role = Role::Request;  // as corrected by the TransactionMatcher
+  std::uint8_t station = 0;
+  std::uint8_t function = 0;
+  double start_time = 0;        // first byte began, seconds
+  double end_time = 0;          // last byte ended, seconds
+  double max_internal_gap = 0;  // largest silence between two bytes of the frame, seconds
+};
+
+// TimestampQuality: whether timestamps resolve character times, and if not, why
+// (e.g. "chunked timestamps from a USB adapter").
+struct TimestampQuality {
+  bool fine = true;
+  std::string reason;
+};
+
+}  // namespace pvtap

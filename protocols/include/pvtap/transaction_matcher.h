@@ -1,0 +1,109 @@
+// Pairs requests with replies on one bus and reports what did not pair.
+#pragma once
+
+#include <array>
+#include <bitset>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <optional>
+
+#include "pvtap/frame_summary.h"
+#include "pvtap/match_events.h"
+
+namespace pvtap {
+
+// MatcherConfig: how long a request may wait for its reply.
+struct MatcherConfig {
+  double timeout = 1.0;  // seconds from the request's end to the reply's start; must be > 0
+};
+
+// ObservedFrame: one frame as the reassembler saw it on the bus.
+struct ObservedFrame {
+  std::uint64_t id = 0;  // the caller's sequence number, echoed in every event
+  FrameSummary frame;
+  double start_time = 0;  // when the first byte began, seconds
+  double end_time = 0;    // when the last byte ended, seconds
+  bool check_ok = true;
+  // The caller knows who sent the frame (e.g. separate taps per direction), so its role is
+  // never corrected.
+  bool role_known = false;
+};
+
+// TransactionMatcher: pairs requests with replies and reports timeouts, unsolicited and
+// duplicate replies, length mismatches and corrected roles to a MatchSink.
+//
+// Frames must arrive in bus order. Each frame first advances time to its start_time (which
+// reports the requests whose timeout has passed), then is handled. Pairing is by station:
+// each station has at most one pending request, and a new request to a station gives up the
+// previous one (NextRequestFirst). A reply answers the pending request of its own station;
+// failing that, the pending Hybrid broadcast (0xFF). The broadcast stays open until its
+// timeout or the next broadcast, and every station that answers it in that window makes one
+// transaction; a broadcast that nobody answered times out with station 0xFF.
+//
+// Events of one frame come in this order: timeouts that its start time made due, then the
+// role correction, then the transaction, duplicate or unsolicited reply, then a length
+// mismatch. Lengths are judged only on replies with a good check: in a corrupted reply the
+// length field itself may be the corrupted part.
+//
+// Memory is fixed (one record per address plus the broadcast); nothing is allocated per frame.
+class TransactionMatcher {
+ public:
+  explicit TransactionMatcher(MatchSink& sink, MatcherConfig config = {});
+
+  // Handles one frame; returns its role, corrected when it is a GSL 0x06 echo.
+  Role on_frame(const ObservedFrame& frame);
+
+  // Moves time forward while the bus is silent (live capture), reporting due timeouts.
+  void advance(double now);
+
+  // Ends the capture: every request still waiting times out with CaptureEnded.
+  void finish();
+
+  // Requests waiting for a reply (broadcast included), for diagnostics.
+  std::size_t pending_count() const;
+
+ private:
+  struct RequestRecord {
+    std::uint64_t id = 0;
+    FrameSummary frame;
+    double end_time = 0;
+    double deadline = 0;
+    bool check_ok = true;
+  };
+  // Idle: never asked; Pending: waiting; Answered/TimedOut: the last request's outcome, kept
+  // until the next request so that repeated and late replies can be recognized.
+  enum class SlotState : std::uint8_t { Idle, Pending, Answered, TimedOut };
+  struct Slot {
+    SlotState state = SlotState::Idle;
+    RequestRecord request;
+  };
+  static constexpr std::size_t kSlots = 257;  // 256 stations + the broadcast
+
+  void on_request(const ObservedFrame& in);
+  void on_reply(const ObservedFrame& in);
+  bool try_answer(const ObservedFrame& in);
+  bool try_duplicate(const ObservedFrame& in);
+  void report_unsolicited(const ObservedFrame& in);
+  void complete(const Slot& slot, const ObservedFrame& reply);
+  void give_up(Slot& slot, TimeoutReason reason, double waited,
+               std::optional<std::uint64_t> next_request_id);
+  void expire_overdue();
+  std::size_t collect_pending(bool only_overdue);
+  bool is_broadcast(const Slot& slot) const { return &slot == &broadcast_; }
+  Slot& slot_at(std::size_t i) {
+    return i < station_slots_.size() ? station_slots_[i] : broadcast_;
+  }
+
+  MatchSink& sink_;
+  MatcherConfig config_;
+  std::array<Slot, 256> station_slots_{};
+  Slot broadcast_;
+  std::bitset<256> broadcast_answered_by_;
+  double now_ = -std::numeric_limits<double>::infinity();
+  // A lower bound on the earliest deadline; stale-early is harmless (one extra scan).
+  double next_deadline_ = std::numeric_limits<double>::infinity();
+  std::array<Slot*, kSlots> due_{};  // scratch for ordering timeouts without allocating
+};
+
+}  // namespace pvtap

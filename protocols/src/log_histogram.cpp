@@ -1,0 +1,79 @@
+#include "pvtap/log_histogram.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace pvtap {
+namespace {
+
+// Built on first use rather than at namespace scope, so that no static initializer elsewhere
+// can see it unset.
+struct Geometry {
+  double gamma;
+  double log_gamma;
+  std::size_t regular;  // buckets 1..regular cover (kMinValue, kMinValue * gamma^regular]
+  std::size_t overflow;
+  std::size_t buckets;
+};
+
+const Geometry& geometry() {
+  static const Geometry g = [] {
+    Geometry r{};
+    r.gamma = (1.0 + LogHistogram::kRelativeError) / (1.0 - LogHistogram::kRelativeError);
+    r.log_gamma = std::log(r.gamma);
+    r.regular = static_cast<std::size_t>(
+        std::ceil(std::log(LogHistogram::kMaxValue / LogHistogram::kMinValue) / r.log_gamma));
+    r.overflow = r.regular + 1;
+    r.buckets = r.regular + 2;
+    return r;
+  }();
+  return g;
+}
+
+}  // namespace
+
+void LogHistogram::add(double value) {
+  if (std::isnan(value)) return;
+  if (counts_.empty()) counts_.assign(geometry().buckets, 0);
+  ++counts_[bucket_of(value)];
+  ++count_;
+}
+
+double LogHistogram::quantile(double q) const {
+  if (count_ == 0) return 0.0;
+  q = std::clamp(q, 0.0, 1.0);
+  const auto rank = std::max<std::uint64_t>(
+      1, static_cast<std::uint64_t>(std::ceil(q * static_cast<double>(count_))));
+  std::uint64_t seen = 0;
+  for (std::size_t b = 0; b < counts_.size(); ++b) {
+    seen += counts_[b];
+    if (seen >= rank) return representative(b);
+  }
+  return representative(geometry().overflow);
+}
+
+std::size_t LogHistogram::bucket_of(double value) {
+  const Geometry& g = geometry();
+  if (!(value > kMinValue)) return 0;
+  if (value > upper_bound(g.regular)) return g.overflow;
+  auto b = static_cast<std::size_t>(std::ceil(std::log(value / kMinValue) / g.log_gamma));
+  // The logarithm may land one bucket off at a boundary; the bounds themselves decide.
+  b = std::clamp<std::size_t>(b, 1, g.regular);
+  if (value > upper_bound(b) && b < g.regular) ++b;
+  if (b > 1 && value <= upper_bound(b - 1)) --b;
+  return b;
+}
+
+double LogHistogram::upper_bound(std::size_t bucket) {
+  return kMinValue * std::pow(geometry().gamma, static_cast<double>(bucket));
+}
+
+// The point of (upper/gamma, upper] whose relative distance to both ends is kRelativeError.
+double LogHistogram::representative(std::size_t bucket) {
+  const Geometry& g = geometry();
+  if (bucket == 0) return kMinValue / 2;
+  if (bucket >= g.overflow) return upper_bound(g.regular);
+  return 2.0 * upper_bound(bucket) / (g.gamma + 1.0);
+}
+
+}  // namespace pvtap

@@ -1,0 +1,197 @@
+#include "pvtap/transaction_matcher.h"
+
+#include <algorithm>
+
+#include "pvtap/function_codes.h"
+#include "pvtap/reply_rules.h"
+
+namespace pvtap {
+namespace {
+
+bool is_broadcast_request(const FrameSummary& f) {
+  return f.dialect == Dialect::Hybrid && f.station == fc::kHybridBroadcast;
+}
+
+}  // namespace
+
+TransactionMatcher::TransactionMatcher(MatchSink& sink, MatcherConfig config)
+    : sink_(sink), config_(config) {}
+
+Role TransactionMatcher::on_frame(const ObservedFrame& in) {
+  advance(in.start_time);
+  Role role = in.frame.role;
+  if (role == Role::Request && !in.role_known) {
+    const Slot& own = station_slots_[in.frame.station];
+    if (own.state == SlotState::Pending && echoes_write(own.request.frame, in.frame, in.check_ok)) {
+      sink_.on_role_corrected(RoleCorrection{in.id, own.request.id, Role::Request, Role::Response});
+      role = Role::Response;
+    }
+  }
+  if (role == Role::Request) {
+    on_request(in);
+  } else {
+    on_reply(in);
+  }
+  // The bus is busy until the frame's last byte; later timeouts are judged from there.
+  now_ = std::max(now_, in.end_time);
+  return role;
+}
+
+void TransactionMatcher::advance(double now) {
+  now_ = std::max(now_, now);
+  if (now_ > next_deadline_) expire_overdue();
+}
+
+void TransactionMatcher::finish() {
+  const std::size_t n = collect_pending(false);
+  for (std::size_t i = 0; i < n; ++i) {
+    Slot& slot = *due_[i];
+    give_up(slot, TimeoutReason::CaptureEnded, std::max(0.0, now_ - slot.request.end_time),
+            std::nullopt);
+  }
+  next_deadline_ = std::numeric_limits<double>::infinity();
+}
+
+std::size_t TransactionMatcher::pending_count() const {
+  const auto pending = [](const Slot& s) { return s.state == SlotState::Pending; };
+  return static_cast<std::size_t>(
+             std::count_if(station_slots_.begin(), station_slots_.end(), pending)) +
+         (pending(broadcast_) ? 1u : 0u);
+}
+
+void TransactionMatcher::on_request(const ObservedFrame& in) {
+  const bool broadcast = is_broadcast_request(in.frame);
+  Slot& slot = broadcast ? broadcast_ : station_slots_[in.frame.station];
+  if (slot.state == SlotState::Pending) {
+    give_up(slot, TimeoutReason::NextRequestFirst, in.start_time - slot.request.end_time, in.id);
+  }
+  const double deadline = in.end_time + config_.timeout;
+  slot.state = SlotState::Pending;
+  slot.request = RequestRecord{in.id, in.frame, in.end_time, deadline, in.check_ok};
+  if (broadcast) broadcast_answered_by_.reset();
+  next_deadline_ = std::min(next_deadline_, deadline);
+}
+
+void TransactionMatcher::on_reply(const ObservedFrame& in) {
+  if (try_answer(in)) return;
+  if (try_duplicate(in)) return;
+  report_unsolicited(in);
+}
+
+bool TransactionMatcher::try_answer(const ObservedFrame& in) {
+  const std::uint8_t station = in.frame.station;
+  Slot& own = station_slots_[station];
+  if (own.state == SlotState::Pending && answers(own.request.frame, in.frame)) {
+    complete(own, in);
+    own.state = SlotState::Answered;
+    return true;
+  }
+  if (broadcast_.state == SlotState::Pending && !broadcast_answered_by_[station] &&
+      answers(broadcast_.request.frame, in.frame)) {
+    complete(broadcast_, in);
+    broadcast_answered_by_.set(station);
+    return true;
+  }
+  return false;
+}
+
+bool TransactionMatcher::try_duplicate(const ObservedFrame& in) {
+  const std::uint8_t station = in.frame.station;
+  const Slot& own = station_slots_[station];
+  const Slot* original = nullptr;
+  if (own.state == SlotState::Answered && answers(own.request.frame, in.frame)) {
+    original = &own;
+  } else if (broadcast_.state != SlotState::Idle && broadcast_answered_by_[station] &&
+             answers(broadcast_.request.frame, in.frame)) {
+    original = &broadcast_;
+  }
+  if (original == nullptr) return false;
+  sink_.on_duplicate(DuplicateReply{in.id, original->request.id, in.frame.dialect, station,
+                                    in.frame.function, in.check_ok});
+  return true;
+}
+
+void TransactionMatcher::report_unsolicited(const ObservedFrame& in) {
+  const std::uint8_t station = in.frame.station;
+  UnsolicitedReply event{in.id,       in.frame.dialect, station, in.frame.function,
+                         in.check_ok, std::nullopt,     0.0};
+  const Slot& own = station_slots_[station];
+  const bool broadcast_closed =
+      broadcast_.state == SlotState::Answered || broadcast_.state == SlotState::TimedOut;
+  const Slot* late = nullptr;
+  if (own.state == SlotState::TimedOut && answers(own.request.frame, in.frame)) {
+    late = &own;
+  } else if (broadcast_closed && answers(broadcast_.request.frame, in.frame)) {
+    late = &broadcast_;
+  }
+  if (late != nullptr) {
+    event.late_for_request_id = late->request.id;
+    event.since_request = in.start_time - late->request.end_time;
+  }
+  sink_.on_unsolicited(event);
+}
+
+void TransactionMatcher::complete(const Slot& slot, const ObservedFrame& reply) {
+  const RequestRecord& request = slot.request;
+  const FrameSummary& r = reply.frame;
+  sink_.on_transaction(Transaction{request.id, reply.id, reply.start_time - request.end_time,
+                                   r.dialect, r.station, request.frame.function, r.function,
+                                   reply_kind(r), is_broadcast(slot), request.check_ok,
+                                   reply.check_ok});
+  if (!reply.check_ok) return;
+  const auto counts = compare_reply_count(request.frame, r);
+  if (counts && !counts->matches()) {
+    sink_.on_byte_count_mismatch(ByteCountMismatch{request.id, reply.id, r.dialect, r.station,
+                                                   request.frame.function, counts->expected,
+                                                   counts->found, counts->unit});
+  }
+}
+
+void TransactionMatcher::give_up(Slot& slot, TimeoutReason reason, double waited,
+                                 std::optional<std::uint64_t> next_request_id) {
+  // A broadcast that somebody answered has simply closed its window; it did not fail.
+  if (is_broadcast(slot) && broadcast_answered_by_.any()) {
+    slot.state = SlotState::Answered;
+    return;
+  }
+  slot.state = SlotState::TimedOut;
+  const FrameSummary& f = slot.request.frame;
+  sink_.on_timeout(
+      Timeout{slot.request.id, f.dialect, f.station, f.function, reason, waited, next_request_id});
+}
+
+void TransactionMatcher::expire_overdue() {
+  const std::size_t n = collect_pending(true);
+  for (std::size_t i = 0; i < n; ++i) {
+    give_up(*due_[i], TimeoutReason::NoReply, config_.timeout, std::nullopt);
+  }
+  next_deadline_ = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < kSlots; ++i) {
+    const Slot& slot = slot_at(i);
+    if (slot.state == SlotState::Pending) {
+      next_deadline_ = std::min(next_deadline_, slot.request.deadline);
+    }
+  }
+}
+
+// Gathers pending slots (only those past their deadline when asked) into due_, oldest first,
+// so that timeouts are reported in the order they fell due.
+std::size_t TransactionMatcher::collect_pending(bool only_overdue) {
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < kSlots; ++i) {
+    Slot& slot = slot_at(i);
+    if (slot.state != SlotState::Pending) continue;
+    if (only_overdue && !(slot.request.deadline < now_)) continue;
+    due_[n++] = &slot;
+  }
+  std::sort(due_.begin(), due_.begin() + static_cast<std::ptrdiff_t>(n),
+            [](const Slot* a, const Slot* b) {
+              if (a->request.deadline != b->request.deadline) {
+                return a->request.deadline < b->request.deadline;
+              }
+              return a->request.id < b->request.id;
+            });
+  return n;
+}
+
+}  // namespace pvtap
