@@ -51,7 +51,7 @@ void add_reply(std::span<const std::uint8_t> b, CandidateList& out) {
 }  // namespace
 
 void add_ascii_candidates(std::span<const std::uint8_t> b, RoleHint hint, CandidateList& out) {
-  if (b.empty() || !header_holds(b)) return;
+  if (b.empty() || (b[0] != kEnq && b[0] != kAck) || !header_holds(b)) return;
   if (b[0] == kEnq && hint != RoleHint::Response) add_request(b, out);
   if (b[0] == kAck && hint != RoleHint::Request) add_reply(b, out);
 }

@@ -37,6 +37,7 @@ void ChunkTimeline::add(std::uint64_t end, std::size_t size, double time, Direct
     }
     gap = std::max(gap, 0.0);
   }
+  if (!marks_.empty() && direction != marks_.back().direction) mixed_directions_ = true;
   marks_.push_back(Mark{end - size, end, time, previous_time_, gap, direction});
   previous_time_ = time;
   have_previous_ = true;
@@ -44,14 +45,21 @@ void ChunkTimeline::add(std::uint64_t end, std::size_t size, double time, Direct
 
 void ChunkTimeline::drop_before(std::uint64_t offset) {
   // Keep the last mark: the next chunk's gap is measured from it.
-  while (marks_.size() > 1 && marks_.front().end <= offset) marks_.pop_front();
+  while (marks_.size() > 1 && marks_.front().end <= offset) {
+    marks_.pop_front();
+    last_ = nullptr;
+  }
 }
 
 const ChunkTimeline::Mark* ChunkTimeline::find(std::uint64_t offset) const {
+  if (marks_.empty()) return nullptr;
+  // Queries move forward through the stream: try the chunk found last time first.
+  // (A deque keeps element addresses stable on push_back; drop_before resets the cache.)
+  if (last_ && offset >= last_->start && offset < last_->end) return last_;
   auto it = std::upper_bound(marks_.begin(), marks_.end(), offset,
                              [](std::uint64_t o, const Mark& m) { return o < m.end; });
-  if (it == marks_.end()) return marks_.empty() ? nullptr : &marks_.back();
-  return &*it;
+  last_ = it == marks_.end() ? &marks_.back() : &*it;
+  return last_;
 }
 
 double ChunkTimeline::byte_end_time(std::uint64_t offset) const {
@@ -64,6 +72,7 @@ double ChunkTimeline::byte_end_time(std::uint64_t offset) const {
 }
 
 Direction ChunkTimeline::direction_at(std::uint64_t offset) const {
+  if (!mixed_directions_) return marks_.empty() ? Direction::Unknown : marks_.back().direction;
   const Mark* m = find(offset);
   return m ? m->direction : Direction::Unknown;
 }

@@ -51,6 +51,8 @@ class ChunkTimeline {
   bool trusted_;
   std::string_view reason_;
   std::deque<Mark> marks_;
+  mutable const Mark* last_ = nullptr;  // the mark that answered the last query
+  bool mixed_directions_ = false;       // false while every chunk had the same direction
   bool have_previous_ = false;
   double previous_time_ = 0.0;
 };

@@ -1,5 +1,7 @@
 #include "frame_decision.h"
 
+#include "pvtap/checksums.h"
+
 namespace pvtap::detail {
 namespace {
 
@@ -71,19 +73,45 @@ RoleHint role_hint(Direction d) {
   }
 }
 
+// Checks the candidates in list order. RTU readings at one position share their first bytes,
+// so the CRC of a shorter reading is continued for the longer one instead of restarted.
+void check_candidates(std::span<const std::uint8_t> bytes, const CandidateList& cands,
+                      FrameCheck* checks) {
+  std::uint16_t crc = Crc16Modbus::kInit;
+  std::size_t covered = 0;
+  for (std::size_t i = 0; i < cands.size; ++i) {
+    const FrameCandidate& c = cands.items[i];
+    if (c.length > bytes.size()) continue;
+    if (c.dialect == Dialect::Ascii || c.length < 2) {
+      checks[i] = verify_check(bytes.first(c.length), c.dialect);
+      continue;
+    }
+    const std::size_t body = c.length - 2;
+    if (body < covered) {
+      crc = Crc16Modbus::kInit;
+      covered = 0;
+    }
+    crc = Crc16Modbus::update(crc, bytes.subspan(covered, body - covered));
+    covered = body;
+    checks[i].expected = crc;
+    checks[i].found = static_cast<std::uint16_t>(bytes[body] | (bytes[body + 1] << 8));
+    checks[i].ok = checks[i].found == crc;
+  }
+}
+
 Decision decide_at(const DecisionInput& in) {
   const CandidateList cands = frame_candidates(in.bytes, hint_at(in, 0), in.dialects);
   // Silence after the last byte rules out RTU frames that would need more bytes.
   const bool more_possible = !in.final && !in.silence_after;
   bool waiting = cands.need_header > 0 && more_possible;
   FrameCheck checks[CandidateList::kMax];
+  check_candidates(in.bytes, cands, checks);
   for (std::size_t i = 0; i < cands.size; ++i) {
     const FrameCandidate& c = cands.items[i];
     if (c.length > in.bytes.size()) {
       waiting = waiting || more_possible;
       continue;
     }
-    checks[i] = verify_check(in.bytes.first(c.length), c.dialect);
     if (checks[i].ok) return Decision{Decision::Kind::Frame, c, checks[i]};
   }
   if (waiting) return Decision{Decision::Kind::Wait, {}, {}};
