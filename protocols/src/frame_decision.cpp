@@ -49,6 +49,7 @@ Evidence end_evidence(const DecisionInput& in, std::size_t length) {
 Evidence bad_frame_evidence(const DecisionInput& in, const FrameCandidate& c) {
   // ENQ/ACK ... EOT delimit an ASCII frame by themselves.
   if (c.dialect == Dialect::Ascii) return Evidence::Yes;
+  if (!in.after_frame && !in.timeline->silence_before(in.offset)) return Evidence::No;
   // RTU frames are sent without pauses: a t3.5 silence inside says this reading is wrong.
   if (in.timeline->trusted() && in.timeline->max_gap_inside(in.offset, in.offset + c.length - 1) +
                                         0.1 * in.timeline->timing().char_time >=

@@ -17,6 +17,7 @@ struct DecisionInput {
   DialectSet dialects;
   bool final = false;          // no further bytes will follow these
   bool silence_after = false;  // trusted silence of t3.5 after the last buffered byte
+  bool after_frame = false;    // the previous byte ended a frame (or input starts here)
 };
 
 // Decision: the verdict for the position.
@@ -27,9 +28,11 @@ struct Decision {
   FrameCheck check;
 };
 
-// A frame with a good check is taken at once. A frame with a bad check is taken only with
-// evidence for its end (a good frame right after it, a t3.5 silence, or the end of input),
-// no good frame inside it and no t3.5 silence inside it; otherwise the first byte is noise.
+// A frame with a good check is taken at once. A frame with a bad check is taken only when
+// both its ends are pinned down: its start right after a frame, after a t3.5 silence or at
+// the start of input; its end by a good frame right after it, a t3.5 silence or the end of
+// input. Nor may a good frame or a t3.5 silence lie inside it. Otherwise the first byte is
+// noise: a reading that begins inside noise would turn noise into made-up frames.
 Decision decide_at(const DecisionInput& in);
 
 RoleHint role_hint(Direction d);

@@ -38,11 +38,15 @@ void hybrid_request(Reader& r, std::uint8_t f) {
   r.add(kFixedLength, Role::Request);
 }
 
-// Every reply carries the 4-byte device number and then whole registers.
-void hybrid_response(Reader& r) {
+// Every reply carries the 4-byte device number and then whole registers; write echoes,
+// restore confirmations and error replies always carry exactly two words after it.
+void hybrid_response(Reader& r, std::uint8_t f) {
   if (r.b[0] == fc::kHybridBroadcast || !r.has(2)) return;
   const std::size_t n = r.b[2];
   if (n < 4 || n % 2 != 0) return;
+  const bool fixed =
+      f == fc::kHybridWriteParameter || f == fc::kHybridRestoreFactory || f == fc::kHybridError;
+  if (fixed && n != 8) return;
   r.add(5 + n, Role::Response);
 }
 
@@ -62,14 +66,24 @@ void gsl_request(Reader& r, std::uint8_t f) {
   r.add(kFixedLength, Role::Request);
 }
 
+// Exception codes defined by Modbus (the seed uses 1, 2, 3 and 6).
+constexpr std::uint8_t kMaxExceptionCode = 0x0B;
+
 void gsl_response(Reader& r, std::uint8_t f) {
   if (fc::is_gsl_exception(f)) {
+    if (r.has(2) && (r.b[2] == 0 || r.b[2] > kMaxExceptionCode)) return;
     r.add(5, Role::Response);
   } else if (f == fc::kGslReadHolding || f == fc::kGslReadInput) {
     if (!r.has(2)) return;
     const std::size_t n = r.b[2];
     if (n == 0 || n % 2 != 0) return;
     r.add(5 + n, Role::Response);
+  } else if (f == fc::kGslWriteMultiple) {
+    if (r.has(5)) {
+      const unsigned count = r.word(4);
+      if (count == 0 || count > 123) return;
+    }
+    r.add(kFixedLength, Role::Response);
   } else {
     r.add(kFixedLength, Role::Response);
   }
@@ -92,7 +106,7 @@ void add_rtu_candidates(std::span<const std::uint8_t> b, RoleHint hint, DialectS
   const bool responses = hint != RoleHint::Request;
   if (*dialect == Dialect::Hybrid) {
     if (requests) hybrid_request(r, f);
-    if (responses) hybrid_response(r);
+    if (responses) hybrid_response(r, f);
     return;
   }
   if (b[0] > 247) return;

@@ -31,6 +31,7 @@ struct StreamReassembler::Impl {
   std::size_t head = 0;             // first undecided byte
   std::size_t noise_begin = 0;      // pending noise run is [noise_begin, head)
   bool silence_after = false;
+  bool after_frame = true;  // input starts here: as good a frame boundary as a frame's end
 
   std::uint64_t offset_of(std::size_t index) const { return buffer_offset + index; }
 
@@ -85,9 +86,11 @@ struct StreamReassembler::Impl {
       in.dialects = options.dialects;
       in.final = final || in.bytes.size() > kMaxLookahead;
       in.silence_after = silence_after;
+      in.after_frame = after_frame;
       const detail::Decision d = detail::decide_at(in);
       if (d.kind == detail::Decision::Kind::Wait) break;
-      if (d.kind == detail::Decision::Kind::Frame) {
+      after_frame = d.kind == detail::Decision::Kind::Frame;
+      if (after_frame) {
         emit_frame(d);
       } else {
         ++head;
@@ -137,6 +140,7 @@ void StreamReassembler::discontinuity() {
   m.process(true);
   m.reset_buffer();
   m.timeline.break_continuity();
+  m.after_frame = true;  // what follows lost data starts afresh
 }
 
 void StreamReassembler::finish() {
