@@ -1,0 +1,53 @@
+# shellcheck shell=bash
+# The Debian 12 packages pvtap needs, in one place, and the install step shared by
+# scripts/test and scripts/demo. Source this file; it defines functions only.
+
+# Build and test toolchain, the core's libraries, and what the analyzer and the
+# Wireshark plugin will need (wireshark-dev, tshark, libpcap-dev, libcli11-dev).
+PVTAP_PACKAGES=(
+  build-essential
+  cmake
+  pkg-config
+  libgtest-dev
+  libgmock-dev
+  libbenchmark-dev
+  libtomlplusplus-dev
+  clang-format
+  wireshark-dev
+  tshark
+  libpcap-dev
+  libcli11-dev
+)
+
+# Prints the packages of PVTAP_PACKAGES that are not installed, one per line.
+pvtap_missing_packages() {
+  local pkg status
+  for pkg in "${PVTAP_PACKAGES[@]}"; do
+    status=$(dpkg-query -W -f='${db:Status-Status}' "$pkg" 2>/dev/null || true)
+    if [[ "$status" != "installed" ]]; then
+      printf '%s\n' "$pkg"
+    fi
+  done
+}
+
+# Installs whatever is missing. As root it runs apt-get non-interactively (never
+# prompting, also with no stdin); otherwise it prints the command to run and fails.
+pvtap_ensure_packages() {
+  local missing=()
+  mapfile -t missing < <(pvtap_missing_packages)
+  if ((${#missing[@]} == 0)); then
+    return 0
+  fi
+  if [[ "$(id -u)" -ne 0 ]]; then
+    echo "pvtap: missing Debian packages: ${missing[*]}" >&2
+    echo "pvtap: install them with:" >&2
+    echo "  sudo apt-get install -y --no-install-recommends ${missing[*]}" >&2
+    return 1
+  fi
+  echo "pvtap: installing missing Debian packages: ${missing[*]}"
+  # wireshark-common asks whether non-root users may capture; answer "no" up front.
+  echo "wireshark-common wireshark-common/install-setuid boolean false" | debconf-set-selections
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get -o DPkg::Lock::Timeout=600 update -qq
+  apt-get -o DPkg::Lock::Timeout=600 install -y -qq --no-install-recommends "${missing[@]}" </dev/null
+}
