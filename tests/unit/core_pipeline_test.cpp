@@ -2,6 +2,8 @@
 // register decoder, on one bus carrying all three dialects.
 #include <gtest/gtest.h>
 
+#include "frame_builders.h"
+
 #include <map>
 
 #include "hex_bytes.h"
@@ -15,23 +17,8 @@
 namespace pvtap {
 namespace {
 
-Frame ascii_reply(std::uint16_t start, WordList words) {
-  Frame f;
-  f.dialect = Dialect::Ascii;
-  f.role = Role::Response;
-  f.station = 1;
-  f.function = 'R';
-  f.start = start;
-  f.words = words;
-  return f;
-}
-
 Frame gsl_frame(Role role, std::uint8_t station, std::uint16_t start, WordList words) {
-  Frame f;
-  f.dialect = Dialect::Gsl;
-  f.role = role;
-  f.station = station;
-  f.function = 0x03;
+  Frame f = test::frame_of(Dialect::Gsl, role, station, 0x03);
   if (role == Role::Request) {
     f.start = start;
     f.count = static_cast<std::uint16_t>(words.size());
@@ -85,7 +72,7 @@ class Pipeline : public ReassemblerSink, public MatchSink {
 TEST(CorePipeline, MixedBusGivesTransactionsTimeoutsAndValues) {
   std::vector<std::vector<std::uint8_t>> frames = {
       test::hex_bytes("05 30 31 52 30 30 32 30 30 32 30 31 64 37 04"),  // ASCII PV read
-      encode_frame(ascii_reply(0x0020, {266, 57})),
+      encode_frame(test::ascii_reply(1, 0x0020, {266, 57})),
       test::hex_bytes("FF 11 10 60 00 02 6D 08"),  // Hybrid broadcast device info
       test::hex_bytes("09 11 08 22 00 00 6B 22 00 00 6B F2 77"),
       encode_frame(gsl_frame(Role::Request, 1, 0x0420, {0})),  // GSL ID 1056 (grid frequency)

@@ -3,20 +3,13 @@
 
 #include <gtest/gtest.h>
 
+#include "frame_builders.h"
+
 #include "pvtap/framing_probe.h"
 #include "pvtap/function_codes.h"
 
 namespace pvtap {
 namespace {
-
-Frame make(Dialect d, Role r, std::uint8_t station, int function) {
-  Frame f;
-  f.dialect = d;
-  f.role = r;
-  f.station = station;
-  f.function = static_cast<std::uint8_t>(function);
-  return f;
-}
 
 WordList ramp(std::size_t n, std::uint16_t from = 100) {
   WordList w;
@@ -26,39 +19,39 @@ WordList ramp(std::size_t n, std::uint16_t from = 100) {
 
 std::vector<Frame> every_kind() {
   std::vector<Frame> v;
-  auto ascii_req = make(Dialect::Ascii, Role::Request, 0x1F, 'R');
+  auto ascii_req = test::frame_of(Dialect::Ascii, Role::Request, 0x1F, 'R');
   ascii_req.start = 0x0060;
   ascii_req.count = 8;
   v.push_back(ascii_req);
-  auto ascii_rep = make(Dialect::Ascii, Role::Response, 0x1F, 'R');
+  auto ascii_rep = test::frame_of(Dialect::Ascii, Role::Response, 0x1F, 'R');
   ascii_rep.start = 0x0060;
   ascii_rep.words = ramp(8, 0xFFF0);
   v.push_back(ascii_rep);
   for (int f : {0x11, 0x12, 0x16, 0x17, 0x1F}) {
-    auto req = make(Dialect::Hybrid, Role::Request, 6, f);
+    auto req = test::frame_of(Dialect::Hybrid, Role::Request, 6, f);
     req.start = 0x1000;
     req.count = 0x24;
     v.push_back(req);
   }
   for (int f : {0x11, 0x12, 0x16, 0x17}) {
-    auto rep = make(Dialect::Hybrid, Role::Response, 6, f);
+    auto rep = test::frame_of(Dialect::Hybrid, Role::Response, 6, f);
     rep.byte_count = static_cast<std::uint8_t>(4 + 2 * 0x24);
     rep.device = DeviceNumber{0x32, 0xABCDEF};
     rep.words = ramp(0x24);
     v.push_back(rep);
   }
-  auto write = make(Dialect::Hybrid, Role::Request, 6, 0x18);
+  auto write = test::frame_of(Dialect::Hybrid, Role::Request, 6, 0x18);
   write.start = 0x102A;
   write.words = {0x093C};
   v.push_back(write);
-  auto echo = make(Dialect::Hybrid, Role::Response, 6, 0x18);
+  auto echo = test::frame_of(Dialect::Hybrid, Role::Response, 6, 0x18);
   echo.byte_count = 8;
   echo.device = DeviceNumber{0x31, 103};
   echo.start = 0x102A;
   echo.words = {0x093C};
   v.push_back(echo);
   for (int f : {0x1F, 0xFF}) {
-    auto rep = make(Dialect::Hybrid, Role::Response, 6, f);
+    auto rep = test::frame_of(Dialect::Hybrid, Role::Response, 6, f);
     rep.byte_count = 8;
     rep.device = DeviceNumber{0x31, 103};
     rep.start = f == 0xFF ? 0x1000 : 0x1024;
@@ -66,34 +59,34 @@ std::vector<Frame> every_kind() {
     v.push_back(rep);
   }
   for (int f : {0x03, 0x04}) {
-    auto req = make(Dialect::Gsl, Role::Request, 247, f);
+    auto req = test::frame_of(Dialect::Gsl, Role::Request, 247, f);
     req.start = 0x041A;
     req.count = 51;
     v.push_back(req);
-    auto rep = make(Dialect::Gsl, Role::Response, 247, f);
+    auto rep = test::frame_of(Dialect::Gsl, Role::Response, 247, f);
     rep.byte_count = 102;
     rep.words = ramp(51);
     v.push_back(rep);
   }
-  auto w6 = make(Dialect::Gsl, Role::Request, 1, 0x06);
+  auto w6 = test::frame_of(Dialect::Gsl, Role::Request, 1, 0x06);
   w6.start = 2010;
   w6.words = {0x5555};
   v.push_back(w6);
   auto w6_echo = w6;
   w6_echo.role = Role::Response;
   v.push_back(w6_echo);
-  auto w16 = make(Dialect::Gsl, Role::Request, 1, 0x10);
+  auto w16 = test::frame_of(Dialect::Gsl, Role::Request, 1, 0x10);
   w16.start = 1500;
   w16.count = 6;
   w16.byte_count = 12;
   w16.words = {13, 45, 0, 2026, 11, 22};
   v.push_back(w16);
-  auto w16_rep = make(Dialect::Gsl, Role::Response, 1, 0x10);
+  auto w16_rep = test::frame_of(Dialect::Gsl, Role::Response, 1, 0x10);
   w16_rep.start = 1500;
   w16_rep.count = 6;
   v.push_back(w16_rep);
   for (int f : {0x83, 0x84, 0x86, 0x90}) {
-    auto ex = make(Dialect::Gsl, Role::Response, 1, f);
+    auto ex = test::frame_of(Dialect::Gsl, Role::Response, 1, f);
     ex.exception_code = 0x02;
     v.push_back(ex);
   }
@@ -135,20 +128,20 @@ TEST(FrameCodec, ProbeFindsEveryKindWithItsRole) {
 }
 
 TEST(FrameCodec, EncoderRejectsFieldsThatDoNotFitTheKind) {
-  auto no_start = make(Dialect::Gsl, Role::Request, 1, 0x03);
+  auto no_start = test::frame_of(Dialect::Gsl, Role::Request, 1, 0x03);
   no_start.count = 1;
   EXPECT_TRUE(encode_frame(no_start).empty());
-  auto wrong_dialect = make(Dialect::Gsl, Role::Request, 1, 0x12);
+  auto wrong_dialect = test::frame_of(Dialect::Gsl, Role::Request, 1, 0x12);
   wrong_dialect.start = 0x1000;
   wrong_dialect.count = 1;
   EXPECT_TRUE(encode_frame(wrong_dialect).empty());
-  auto exception_request = make(Dialect::Gsl, Role::Request, 1, 0x83);
+  auto exception_request = test::frame_of(Dialect::Gsl, Role::Request, 1, 0x83);
   exception_request.exception_code = 1;
   EXPECT_TRUE(encode_frame(exception_request).empty());
 }
 
 TEST(FrameCodec, ParserRejectsLengthThatDisagreesWithByteCount) {
-  auto rep = make(Dialect::Gsl, Role::Response, 1, 0x03);
+  auto rep = test::frame_of(Dialect::Gsl, Role::Response, 1, 0x03);
   rep.byte_count = 4;
   rep.words = {1, 2};
   auto wire = encode_frame(rep);
@@ -170,7 +163,7 @@ TEST(FrameCodec, ProbeRejectsImplausibleHeaders) {
 }
 
 TEST(FrameCodec, DialectSetExcludesOtherDialects) {
-  auto req = make(Dialect::Hybrid, Role::Request, 6, 0x12);
+  auto req = test::frame_of(Dialect::Hybrid, Role::Request, 6, 0x12);
   req.start = 0x1000;
   req.count = 0x24;
   const auto wire = encode_frame(req);

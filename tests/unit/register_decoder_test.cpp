@@ -6,33 +6,12 @@
 #include <string>
 #include <vector>
 
+#include "frame_builders.h"
 #include "pvtap/function_codes.h"
 #include "pvtap/register_format.h"
 
 namespace pvtap {
 namespace {
-
-Frame ascii_reply(std::uint16_t start, WordList words) {
-  Frame f;
-  f.dialect = Dialect::Ascii;
-  f.role = Role::Response;
-  f.station = 1;
-  f.function = fc::kAsciiRead;
-  f.start = start;
-  f.words = words;
-  return f;
-}
-
-Frame rtu_request(Dialect d, std::uint8_t function, std::uint16_t start, std::uint16_t count) {
-  Frame f;
-  f.dialect = d;
-  f.role = Role::Request;
-  f.station = 6;
-  f.function = function;
-  f.start = start;
-  f.count = count;
-  return f;
-}
 
 Frame hybrid_reply(std::uint8_t function, WordList words) {
   Frame f;
@@ -84,7 +63,7 @@ std::vector<std::string_view> bit_names(const DecodedValue& v) {
 }
 
 TEST(RegisterDecoder, AsciiFaultWordsOfTheSeed) {
-  const Decoded d = decode(ascii_reply(0x0004, {0x0008, 0x40A2, 0x0021, 0x0000}));
+  const Decoded d = decode(test::ascii_reply(1, 0x0004, {0x0008, 0x40A2, 0x0021, 0x0000}));
   ASSERT_EQ(d.report.status, DecodeStatus::Decoded);
   ASSERT_EQ(d.values.size(), 4u);
   EXPECT_EQ(d.values[1].address, 0x0006);  // addresses step by 2
@@ -101,7 +80,7 @@ TEST(RegisterDecoder, AsciiFaultWordsOfTheSeed) {
 }
 
 TEST(RegisterDecoder, AsciiPvWordsOfTheSeed) {
-  const Decoded d = decode(ascii_reply(0x0020, {266, 57}));
+  const Decoded d = decode(test::ascii_reply(1, 0x0020, {266, 57}));
   EXPECT_DOUBLE_EQ(d.at("pv_voltage").value, 266.0);
   EXPECT_DOUBLE_EQ(d.at("pv_current").value, 5.7);
   EXPECT_EQ(d.at("pv_current").unit(), "A");
@@ -110,7 +89,7 @@ TEST(RegisterDecoder, AsciiPvWordsOfTheSeed) {
 }
 
 TEST(RegisterDecoder, AsciiLineWordsOfTheSeed) {
-  const Decoded d = decode(ascii_reply(0x0050, {217, 0, 0, 65, 0, 0, 601}));
+  const Decoded d = decode(test::ascii_reply(1, 0x0050, {217, 0, 0, 65, 0, 0, 601}));
   ASSERT_EQ(d.values.size(), 7u);
   EXPECT_DOUBLE_EQ(d.at("line_voltage_r").value, 217.0);
   EXPECT_DOUBLE_EQ(d.at("line_voltage_t").value, 0.0);
@@ -121,7 +100,8 @@ TEST(RegisterDecoder, AsciiLineWordsOfTheSeed) {
 }
 
 TEST(RegisterDecoder, AsciiPowerWordsOfTheSeed) {
-  const Decoded d = decode(ascii_reply(0x0060, {2724, 57, 230, 2518, 2980, 998, 11340, 0}));
+  const Decoded d =
+      decode(test::ascii_reply(1, 0x0060, {2724, 57, 230, 2518, 2980, 998, 11340, 0}));
   ASSERT_EQ(d.values.size(), 7u);  // the energy pair takes two words
   EXPECT_EQ(d.text("pv_power"), "2.724 kW");
   const DecodedValue& energy = d.at("cumulative_energy");
@@ -138,7 +118,7 @@ TEST(RegisterDecoder, AsciiPowerWordsOfTheSeed) {
 }
 
 TEST(RegisterDecoder, AsciiSystemWordsOfTheSeed) {
-  const Decoded d = decode(ascii_reply(0x01E0, {0x1030, 0x0510, 0x0001}));
+  const Decoded d = decode(test::ascii_reply(1, 0x01E0, {0x1030, 0x0510, 0x0001}));
   const DecodedValue& capacity = d.at("phase_and_capacity");
   EXPECT_EQ(capacity.bcd.first, 1);
   EXPECT_EQ(capacity.bcd.second, 30);
@@ -153,24 +133,24 @@ TEST(RegisterDecoder, AsciiSystemWordsOfTheSeed) {
 }
 
 TEST(RegisterDecoder, AsciiLowPartAbove9999IsWarned) {
-  const Decoded d = decode(ascii_reply(0x0062, {57, 10230}));
+  const Decoded d = decode(test::ascii_reply(1, 0x0062, {57, 10230}));
   const DecodedValue& energy = d.at("cumulative_energy");
   EXPECT_TRUE(energy.has(ValueWarning::LowPartOver9999));
   EXPECT_EQ(energy.raw, 57u * 10000u + 10230u);
-  EXPECT_FALSE(decode(ascii_reply(0x0062, {57, 9999}))
+  EXPECT_FALSE(decode(test::ascii_reply(1, 0x0062, {57, 9999}))
                    .at("cumulative_energy")
                    .has(ValueWarning::LowPartOver9999));
 }
 
 TEST(RegisterDecoder, PairSplitByTheReadIsIncomplete) {
-  const Decoded tail = decode(ascii_reply(0x0060, {2724, 57}));
+  const Decoded tail = decode(test::ascii_reply(1, 0x0060, {2724, 57}));
   const DecodedValue& high_only = tail.at("cumulative_energy");
   EXPECT_FALSE(high_only.complete());
   EXPECT_EQ(high_only.words_present, 1);
   EXPECT_DOUBLE_EQ(high_only.value, 0.0);
   EXPECT_EQ(format_value(high_only), "incomplete (1 of 2 words in the frame)");
 
-  const Decoded head = decode(ascii_reply(0x0064, {230, 2518}));
+  const Decoded head = decode(test::ascii_reply(1, 0x0064, {230, 2518}));
   ASSERT_EQ(head.values.size(), 2u);
   EXPECT_TRUE(head.values[0].has(ValueWarning::Incomplete));
   EXPECT_EQ(head.values[0].address, 0x0062);
@@ -181,7 +161,7 @@ TEST(RegisterDecoder, PairSplitByTheReadIsIncomplete) {
 TEST(RegisterDecoder, HybridRunningDataWithItsRequest) {
   WordList words{2300, 2310, 2295, 5000, 2, 450,    523,    412,
                  3,    1000, 5002, 1,    3, 0x0429, 0x0001, 0x0002};
-  const Frame request = rtu_request(Dialect::Hybrid, fc::kHybridRunningData, 0x1000, 16);
+  const Frame request = test::read_request(Dialect::Hybrid, 6, fc::kHybridRunningData, 0x1000, 16);
   const Decoded d = decode(hybrid_reply(fc::kHybridRunningData, words), &request);
   ASSERT_EQ(d.report.status, DecodeStatus::Decoded);
   EXPECT_FALSE(d.report.start_assumed);
@@ -214,7 +194,7 @@ TEST(RegisterDecoder, HybridReplyWithoutRequestAssumesTheDefaultStart) {
   EXPECT_NE(describe(d.report).find("assumed"), std::string_view::npos);
 
   // A request of another function code does not belong to this reply.
-  const Frame other = rtu_request(Dialect::Hybrid, fc::kHybridRunningData, 0x1000, 3);
+  const Frame other = test::read_request(Dialect::Hybrid, 6, fc::kHybridRunningData, 0x1000, 3);
   const Decoded mismatched = decode(reply, &other);
   EXPECT_TRUE(mismatched.report.start_assumed);
   EXPECT_TRUE(mismatched.report.request_unusable);
@@ -222,7 +202,7 @@ TEST(RegisterDecoder, HybridReplyWithoutRequestAssumesTheDefaultStart) {
 }
 
 TEST(RegisterDecoder, HybridCountMismatchIsFlagged) {
-  const Frame request = rtu_request(Dialect::Hybrid, fc::kHybridSettings, 0x1024, 0x1A);
+  const Frame request = test::read_request(Dialect::Hybrid, 6, fc::kHybridSettings, 0x1024, 0x1A);
   const Decoded d = decode(hybrid_reply(fc::kHybridSettings, {2880, 2840}), &request);
   EXPECT_TRUE(d.report.count_mismatch);
   EXPECT_EQ(d.values.size(), 2u);
@@ -251,7 +231,7 @@ TEST(RegisterDecoder, HybridDeviceNumber) {
 }
 
 TEST(RegisterDecoder, HybridWriteRequestAndEcho) {
-  Frame request = rtu_request(Dialect::Hybrid, fc::kHybridWriteParameter, 0x102A, 0);
+  Frame request = test::read_request(Dialect::Hybrid, 6, fc::kHybridWriteParameter, 0x102A, 0);
   request.count.reset();
   request.words = WordList{0x093C};
   const Decoded written = decode(request);
@@ -275,7 +255,7 @@ TEST(RegisterDecoder, FramesWithoutRegisterValues) {
   EXPECT_EQ(decode(restore).report.status, DecodeStatus::NoRegisterData);
   Frame error = hybrid_reply(fc::kHybridError, {});
   EXPECT_EQ(decode(error).report.status, DecodeStatus::NoRegisterData);
-  const Frame read = rtu_request(Dialect::Gsl, fc::kGslReadHolding, 0x041A, 3);
+  const Frame read = test::read_request(Dialect::Gsl, 6, fc::kGslReadHolding, 0x041A, 3);
   const Decoded d = decode(read);
   EXPECT_EQ(d.report.status, DecodeStatus::NoRegisterData);
   EXPECT_TRUE(d.values.empty());
@@ -295,7 +275,7 @@ TEST(RegisterDecoder, HybridManufacturerBlockUsesTheRange) {
 }
 
 TEST(RegisterDecoder, GslReadWithDecimalIds) {
-  const Frame request = rtu_request(Dialect::Gsl, fc::kGslReadHolding, 0x041A, 3);
+  const Frame request = test::read_request(Dialect::Gsl, 6, fc::kGslReadHolding, 0x041A, 3);
   const Decoded d = decode(gsl_reply({2200, 2210, 2190}), &request);
   ASSERT_EQ(d.values.size(), 3u);
   EXPECT_EQ(d.values[0].key(), "grid_voltage_ab");
@@ -308,7 +288,7 @@ TEST(RegisterDecoder, GslReadWithDecimalIds) {
 TEST(RegisterDecoder, GslReadWithHexIds) {
   DecoderOptions hex;
   hex.gsl_ids = GslIdReading::Hex;
-  const Frame request = rtu_request(Dialect::Gsl, fc::kGslReadHolding, 0x1050, 3);
+  const Frame request = test::read_request(Dialect::Gsl, 6, fc::kGslReadHolding, 0x1050, 3);
   const Decoded d = decode(gsl_reply({2200, 2210, 2190}), &request, hex);
   ASSERT_EQ(d.values.size(), 3u);
   EXPECT_EQ(d.values[0].key(), "grid_voltage_ab");
@@ -325,7 +305,7 @@ TEST(RegisterDecoder, GslReadWithHexIds) {
 TEST(RegisterDecoder, GslHexIdsSkipAddressesWithHexDigits) {
   DecoderOptions hex;
   hex.gsl_ids = GslIdReading::Hex;
-  const Frame request = rtu_request(Dialect::Gsl, fc::kGslReadHolding, 0x1099, 2);
+  const Frame request = test::read_request(Dialect::Gsl, 6, fc::kGslReadHolding, 0x1099, 2);
   const Decoded d = decode(gsl_reply({1, 2}), &request, hex);
   ASSERT_EQ(d.values.size(), 2u);
   EXPECT_EQ(d.values[0].key(), "reserved_1096");
@@ -341,7 +321,7 @@ TEST(RegisterDecoder, GslReplyWithoutRequestCannotBePlaced) {
 }
 
 TEST(RegisterDecoder, GslPairUnderBothRules) {
-  const Frame request = rtu_request(Dialect::Gsl, fc::kGslReadHolding, 1086, 2);
+  const Frame request = test::read_request(Dialect::Gsl, 6, fc::kGslReadHolding, 1086, 2);
   const Frame reply = gsl_reply({0x0001, 0x0002});
   const Decoded binary = decode(reply, &request);
   EXPECT_EQ(binary.at("total_energy").raw, 65538u);
@@ -360,7 +340,7 @@ TEST(RegisterDecoder, GslPairUnderBothRules) {
 }
 
 TEST(RegisterDecoder, GslPairCutByTheReadIsIncomplete) {
-  const Frame request = rtu_request(Dialect::Gsl, fc::kGslReadHolding, 1085, 2);
+  const Frame request = test::read_request(Dialect::Gsl, 6, fc::kGslReadHolding, 1085, 2);
   const Decoded d = decode(gsl_reply({12, 0x0001}), &request);
   ASSERT_EQ(d.values.size(), 2u);
   EXPECT_EQ(d.text("grid_connected_time_today"), "1.2 h");
@@ -368,7 +348,7 @@ TEST(RegisterDecoder, GslPairCutByTheReadIsIncomplete) {
 }
 
 TEST(RegisterDecoder, GslTextRegisters) {
-  const Frame request = rtu_request(Dialect::Gsl, fc::kGslReadHolding, 1000, 10);
+  const Frame request = test::read_request(Dialect::Gsl, 6, fc::kGslReadHolding, 1000, 10);
   const Decoded d = decode(gsl_reply({0x4753, 0x4C30, 0x3030, 0x3530, 0x304B,    // GSL000500K
                                       0x4B53, 0x5441, 0x5253, 0x4F4C, 0x4152}),  // KSTARSOLAR
                            &request);
@@ -377,14 +357,14 @@ TEST(RegisterDecoder, GslTextRegisters) {
   EXPECT_EQ(d.text("manufacturer_name"), "KSTARSOLAR");
 
   const Frame short_name = gsl_reply({0x4B53, 0x5441, 0x5200, 0x0000, 0x0000});
-  const Frame second = rtu_request(Dialect::Gsl, fc::kGslReadHolding, 1005, 5);
+  const Frame second = test::read_request(Dialect::Gsl, 6, fc::kGslReadHolding, 1005, 5);
   const Decoded padded = decode(short_name, &second);
   EXPECT_EQ(padded.at("manufacturer_name").text(), "KSTAR");
   EXPECT_EQ(padded.at("manufacturer_name").warnings, 0);
 }
 
 TEST(RegisterDecoder, GslSignedPowerFactor) {
-  const Frame request = rtu_request(Dialect::Gsl, fc::kGslReadHolding, 1092, 2);
+  const Frame request = test::read_request(Dialect::Gsl, 6, fc::kGslReadHolding, 1092, 2);
   const Decoded d = decode(gsl_reply({0xFFA1, 98}), &request);  // -95, 98
   EXPECT_EQ(d.at("power_factor_setting").signed_raw, -95);
   EXPECT_DOUBLE_EQ(d.at("power_factor_setting").value, -0.95);
@@ -393,7 +373,7 @@ TEST(RegisterDecoder, GslSignedPowerFactor) {
 }
 
 TEST(RegisterDecoder, GslBitsAndUnnamedBits) {
-  const Frame request = rtu_request(Dialect::Gsl, fc::kGslReadHolding, 1033, 1);
+  const Frame request = test::read_request(Dialect::Gsl, 6, fc::kGslReadHolding, 1033, 1);
   const Decoded d = decode(gsl_reply({0x0830 | 0x0001}), &request);
   const DecodedValue& status = d.at("status_word");
   std::vector<BitName> bits(status.set_bits().begin(), status.set_bits().end());
@@ -407,7 +387,7 @@ TEST(RegisterDecoder, GslBitsAndUnnamedBits) {
 }
 
 TEST(RegisterDecoder, GslOnOffCommandEnum) {
-  Frame write = rtu_request(Dialect::Gsl, fc::kGslWriteSingle, 2010, 0);
+  Frame write = test::read_request(Dialect::Gsl, 6, fc::kGslWriteSingle, 2010, 0);
   write.count.reset();
   write.words = WordList{0x5555};
   const Decoded start = decode(write);
@@ -428,7 +408,7 @@ TEST(RegisterDecoder, GslOnOffCommandEnum) {
 }
 
 TEST(RegisterDecoder, GslWriteMultipleClock) {
-  Frame write = rtu_request(Dialect::Gsl, fc::kGslWriteMultiple, 1500, 6);
+  Frame write = test::read_request(Dialect::Gsl, 6, fc::kGslWriteMultiple, 1500, 6);
   write.byte_count = 12;
   write.words = WordList{13, 45, 7, 2011, 6, 30};
   const Decoded d = decode(write);
@@ -440,7 +420,7 @@ TEST(RegisterDecoder, GslWriteMultipleClock) {
 }
 
 TEST(RegisterDecoder, UnmappedWordsAreStillReported) {
-  const Frame request = rtu_request(Dialect::Gsl, fc::kGslReadHolding, 1040, 1);
+  const Frame request = test::read_request(Dialect::Gsl, 6, fc::kGslReadHolding, 1040, 1);
   const Decoded d = decode(gsl_reply({0xBEEF}), &request);
   ASSERT_EQ(d.values.size(), 1u);
   EXPECT_EQ(d.values[0].def, nullptr);
@@ -465,7 +445,7 @@ unit = "kW"
   RegisterDecoder decoder;
   decoder.use_map(*merged.map);
   std::vector<DecodedValue> out;
-  const Frame request = rtu_request(Dialect::Gsl, fc::kGslReadHolding, 1040, 1);
+  const Frame request = test::read_request(Dialect::Gsl, 6, fc::kGslReadHolding, 1040, 1);
   decoder.decode(gsl_reply({5}), &request, out);
   ASSERT_EQ(out.size(), 1u);
   EXPECT_EQ(out[0].key(), "site_meter");
@@ -475,7 +455,7 @@ unit = "kW"
 TEST(RegisterDecoder, ReusedOutputDoesNotGrowAfterWarmUp) {
   RegisterDecoder decoder;
   std::vector<DecodedValue> out;
-  const Frame power = ascii_reply(0x0060, {2724, 57, 230, 2518, 2980, 998, 11340, 0});
+  const Frame power = test::ascii_reply(1, 0x0060, {2724, 57, 230, 2518, 2980, 998, 11340, 0});
   decoder.decode(power, nullptr, out);
   const DecodedValue* storage = out.data();
   const std::size_t capacity = out.capacity();
@@ -492,8 +472,8 @@ TEST(RegisterDecoder, ReusedOutputDoesNotGrowAfterWarmUp) {
 TEST(RegisterDecoder, AppendsAfterExistingValues) {
   RegisterDecoder decoder;
   std::vector<DecodedValue> out;
-  decoder.decode(ascii_reply(0x0020, {266, 57}), nullptr, out);
-  const DecodeReport second = decoder.decode(ascii_reply(0x0050, {217}), nullptr, out);
+  decoder.decode(test::ascii_reply(1, 0x0020, {266, 57}), nullptr, out);
+  const DecodeReport second = decoder.decode(test::ascii_reply(1, 0x0050, {217}), nullptr, out);
   EXPECT_EQ(second.first, 2u);
   EXPECT_EQ(second.count, 1u);
   EXPECT_EQ(out[2].key(), "line_voltage_r");

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "frame_builders.h"
+
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -35,18 +37,6 @@ struct RecordingSink : MatchSink {
            mismatches.size() + corrections.size();
   }
 };
-
-Frame read_request(Dialect d, std::uint8_t station, std::uint8_t function, std::uint16_t start,
-                   std::uint16_t count) {
-  Frame f;
-  f.dialect = d;
-  f.role = Role::Request;
-  f.station = station;
-  f.function = function;
-  f.start = start;
-  f.count = count;
-  return f;
-}
 
 Frame rtu_reply(Dialect d, std::uint8_t station, std::uint8_t function, std::uint8_t n) {
   Frame f;
@@ -99,7 +89,7 @@ class TransactionMatcherTest : public ::testing::Test {
 
 TEST_F(TransactionMatcherTest, PlainRequestReplyGivesLatency) {
   matcher.on_frame(
-      observed(1, read_request(Dialect::Gsl, 1, fc::kGslReadHolding, 0, 10), 0.000, 0.008));
+      observed(1, test::read_request(Dialect::Gsl, 1, fc::kGslReadHolding, 0, 10), 0.000, 0.008));
   EXPECT_EQ(matcher.pending_count(), 1u);
   matcher.on_frame(observed(2, rtu_reply(Dialect::Gsl, 1, fc::kGslReadHolding, 20), 0.050, 0.075));
   matcher.finish();
@@ -120,7 +110,8 @@ TEST_F(TransactionMatcherTest, PlainRequestReplyGivesLatency) {
 }
 
 TEST_F(TransactionMatcherTest, ReplyWithOtherFunctionDoesNotAnswer) {
-  matcher.on_frame(observed(1, read_request(Dialect::Gsl, 1, fc::kGslReadHolding, 0, 2), 0, 0.008));
+  matcher.on_frame(
+      observed(1, test::read_request(Dialect::Gsl, 1, fc::kGslReadHolding, 0, 2), 0, 0.008));
   matcher.on_frame(observed(2, rtu_reply(Dialect::Gsl, 1, fc::kGslReadInput, 4), 0.02, 0.03));
   EXPECT_TRUE(sink.transactions.empty());
   ASSERT_EQ(sink.unsolicited.size(), 1u);
@@ -129,8 +120,9 @@ TEST_F(TransactionMatcherTest, ReplyWithOtherFunctionDoesNotAnswer) {
 
 TEST_F(TransactionMatcherTest, HybridBroadcastIsAnsweredFromTheRealAddress) {
   matcher.on_frame(observed(
-      1, read_request(Dialect::Hybrid, fc::kHybridBroadcast, fc::kHybridDeviceInfo, 0x1060, 2), 0.0,
-      0.008));
+      1,
+      test::read_request(Dialect::Hybrid, fc::kHybridBroadcast, fc::kHybridDeviceInfo, 0x1060, 2),
+      0.0, 0.008));
   matcher.on_frame(
       observed(2, rtu_reply(Dialect::Hybrid, 6, fc::kHybridDeviceInfo, 8), 0.030, 0.043));
   ASSERT_EQ(sink.transactions.size(), 1u);
@@ -156,8 +148,9 @@ TEST_F(TransactionMatcherTest, HybridBroadcastIsAnsweredFromTheRealAddress) {
 
 TEST_F(TransactionMatcherTest, UnansweredHybridBroadcastTimesOut) {
   matcher.on_frame(observed(
-      1, read_request(Dialect::Hybrid, fc::kHybridBroadcast, fc::kHybridDeviceInfo, 0x1060, 2), 0.0,
-      0.008));
+      1,
+      test::read_request(Dialect::Hybrid, fc::kHybridBroadcast, fc::kHybridDeviceInfo, 0x1060, 2),
+      0.0, 0.008));
   matcher.advance(2.0);
   ASSERT_EQ(sink.timeouts.size(), 1u);
   EXPECT_EQ(sink.timeouts[0].station, fc::kHybridBroadcast);
@@ -166,7 +159,7 @@ TEST_F(TransactionMatcherTest, UnansweredHybridBroadcastTimesOut) {
 
 TEST_F(TransactionMatcherTest, HybridErrorReplyAnswersThePendingRequest) {
   matcher.on_frame(observed(
-      1, read_request(Dialect::Hybrid, 6, fc::kHybridRunningData, 0x1000, 0x24), 0.0, 0.008));
+      1, test::read_request(Dialect::Hybrid, 6, fc::kHybridRunningData, 0x1000, 0x24), 0.0, 0.008));
   matcher.on_frame(observed(2, rtu_reply(Dialect::Hybrid, 6, fc::kHybridError, 8), 0.02, 0.033));
   matcher.finish();
   ASSERT_EQ(sink.transactions.size(), 1u);
@@ -180,7 +173,7 @@ TEST_F(TransactionMatcherTest, HybridErrorReplyAnswersThePendingRequest) {
 
 TEST_F(TransactionMatcherTest, GslExceptionAnswersItsBaseFunctionOnly) {
   matcher.on_frame(
-      observed(1, read_request(Dialect::Gsl, 3, fc::kGslReadHolding, 1050, 4), 0.0, 0.008));
+      observed(1, test::read_request(Dialect::Gsl, 3, fc::kGslReadHolding, 1050, 4), 0.0, 0.008));
   Frame wrong_base = rtu_reply(Dialect::Gsl, 3, fc::kGslWriteMultiple | fc::kExceptionFlag, 0);
   wrong_base.byte_count.reset();
   wrong_base.exception_code = 1;
@@ -238,7 +231,7 @@ TEST_F(TransactionMatcherTest, TimeoutWhenNoReplyWithinTheTimeout) {
   RecordingSink short_sink;
   TransactionMatcher short_matcher(short_sink, MatcherConfig{0.2});
   short_matcher.on_frame(
-      observed(1, read_request(Dialect::Gsl, 1, fc::kGslReadHolding, 0, 2), 0.0, 0.008));
+      observed(1, test::read_request(Dialect::Gsl, 1, fc::kGslReadHolding, 0, 2), 0.0, 0.008));
   // The reply comes 0.292 s after the request: too late for a 0.2 s timeout.
   short_matcher.on_frame(
       observed(2, rtu_reply(Dialect::Gsl, 1, fc::kGslReadHolding, 4), 0.300, 0.309));
@@ -253,7 +246,7 @@ TEST_F(TransactionMatcherTest, TimeoutWhenNoReplyWithinTheTimeout) {
 
   // The default 1 s timeout accepts the same reply.
   matcher.on_frame(
-      observed(1, read_request(Dialect::Gsl, 1, fc::kGslReadHolding, 0, 2), 0.0, 0.008));
+      observed(1, test::read_request(Dialect::Gsl, 1, fc::kGslReadHolding, 0, 2), 0.0, 0.008));
   matcher.on_frame(observed(2, rtu_reply(Dialect::Gsl, 1, fc::kGslReadHolding, 4), 0.300, 0.309));
   EXPECT_EQ(sink.transactions.size(), 1u);
   EXPECT_TRUE(sink.timeouts.empty());
@@ -261,12 +254,12 @@ TEST_F(TransactionMatcherTest, TimeoutWhenNoReplyWithinTheTimeout) {
 
 TEST_F(TransactionMatcherTest, TimeoutWhenTheNextRequestCameFirst) {
   matcher.on_frame(
-      observed(1, read_request(Dialect::Ascii, 1, fc::kAsciiRead, 0x0004, 4), 0.0, 0.015));
+      observed(1, test::read_request(Dialect::Ascii, 1, fc::kAsciiRead, 0x0004, 4), 0.0, 0.015));
   matcher.on_frame(
-      observed(2, read_request(Dialect::Ascii, 2, fc::kAsciiRead, 0x0004, 4), 0.2, 0.215));
+      observed(2, test::read_request(Dialect::Ascii, 2, fc::kAsciiRead, 0x0004, 4), 0.2, 0.215));
   EXPECT_TRUE(sink.timeouts.empty()) << "a request to another station leaves station 1 waiting";
   matcher.on_frame(
-      observed(3, read_request(Dialect::Ascii, 1, fc::kAsciiRead, 0x0020, 2), 0.5, 0.515));
+      observed(3, test::read_request(Dialect::Ascii, 1, fc::kAsciiRead, 0x0020, 2), 0.5, 0.515));
   ASSERT_EQ(sink.timeouts.size(), 1u);
   EXPECT_EQ(sink.timeouts[0].request_id, 1u);
   EXPECT_EQ(sink.timeouts[0].reason, TimeoutReason::NextRequestFirst);
@@ -277,9 +270,9 @@ TEST_F(TransactionMatcherTest, TimeoutWhenTheNextRequestCameFirst) {
 
 TEST_F(TransactionMatcherTest, TimeoutWhenTheCaptureEnds) {
   matcher.on_frame(
-      observed(1, read_request(Dialect::Gsl, 1, fc::kGslReadHolding, 0, 2), 0.0, 0.008));
+      observed(1, test::read_request(Dialect::Gsl, 1, fc::kGslReadHolding, 0, 2), 0.0, 0.008));
   matcher.on_frame(
-      observed(2, read_request(Dialect::Gsl, 2, fc::kGslReadHolding, 0, 2), 0.3, 0.308));
+      observed(2, test::read_request(Dialect::Gsl, 2, fc::kGslReadHolding, 0, 2), 0.3, 0.308));
   matcher.finish();
   ASSERT_EQ(sink.timeouts.size(), 2u);
   EXPECT_EQ(sink.timeouts[0].request_id, 1u);
@@ -301,7 +294,7 @@ TEST_F(TransactionMatcherTest, ReplyWithoutRequestIsUnsolicited) {
 
 TEST_F(TransactionMatcherTest, RepeatedReplyIsADuplicateOfTheOriginalRequest) {
   matcher.on_frame(
-      observed(1, read_request(Dialect::Gsl, 4, fc::kGslReadHolding, 0, 2), 0.0, 0.008));
+      observed(1, test::read_request(Dialect::Gsl, 4, fc::kGslReadHolding, 0, 2), 0.0, 0.008));
   matcher.on_frame(observed(2, rtu_reply(Dialect::Gsl, 4, fc::kGslReadHolding, 4), 0.02, 0.029));
   matcher.on_frame(observed(3, rtu_reply(Dialect::Gsl, 4, fc::kGslReadHolding, 4), 0.04, 0.049));
   ASSERT_EQ(sink.duplicates.size(), 1u);
@@ -312,7 +305,7 @@ TEST_F(TransactionMatcherTest, RepeatedReplyIsADuplicateOfTheOriginalRequest) {
 
   // After a new request the same reply answers it instead.
   matcher.on_frame(
-      observed(4, read_request(Dialect::Gsl, 4, fc::kGslReadHolding, 0, 2), 0.1, 0.108));
+      observed(4, test::read_request(Dialect::Gsl, 4, fc::kGslReadHolding, 0, 2), 0.1, 0.108));
   matcher.on_frame(observed(5, rtu_reply(Dialect::Gsl, 4, fc::kGslReadHolding, 4), 0.12, 0.129));
   EXPECT_EQ(sink.duplicates.size(), 1u);
   ASSERT_EQ(sink.transactions.size(), 2u);
@@ -321,8 +314,9 @@ TEST_F(TransactionMatcherTest, RepeatedReplyIsADuplicateOfTheOriginalRequest) {
 
 TEST_F(TransactionMatcherTest, HybridByteCountMismatch) {
   // The seed's own example: a 0x17 read of 0x49 registers answered with n = 0x5E.
-  matcher.on_frame(observed(
-      1, read_request(Dialect::Hybrid, 6, fc::kHybridManufacturer, 0x104B, 0x49), 0.0, 0.008));
+  matcher.on_frame(
+      observed(1, test::read_request(Dialect::Hybrid, 6, fc::kHybridManufacturer, 0x104B, 0x49),
+               0.0, 0.008));
   matcher.on_frame(
       observed(2, rtu_reply(Dialect::Hybrid, 6, fc::kHybridManufacturer, 0x5E), 0.02, 0.12));
   ASSERT_EQ(sink.mismatches.size(), 1u);
@@ -334,8 +328,9 @@ TEST_F(TransactionMatcherTest, HybridByteCountMismatch) {
   EXPECT_EQ(sink.transactions.size(), 1u);
 
   // Restore-factory replies are always 8 bytes, whatever the request's count.
-  matcher.on_frame(observed(
-      3, read_request(Dialect::Hybrid, 6, fc::kHybridRestoreFactory, 0x1024, 0x7B), 0.2, 0.208));
+  matcher.on_frame(
+      observed(3, test::read_request(Dialect::Hybrid, 6, fc::kHybridRestoreFactory, 0x1024, 0x7B),
+               0.2, 0.208));
   matcher.on_frame(
       observed(4, rtu_reply(Dialect::Hybrid, 6, fc::kHybridRestoreFactory, 8), 0.22, 0.233));
   EXPECT_EQ(sink.mismatches.size(), 1u);
@@ -344,7 +339,7 @@ TEST_F(TransactionMatcherTest, HybridByteCountMismatch) {
 
 TEST_F(TransactionMatcherTest, GslByteCountMismatch) {
   matcher.on_frame(
-      observed(1, read_request(Dialect::Gsl, 1, fc::kGslReadInput, 1050, 10), 0.0, 0.008));
+      observed(1, test::read_request(Dialect::Gsl, 1, fc::kGslReadInput, 1050, 10), 0.0, 0.008));
   matcher.on_frame(observed(2, rtu_reply(Dialect::Gsl, 1, fc::kGslReadInput, 18), 0.02, 0.044));
   ASSERT_EQ(sink.mismatches.size(), 1u);
   EXPECT_EQ(sink.mismatches[0].expected, 20u);
@@ -352,14 +347,14 @@ TEST_F(TransactionMatcherTest, GslByteCountMismatch) {
   EXPECT_EQ(sink.mismatches[0].unit, CountUnit::Bytes);
 
   matcher.on_frame(
-      observed(3, read_request(Dialect::Gsl, 1, fc::kGslReadInput, 1050, 10), 0.1, 0.108));
+      observed(3, test::read_request(Dialect::Gsl, 1, fc::kGslReadInput, 1050, 10), 0.1, 0.108));
   matcher.on_frame(observed(4, rtu_reply(Dialect::Gsl, 1, fc::kGslReadInput, 20), 0.12, 0.146));
   EXPECT_EQ(sink.mismatches.size(), 1u) << "a matching count must not be reported";
 }
 
 TEST_F(TransactionMatcherTest, AsciiWordCountMismatch) {
   matcher.on_frame(
-      observed(1, read_request(Dialect::Ascii, 1, fc::kAsciiRead, 0x0050, 7), 0.0, 0.015));
+      observed(1, test::read_request(Dialect::Ascii, 1, fc::kAsciiRead, 0x0050, 7), 0.0, 0.015));
   matcher.on_frame(observed(2, ascii_reply(1, 0x0050, 6), 0.05, 0.09));
   ASSERT_EQ(sink.transactions.size(), 1u);
   ASSERT_EQ(sink.mismatches.size(), 1u);
@@ -370,7 +365,7 @@ TEST_F(TransactionMatcherTest, AsciiWordCountMismatch) {
 
 TEST_F(TransactionMatcherTest, AsciiReplyMustRepeatTheStartAddress) {
   matcher.on_frame(
-      observed(1, read_request(Dialect::Ascii, 1, fc::kAsciiRead, 0x0050, 7), 0.0, 0.015));
+      observed(1, test::read_request(Dialect::Ascii, 1, fc::kAsciiRead, 0x0050, 7), 0.0, 0.015));
   matcher.on_frame(observed(2, ascii_reply(1, 0x0020, 7), 0.05, 0.09));
   EXPECT_TRUE(sink.transactions.empty());
   EXPECT_EQ(sink.unsolicited.size(), 1u);
@@ -380,8 +375,8 @@ TEST_F(TransactionMatcherTest, AsciiReplyMustRepeatTheStartAddress) {
 }
 
 TEST_F(TransactionMatcherTest, ReplyWithBadCheckStillAnswers) {
-  matcher.on_frame(
-      observed(1, read_request(Dialect::Hybrid, 6, fc::kHybridDeviceInfo, 0x1060, 2), 0.0, 0.008));
+  matcher.on_frame(observed(
+      1, test::read_request(Dialect::Hybrid, 6, fc::kHybridDeviceInfo, 0x1060, 2), 0.0, 0.008));
   // Wrong length too: a corrupted reply's length field is not judged.
   matcher.on_frame(observed(2, rtu_reply(Dialect::Hybrid, 6, fc::kHybridDeviceInfo, 9), 0.02, 0.034,
                             /*check_ok=*/false));
@@ -396,9 +391,9 @@ TEST_F(TransactionMatcherTest, ReplyWithBadCheckStillAnswers) {
 
 TEST_F(TransactionMatcherTest, AdvanceReportsTimeoutsWhileTheBusIsSilent) {
   matcher.on_frame(
-      observed(1, read_request(Dialect::Gsl, 2, fc::kGslReadHolding, 0, 2), 0.0, 0.010));
+      observed(1, test::read_request(Dialect::Gsl, 2, fc::kGslReadHolding, 0, 2), 0.0, 0.010));
   matcher.on_frame(
-      observed(2, read_request(Dialect::Gsl, 1, fc::kGslReadHolding, 0, 2), 0.1, 0.105));
+      observed(2, test::read_request(Dialect::Gsl, 1, fc::kGslReadHolding, 0, 2), 0.1, 0.105));
   matcher.advance(0.9);
   EXPECT_TRUE(sink.timeouts.empty());
   matcher.advance(1.02);
@@ -414,9 +409,9 @@ TEST_F(TransactionMatcherTest, AdvanceReportsTimeoutsWhileTheBusIsSilent) {
 
 TEST_F(TransactionMatcherTest, SimultaneousTimeoutsComeInDeadlineOrder) {
   matcher.on_frame(
-      observed(1, read_request(Dialect::Gsl, 9, fc::kGslReadHolding, 0, 2), 0.0, 0.01));
+      observed(1, test::read_request(Dialect::Gsl, 9, fc::kGslReadHolding, 0, 2), 0.0, 0.01));
   matcher.on_frame(
-      observed(2, read_request(Dialect::Gsl, 3, fc::kGslReadHolding, 0, 2), 0.02, 0.03));
+      observed(2, test::read_request(Dialect::Gsl, 3, fc::kGslReadHolding, 0, 2), 0.02, 0.03));
   matcher.advance(5.0);
   ASSERT_EQ(sink.timeouts.size(), 2u);
   EXPECT_EQ(sink.timeouts[0].station, 9);
