@@ -51,11 +51,9 @@ void ChunkTimeline::drop_before(std::uint64_t offset) {
   }
 }
 
-const ChunkTimeline::Mark* ChunkTimeline::find(std::uint64_t offset) const {
+const ChunkTimeline::Mark* ChunkTimeline::search(std::uint64_t offset) const {
   if (marks_.empty()) return nullptr;
-  // Queries move forward through the stream: try the chunk found last time first.
   // (A deque keeps element addresses stable on push_back; drop_before resets the cache.)
-  if (last_ && offset >= last_->start && offset < last_->end) return last_;
   auto it = std::upper_bound(marks_.begin(), marks_.end(), offset,
                              [](std::uint64_t o, const Mark& m) { return o < m.end; });
   last_ = it == marks_.end() ? &marks_.back() : &*it;
@@ -64,17 +62,7 @@ const ChunkTimeline::Mark* ChunkTimeline::find(std::uint64_t offset) const {
 
 double ChunkTimeline::byte_end_time(std::uint64_t offset) const {
   const Mark* m = find(offset);
-  if (!m) return 0.0;
-  const double behind = static_cast<double>(m->end - 1 - std::min(offset, m->end - 1));
-  const double estimate = m->time - behind * timing_.char_time;
-  // Bytes of a batched chunk cannot have ended before the previous chunk's last byte.
-  return m->gap_before < 0 ? estimate : std::max(estimate, m->previous_time);
-}
-
-Direction ChunkTimeline::direction_at(std::uint64_t offset) const {
-  if (!mixed_directions_) return marks_.empty() ? Direction::Unknown : marks_.back().direction;
-  const Mark* m = find(offset);
-  return m ? m->direction : Direction::Unknown;
+  return m ? end_time_in(*m, offset) : 0.0;
 }
 
 double ChunkTimeline::gap_before(std::uint64_t offset) const {

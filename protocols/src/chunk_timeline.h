@@ -22,7 +22,25 @@ class ChunkTimeline {
   void break_continuity() { have_previous_ = false; }
 
   double byte_end_time(std::uint64_t offset) const;  // estimated end of that byte
-  Direction direction_at(std::uint64_t offset) const;
+  // SpanTimes: when bytes first..last began and ended, and the longest silence between them.
+  struct SpanTimes {
+    double start;
+    double end;
+    double max_gap;
+  };
+  SpanTimes span_times(std::uint64_t first, std::uint64_t last) const {
+    const Mark* m = find(first);
+    if (!m) return {0.0, 0.0, 0.0};
+    const double start = end_time_in(*m, first) - timing_.char_time;
+    // Most frames lie inside one chunk: no further lookup and no silence inside.
+    if (last < m->end) return {start, end_time_in(*m, last), 0.0};
+    return {start, byte_end_time(last), max_gap_inside(first, last)};
+  }
+  Direction direction_at(std::uint64_t offset) const {
+    if (!mixed_directions_) return marks_.empty() ? Direction::Unknown : marks_.back().direction;
+    const Mark* m = find(offset);
+    return m ? m->direction : Direction::Unknown;
+  }
   // Silence right before the byte at `offset` (0 inside a chunk; < 0 when unknown).
   double gap_before(std::uint64_t offset) const;
   double max_gap_inside(std::uint64_t first, std::uint64_t last) const;
@@ -43,7 +61,20 @@ class ChunkTimeline {
     double gap_before;     // < 0: unknown (first chunk or after a break)
     Direction direction;
   };
-  const Mark* find(std::uint64_t offset) const;
+  const Mark* find(std::uint64_t offset) const {
+    // Queries move forward through the stream: the chunk found last time usually answers.
+    if (last_ && offset >= last_->start && offset < last_->end) return last_;
+    return search(offset);
+  }
+  const Mark* search(std::uint64_t offset) const;
+  double end_time_in(const Mark& m, std::uint64_t offset) const {
+    const std::uint64_t last = m.end - 1;
+    const double behind = static_cast<double>(last - (offset < last ? offset : last));
+    const double estimate = m.time - behind * timing_.char_time;
+    // Bytes of a batched chunk cannot have ended before the previous chunk's last byte.
+    if (m.gap_before < 0) return estimate;
+    return estimate > m.previous_time ? estimate : m.previous_time;
+  }
   void distrust(std::string_view why);
 
   BusTiming timing_;

@@ -63,64 +63,57 @@ Evidence bad_frame_evidence(const DecisionInput& in, const FrameCandidate& c) {
 
 }  // namespace
 
-RoleHint role_hint(Direction d) {
-  switch (d) {
-    case Direction::ToSlave:
-      return RoleHint::Request;
-    case Direction::FromSlave:
-      return RoleHint::Response;
-    default:
-      return RoleHint::Unknown;
-  }
-}
+// Checks the candidates one after the other. RTU readings at one position share their first
+// bytes, so the CRC of a shorter reading is continued for the longer one instead of restarted.
+class CandidateChecker {
+ public:
+  explicit CandidateChecker(std::span<const std::uint8_t> bytes) : bytes_(bytes) {}
 
-// Checks the candidates in list order. RTU readings at one position share their first bytes,
-// so the CRC of a shorter reading is continued for the longer one instead of restarted.
-void check_candidates(std::span<const std::uint8_t> bytes, const CandidateList& cands,
-                      FrameCheck* checks) {
-  std::uint16_t crc = Crc16Modbus::kInit;
-  std::size_t covered = 0;
-  for (std::size_t i = 0; i < cands.size; ++i) {
-    const FrameCandidate& c = cands.items[i];
-    if (c.length > bytes.size()) continue;
+  FrameCheck check(const FrameCandidate& c) {
     if (c.dialect == Dialect::Ascii || c.length < 2) {
-      checks[i] = verify_check(bytes.first(c.length), c.dialect);
-      continue;
+      return verify_check(bytes_.first(c.length), c.dialect);
     }
     const std::size_t body = c.length - 2;
-    if (body < covered) {
-      crc = Crc16Modbus::kInit;
-      covered = 0;
+    if (body < covered_) {
+      crc_ = Crc16Modbus::kInit;
+      covered_ = 0;
     }
-    crc = Crc16Modbus::update(crc, bytes.subspan(covered, body - covered));
-    covered = body;
-    checks[i].expected = crc;
-    checks[i].found = static_cast<std::uint16_t>(bytes[body] | (bytes[body + 1] << 8));
-    checks[i].ok = checks[i].found == crc;
+    crc_ = Crc16Modbus::update(crc_, bytes_.subspan(covered_, body - covered_));
+    covered_ = body;
+    const auto found = static_cast<std::uint16_t>(bytes_[body] | (bytes_[body + 1] << 8));
+    return FrameCheck{found == crc_, found, crc_};
   }
-}
+
+ private:
+  std::span<const std::uint8_t> bytes_;
+  std::uint16_t crc_ = Crc16Modbus::kInit;
+  std::size_t covered_ = 0;
+};
 
 Decision decide_at(const DecisionInput& in) {
   const CandidateList cands = frame_candidates(in.bytes, hint_at(in, 0), in.dialects);
   // Silence after the last byte rules out RTU frames that would need more bytes.
   const bool more_possible = !in.final && !in.silence_after;
   bool waiting = cands.need_header > 0 && more_possible;
-  FrameCheck checks[CandidateList::kMax];
-  check_candidates(in.bytes, cands, checks);
+  CandidateChecker checker(in.bytes);
   for (std::size_t i = 0; i < cands.size; ++i) {
     const FrameCandidate& c = cands.items[i];
     if (c.length > in.bytes.size()) {
       waiting = waiting || more_possible;
       continue;
     }
-    if (checks[i].ok) return Decision{Decision::Kind::Frame, c, checks[i]};
+    const FrameCheck check = checker.check(c);
+    if (check.ok) return Decision{Decision::Kind::Frame, c, check};
   }
   if (waiting) return Decision{Decision::Kind::Wait, {}, {}};
+  // Only bad readings are left (the rare path): their checks are computed again.
   for (std::size_t i = 0; i < cands.size; ++i) {
     const FrameCandidate& c = cands.items[i];
     if (c.length > in.bytes.size()) continue;
     const Evidence e = bad_frame_evidence(in, c);
-    if (e == Evidence::Yes) return Decision{Decision::Kind::Frame, c, checks[i]};
+    if (e == Evidence::Yes) {
+      return Decision{Decision::Kind::Frame, c, verify_check(in.bytes.first(c.length), c.dialect)};
+    }
     if (e == Evidence::Wait) return Decision{Decision::Kind::Wait, {}, {}};
   }
   return Decision{Decision::Kind::Noise, {}, {}};

@@ -12,7 +12,9 @@ CandidateList frame_candidates(std::span<const std::uint8_t> bytes, RoleHint hin
     out.need_header = 1;
     return out;
   }
-  if (dialects.contains(Dialect::Ascii)) detail::add_ascii_candidates(bytes, hint, out);
+  if (dialects.contains(Dialect::Ascii) && detail::may_start_ascii(bytes[0])) {
+    detail::add_ascii_candidates(bytes, hint, out);
+  }
   if (dialects.rtu()) detail::add_rtu_candidates(bytes, hint, dialects, out);
   return out;
 }

@@ -48,8 +48,9 @@ struct StreamReassembler::Impl {
     NoiseEvent e;
     e.offset = offset_of(noise_begin);
     e.bytes = std::span(buffer).subspan(noise_begin, head - noise_begin);
-    e.start_time = timeline.byte_end_time(e.offset) - timeline.timing().char_time;
-    e.end_time = timeline.byte_end_time(offset_of(head - 1));
+    const auto times = timeline.span_times(e.offset, offset_of(head - 1));
+    e.start_time = times.start;
+    e.end_time = times.end;
     totals.noise_bytes += e.bytes.size();
     ++totals.noise_runs;
     sink.on_noise(e);
@@ -62,9 +63,10 @@ struct StreamReassembler::Impl {
     e.offset = offset_of(head);
     e.bytes = std::span(buffer).subspan(head, d.frame.length);
     const std::uint64_t last = e.offset + d.frame.length - 1;
-    e.start_time = timeline.byte_end_time(e.offset) - timeline.timing().char_time;
-    e.end_time = timeline.byte_end_time(last);
-    e.max_inner_gap = timeline.max_gap_inside(e.offset, last);
+    const auto times = timeline.span_times(e.offset, last);
+    e.start_time = times.start;
+    e.end_time = times.end;
+    e.max_inner_gap = times.max_gap;
     e.dialect = d.frame.dialect;
     e.role = d.frame.role;
     e.check = d.check;

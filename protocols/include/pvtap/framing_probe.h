@@ -11,10 +11,12 @@
 namespace pvtap {
 
 // FrameCandidate: one structurally possible frame at a position (length from the header rules).
+// (No member initializers: CandidateList is built once per stream position and only its
+// first `size` items are ever read.)
 struct FrameCandidate {
-  std::size_t length = 0;  // total bytes, check included
-  Dialect dialect = Dialect::Gsl;
-  Role role = Role::Request;
+  std::size_t length;  // total bytes, check included
+  Dialect dialect;
+  Role role;
 };
 
 // CandidateList: the readings of the bytes at one position (at most a handful).
