@@ -86,6 +86,11 @@ bool ChunkTimeline::silence_before(std::uint64_t offset) const {
   return trusted_ && gap_before(offset) + kGapToleranceChars * timing_.char_time >= timing_.t35;
 }
 
+bool ChunkTimeline::silence_inside(std::uint64_t first, std::uint64_t last) const {
+  return trusted_ &&
+         max_gap_inside(first, last) + kGapToleranceChars * timing_.char_time >= timing_.t35;
+}
+
 bool ChunkTimeline::silent_since_last_byte(double now) const {
   return trusted_ && have_previous_ &&
          now - previous_time_ + kGapToleranceChars * timing_.char_time >= timing_.t35;

@@ -46,6 +46,8 @@ class ChunkTimeline {
   double max_gap_inside(std::uint64_t first, std::uint64_t last) const;
   // True when timing is trusted and a silence of at least t3.5 precedes `offset`.
   bool silence_before(std::uint64_t offset) const;
+  // True when timing is trusted and a silence of at least t3.5 lies between first and last.
+  bool silence_inside(std::uint64_t first, std::uint64_t last) const;
   bool silent_since_last_byte(double now) const;
 
   bool trusted() const { return trusted_; }

@@ -11,20 +11,11 @@ RoleHint hint_at(const DecisionInput& in, std::size_t index) {
   return role_hint(in.timeline->direction_at(in.offset + index));
 }
 
-// A complete frame with a good check starting at `index`, or nothing.
+// A complete frame with a good check starting at `index`; `incomplete` when one may still come.
 bool good_frame_at(const DecisionInput& in, std::size_t index, bool& incomplete) {
-  const auto rest = in.bytes.subspan(index);
-  const CandidateList cands = frame_candidates(rest, hint_at(in, index), in.dialects);
-  incomplete = cands.need_header > 0;
-  for (std::size_t i = 0; i < cands.size; ++i) {
-    const FrameCandidate& c = cands.items[i];
-    if (c.length > rest.size()) {
-      incomplete = true;
-      continue;
-    }
-    if (verify_check(rest.first(c.length), c.dialect).ok) return true;
-  }
-  return false;
+  const ProbeResult p = probe_frame(in.bytes.subspan(index), hint_at(in, index), in.dialects);
+  incomplete = p.status == ProbeResult::Status::NeedMore;
+  return p.status == ProbeResult::Status::Complete && p.check.ok;
 }
 
 // A good frame that starts inside the candidate means the candidate is the misreading.
@@ -51,17 +42,11 @@ Evidence bad_frame_evidence(const DecisionInput& in, const FrameCandidate& c) {
   if (c.dialect == Dialect::Ascii) return Evidence::Yes;
   if (!in.after_frame && !in.timeline->silence_before(in.offset)) return Evidence::No;
   // RTU frames are sent without pauses: a t3.5 silence inside says this reading is wrong.
-  if (in.timeline->trusted() && in.timeline->max_gap_inside(in.offset, in.offset + c.length - 1) +
-                                        0.1 * in.timeline->timing().char_time >=
-                                    in.timeline->timing().t35) {
-    return Evidence::No;
-  }
+  if (in.timeline->silence_inside(in.offset, in.offset + c.length - 1)) return Evidence::No;
   const Evidence end = end_evidence(in, c.length);
   if (end != Evidence::Yes) return end;
   return good_frame_inside(in, c.length) ? Evidence::No : Evidence::Yes;
 }
-
-}  // namespace
 
 // Checks the candidates one after the other. RTU readings at one position share their first
 // bytes, so the CRC of a shorter reading is continued for the longer one instead of restarted.
@@ -89,6 +74,8 @@ class CandidateChecker {
   std::uint16_t crc_ = Crc16Modbus::kInit;
   std::size_t covered_ = 0;
 };
+
+}  // namespace
 
 Decision decide_at(const DecisionInput& in) {
   const CandidateList cands = frame_candidates(in.bytes, hint_at(in, 0), in.dialects);
