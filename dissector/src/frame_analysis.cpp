@@ -1,0 +1,176 @@
+#include "frame_analysis.h"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "pvtap/frame_summary.h"
+#include "pvtap/function_codes.h"
+#include "pvtap/register_format.h"
+#include "register_decoding.h"
+
+namespace pvtap::dissector {
+namespace {
+
+// Warnings that the tree already shows in another way.
+constexpr auto kShownElsewhere = static_cast<std::uint16_t>(ValueWarning::NotInMap);
+
+const char* pool_text(wmem_allocator_t* pool, std::string_view text) {
+  return wmem_strndup(pool, text.data(), text.size());
+}
+
+std::string hex4(unsigned value) {
+  static constexpr char kDigits[] = "0123456789ABCDEF";
+  std::string out = "0x";
+  for (int shift = 12; shift >= 0; shift -= 4) out += kDigits[(value >> shift) & 0xFu];
+  return out;
+}
+
+// The start address as the reference writes it; GSL wire addresses map back to decimal IDs.
+std::string start_text(Dialect d, std::uint16_t wire) {
+  const auto ids = register_decoder().options().gsl_ids;
+  const auto written = written_address_of(d, wire, ids);
+  if (!written) return hex4(wire);
+  const std::string text(format_register_address(d, *written).view());
+  return d == Dialect::Gsl ? hex4(wire) + " (ID " + text + ")" : text;
+}
+
+void plan_header(const Frame& f, std::size_t length, wmem_allocator_t* pool, FramePlan& plan) {
+  plan.parsed = true;
+  plan.station = f.station;
+  plan.function = f.function;
+  plan.layout = frame_layout(f, length);
+  if (f.start) {
+    plan.start = *f.start;
+    plan.start_text = pool_text(pool, start_text(f.dialect, *f.start));
+  }
+  if (f.count) plan.count = *f.count;
+  if (f.byte_count) plan.byte_count = *f.byte_count;
+  if (f.exception_code) plan.exception_code = *f.exception_code;
+}
+
+void plan_device(const Frame& f, wmem_allocator_t* pool, FramePlan& plan) {
+  if (!f.device) return;
+  const DecodedValue v = register_decoder().decode_device_number(*f.device);
+  plan.device_type = f.device->type_code;
+  plan.device_serial = f.device->serial;
+  plan.device_raw = (std::uint32_t{f.device->type_code} << 24) | (f.device->serial & 0xFFFFFFu);
+  plan.device_text = pool_text(pool, format_value(v));
+}
+
+void record_first_pass(const FrameInput& in, const Frame& f, const AnalysisContext& ctx) {
+  FrameRecord& r = *ctx.record;
+  r.dialect = f.dialect;
+  r.role = in.role;
+  r.station = f.station;
+  r.function = f.function;
+  r.check_ok = in.check.ok;
+  ctx.matcher->observe(r, summarize(f), in.role_known);
+  if (r.role == Role::Request) {
+    r.bytes = static_cast<const guint8*>(
+        wmem_memdup(wmem_file_scope(), in.bytes.data(), in.bytes.size()));
+    r.length = static_cast<guint16>(in.bytes.size());
+  }
+}
+
+std::optional<Frame> matched_request(const FrameRecord& r) {
+  const FrameRecord* q = r.request;
+  if (r.role != Role::Response || q == nullptr || q->bytes == nullptr) return std::nullopt;
+  return parse_frame({q->bytes, q->length}, q->dialect, Role::Request).frame;
+}
+
+std::string value_label(const DecodedValue& v, Dialect d) {
+  const std::string address(format_value_address(v, d).view());
+  if (v.def == nullptr) return "word at " + address;
+  return std::string(v.name()) + " (" + address + ")";
+}
+
+PlannedValue plan_value(const DecodedValue& v, const DecodeReport& report, Dialect d,
+                        const FramePlan& plan, wmem_allocator_t* pool) {
+  const auto index = static_cast<std::uint16_t>(v.wire_address - report.start) / address_step(d);
+  PlannedValue p;
+  p.field = register_field(d, v.def);
+  p.span = plan.layout.word_span(index, v.words_present > 0 ? v.words_present : 1u);
+  p.number = v.value;
+  p.raw = v.raw;
+  p.text = pool_text(pool, format_value(v));
+  p.label = pool_text(pool, value_label(v, d));
+  p.warnings = static_cast<guint16>(v.warnings & ~kShownElsewhere);
+  return p;
+}
+
+void plan_values(const Frame& f, const Frame* request, wmem_allocator_t* pool, FramePlan& plan) {
+  std::vector<DecodedValue> values;
+  const DecodeReport report = register_decoder().decode(f, request, values);
+  plan.decode_status = report.status;
+  plan.start_assumed = report.start_assumed;
+  if (report.status == DecodeStatus::StartUnknown || report.start_assumed) {
+    plan.decode_note = pool_text(pool, describe(report));
+  }
+  if (report.count == 0) return;
+  auto* planned = wmem_alloc_array(pool, PlannedValue, report.count);
+  for (std::size_t i = 0; i < report.count; ++i) {
+    new (&planned[i])
+        PlannedValue(plan_value(values[report.first + i], report, f.dialect, plan, pool));
+  }
+  plan.values = planned;
+  plan.value_count = report.count;
+}
+
+std::string summary_text(const FramePlan& plan, const InverterProtocol& protocol) {
+  const bool exception = plan.layout.exception_code.present();
+  const auto function =
+      static_cast<std::uint8_t>(exception ? plan.function & ~fc::kExceptionFlag : plan.function);
+  std::string text(fc::function_name(plan.dialect, function));
+  text += ' ';
+  text += exception ? std::string_view("exception") : to_string(plan.role);
+  text += ", station " + std::to_string(plan.station);
+  if (exception) {
+    text += ": ";
+    text += fc::exception_name(plan.exception_code);
+  }
+  if (plan.check_verified && !plan.check.ok) {
+    text += " [bad ";
+    text += protocol.check_word;
+    text += ']';
+  }
+  return text;
+}
+
+void analyze(const FrameInput& in, const AnalysisContext& ctx, FramePlan& plan) {
+  plan.dialect = in.dialect;
+  plan.role = in.role;
+  plan.check = in.check;
+  plan.check_verified = ctx.protocol->settings.verify_check != FALSE;
+  ParseOutcome parsed = parse_frame(in.bytes, in.dialect, in.role);
+  if (!parsed) {
+    plan.parse_error = pool_text(ctx.pool, parsed.error);
+    plan.summary = pool_text(ctx.pool, "malformed frame: " + std::string(parsed.error));
+    return;
+  }
+  Frame& f = *parsed.frame;
+  plan_header(f, in.bytes.size(), ctx.pool, plan);
+  if (ctx.matcher != nullptr) record_first_pass(in, f, ctx);
+  if (ctx.record->matched) f.role = plan.role = ctx.record->role;
+  if (ctx.with_values) {
+    plan_device(f, ctx.pool, plan);
+    const std::optional<Frame> request = matched_request(*ctx.record);
+    plan_values(f, request ? &*request : nullptr, ctx.pool, plan);
+  }
+  plan.summary = pool_text(ctx.pool, summary_text(plan, *ctx.protocol));
+}
+
+}  // namespace
+
+void analyze_frame(const FrameInput& in, const AnalysisContext& ctx, FramePlan& plan) noexcept {
+  try {
+    analyze(in, ctx, plan);
+  } catch (...) {
+    // Only allocation can fail in here; show the frame as undecoded rather than crash.
+    plan.parsed = false;
+    plan.parse_error = "the frame could not be decoded (out of memory)";
+    plan.summary = plan.parse_error;
+  }
+}
+
+}  // namespace pvtap::dissector

@@ -1,0 +1,13 @@
+// The register decoder both protocols share: the effective maps with the preferred options.
+#pragma once
+
+#include "pvtap/register_decoder.h"
+
+namespace pvtap::dissector {
+
+// Rebuilds the decoder; called at registration and whenever preferences change.
+void configure_register_decoder(DecoderOptions options);
+
+const RegisterDecoder& register_decoder();
+
+}  // namespace pvtap::dissector

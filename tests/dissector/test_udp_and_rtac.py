@@ -1,0 +1,48 @@
+"""Datagram transports: UDP found by the heuristic, RTAC serial payloads by Decode As."""
+
+import struct
+import unittest
+
+from bus_frames import ascii_reply, ascii_request, gsl_read_reply, rtu_read_request
+from pcap_writer import Pcap, udp_packet
+from tshark_runner import PluginTestCase
+
+LINKTYPE_RTAC_SERIAL = 250
+
+
+def rtac_record(pcap, time, event, payload):
+    pcap.add(time, struct.pack("!IIBBH", int(time), 0, event, 0, 0) + payload)
+
+
+class DatagramTransports(PluginTestCase, unittest.TestCase):
+    def test_udp_heuristic(self):
+        pcap = Pcap()
+        gateway = ("10.0.0.5", 26001)
+        master = ("10.0.0.1", 40000)
+        udp_packet(pcap, 1.00, ascii_request(1, 0x0050, 7), master, gateway)
+        udp_packet(pcap, 1.05, ascii_reply(1, 0x0050, [217, 0, 0, 65, 0, 0, 601]), gateway, master)
+        udp_packet(pcap, 1.10, rtu_read_request(1, 0x03, 1056, 1), master, gateway)
+        capture = self.tshark.write("udp.pcap", pcap)
+        rows = self.tshark.fields(capture, ["frame.number", "invascii.role",
+                                            "invascii.line_frequency", "invascii.request_in",
+                                            "invrtu.station"])
+        self.assertEqual(rows[0][1], ["0"])
+        self.assertEqual(rows[1][1:4], [["1"], ["60.1"], ["1"]])
+        # The UDP flow is bound to invascii: an RTU frame in it is not claimed by invrtu.
+        self.assertEqual(rows[2][4], [])
+
+    def test_rtac_serial_payload_by_decode_as(self):
+        pcap = Pcap(LINKTYPE_RTAC_SERIAL)
+        rtac_record(pcap, 2.00, 1, rtu_read_request(1, 0x03, 1056, 1))
+        rtac_record(pcap, 2.04, 2, gsl_read_reply(1, [4998]))
+        capture = self.tshark.write("rtac.pcap", pcap)
+        rows = self.tshark.fields(capture, ["invrtu.role", "invrtu.gsl.grid_frequency",
+                                            "invrtu.request_in"],
+                                  options=["-d", "rtacser.data,invrtu"])
+        self.assertEqual(rows, [[["0"], [], []], [["1"], ["49.98"], ["1"]]])
+        plain = self.tshark.fields(capture, ["invrtu.role"])
+        self.assertEqual(plain, [[[]], [[]]])
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -1,0 +1,112 @@
+"""Runs the real tshark with the plugin under test loaded from a temporary personal folder.
+
+tshark run as root ignores the personal plugin folder (and WIRESHARK_PLUGIN_DIR), so as root
+it runs as the unprivileged user 65534 through setpriv.
+"""
+
+import json
+import os
+import shutil
+import subprocess
+import tempfile
+
+NOBODY = 65534
+PLUGIN_SUBDIR = ".local/lib/wireshark/plugins/4.0/epan"
+
+
+def plugin_path():
+    path = os.environ.get("PVTAP_PLUGIN")
+    if not path or not os.path.isfile(path):
+        raise RuntimeError("PVTAP_PLUGIN must name the built pvtap.so (got %r)" % path)
+    return path
+
+
+class TsharkHome:
+    """A temporary HOME holding the plugin, user register maps and the test captures."""
+
+    def __init__(self, user_maps=None):
+        self.home = tempfile.mkdtemp(prefix="pvtap-tshark-")
+        plugins = os.path.join(self.home, PLUGIN_SUBDIR)
+        os.makedirs(plugins)
+        shutil.copy(plugin_path(), os.path.join(plugins, "pvtap.so"))
+        config = os.path.join(self.home, ".config", "wireshark")
+        os.makedirs(config)
+        for name, text in (user_maps or {}).items():
+            os.makedirs(os.path.join(config, "pvtap"), exist_ok=True)
+            with open(os.path.join(config, "pvtap", name), "w") as f:
+                f.write(text)
+        self._hand_over()
+
+    def _hand_over(self):
+        if os.geteuid() != 0:
+            return
+        for root, dirs, files in os.walk(self.home):
+            for name in [root] + [os.path.join(root, n) for n in dirs + files]:
+                os.chown(name, NOBODY, NOBODY)
+
+    def path(self, name):
+        return os.path.join(self.home, name)
+
+    def write(self, name, pcap):
+        path = self.path(name)
+        pcap.write(path)
+        self._hand_over()
+        return path
+
+    def run(self, args, check=True):
+        command = ["env", "-i", "HOME=" + self.home, "PATH=/usr/sbin:/usr/bin:/sbin:/bin",
+                   "LC_ALL=C.UTF-8", "tshark"] + list(args)
+        if os.geteuid() == 0:
+            command = ["setpriv", "--reuid=%d" % NOBODY, "--regid=%d" % NOBODY,
+                       "--clear-groups"] + command
+        result = subprocess.run(command, capture_output=True, text=True, timeout=120)
+        if check and result.returncode != 0:
+            raise AssertionError("tshark %s failed (%d):\n%s" % (" ".join(args), result.returncode,
+                                                                 result.stderr))
+        return result
+
+    def loaded_plugins(self):
+        return self.run(["-G", "plugins"]).stdout
+
+    def fields(self, capture, fields, display_filter=None, options=()):
+        """One row per packet: a list of occurrence lists, one per field."""
+        args = ["-r", capture, "-2", "-T", "fields", "-E", "occurrence=a", "-E",
+                "aggregator=|"]
+        for field in fields:
+            args += ["-e", field]
+        if display_filter:
+            args += ["-Y", display_filter]
+        rows = []
+        for line in self.run(list(options) + args).stdout.splitlines():
+            cells = line.split("\t")
+            rows.append([cell.split("|") if cell else [] for cell in cells])
+        return rows
+
+    def json(self, capture, options=()):
+        out = self.run(list(options) + ["-r", capture, "-2", "-T", "json",
+                                        "--no-duplicate-keys"]).stdout
+        return json.loads(out)
+
+    def verbose(self, capture, options=()):
+        return self.run(list(options) + ["-r", capture, "-2", "-V"]).stdout
+
+    def close(self):
+        shutil.rmtree(self.home, ignore_errors=True)
+
+
+class PluginTestCase:
+    """Mixin for unittest.TestCase: a TsharkHome per class, and the plugin-loaded assertion."""
+
+    user_maps = None
+
+    @classmethod
+    def setUpClass(cls):
+        cls.tshark = TsharkHome(cls.user_maps)
+        listing = cls.tshark.loaded_plugins()
+        if "pvtap.so" not in listing:
+            cls.tshark.close()
+            raise AssertionError("tshark did not load pvtap.so:\n" + listing)
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.tshark.close()
