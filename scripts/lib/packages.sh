@@ -3,7 +3,8 @@
 # scripts/test and scripts/demo. Source this file; it defines functions only.
 
 # Build and test toolchain, the core's libraries, and what the analyzer and the
-# Wireshark plugin will need (wireshark-dev, tshark, libpcap-dev, libcli11-dev).
+# Wireshark plugin need (wireshark-dev, tshark, libpcap-dev, libcli11-dev); python3 runs the
+# analyzer's end-to-end checks.
 PVTAP_PACKAGES=(
   build-essential
   cmake
@@ -17,6 +18,7 @@ PVTAP_PACKAGES=(
   tshark
   libpcap-dev
   libcli11-dev
+  python3
 )
 
 # Prints the packages of PVTAP_PACKAGES that are not installed, one per line.

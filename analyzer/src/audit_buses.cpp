@@ -1,0 +1,85 @@
+// AuditRun's buses: one BusSession per gateway (or one for a serial capture), and where their
+// events go: latency statistics, the --write file and the chosen output format.
+#include "audit_bus.h"
+
+namespace pvtap::analyzer {
+
+BusSessionOptions AuditRun::session_options(InputKind kind) const {
+  BusSessionOptions o;
+  o.reassembler.dialects = options_.dialects;
+  o.reassembler.baud = options_.baud;
+  o.matcher.timeout = options_.timeout;
+  o.decode_values = !options_.summary_only;
+  if (kind == InputKind::Network) {
+    o.reassembler.timestamps = TimestampTrust::Untrusted;
+    o.timestamp_note =
+        "the timestamps are those of the gateway's TCP/UDP segments, not of bus characters";
+  }
+  if (kind == InputKind::Serial && batched_serial_records_) {
+    o.reassembler.timestamps = TimestampTrust::Untrusted;
+    o.timestamp_note =
+        "the capture's records are chunks read from a serial adapter: their timestamps are "
+        "batched (e.g. by a USB adapter's latency timer), not per character";
+  }
+  if (!options_.raw_dumps.empty()) {
+    o.has_timestamps = false;
+    o.reassembler.timestamps = TimestampTrust::Untrusted;
+  }
+  return o;
+}
+
+AuditRun::Bus& AuditRun::bus_named(const std::string& name, InputKind kind) {
+  const auto it = bus_by_name_.find(name);
+  if (it != bus_by_name_.end()) return *it->second;
+  buses_.push_back(std::make_unique<Bus>(*this, name, session_options(kind), decoder_));
+  bus_by_name_[name] = buses_.back().get();
+  return *buses_.back();
+}
+
+BusSession& AuditRun::gateway_bus(const Endpoint& slave_side) {
+  return bus_named(slave_side.to_string(), InputKind::Network).session;
+}
+
+BusSession& AuditRun::serial_bus(InputKind kind) {
+  return bus_named("", kind).session;
+}
+
+void AuditRun::on_frame(const EventContext& c, const SessionFrame& f) {
+  if (f.latency) latency_.add(*f.latency);
+  if (writer_) writer_->write_frame(f.end_time, f.role, f.bytes);
+  if (events_) events_->frame(c, f);
+}
+
+void AuditRun::on_noise(const EventContext& c, const SessionNoise& n) {
+  if (writer_) writer_->write_noise(n.noise.end_time, n.direction, n.noise.bytes);
+  if (events_) events_->noise(c, n);
+}
+
+void AuditRun::finish_all(double time) {
+  gateway_.finish(time);
+  for (auto& bus : buses_) bus->session.finish();
+}
+
+AuditReport AuditRun::build_report() const {
+  AuditReport r;
+  r.settings.baud = options_.baud;
+  r.settings.timeout = options_.timeout;
+  r.settings.has_timestamps = options_.raw_dumps.empty();
+  r.inputs = inputs_;
+  for (const auto& bus : buses_) {
+    r.buses.push_back(BusFindings{bus->output.name(), bus->session.report()});
+  }
+  r.network = network_;
+  r.flows = gateway_.stats();
+  r.skipped = skipped_;
+  r.latency = latency_.summary();
+  r.written_records = writer_ ? writer_->records() : 0;
+  return r;
+}
+
+bool AuditRun::has_findings(const AuditReport& report) const {
+  const BusReport t = report.totals();
+  return t.bytes.bad_frames > 0 || t.timeouts > 0 || t.exceptions > 0;
+}
+
+}  // namespace pvtap::analyzer

@@ -1,0 +1,96 @@
+// AuditRun: one `pvtap audit`: reads the inputs, feeds one bus session per bus, writes what
+// the sessions report and, at the end, the summary. The protocol work is all in the core.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "audit_options.h"
+#include "audit_report.h"
+#include "capture_file.h"
+#include "event_writer.h"
+#include "exported_pdu_writer.h"
+#include "gateway_traffic.h"
+#include "link_types.h"
+#include "output_stream.h"
+#include "progress_bar.h"
+#include "pvtap/bus_session.h"
+#include "pvtap/distribution_summary.h"
+
+namespace pvtap::analyzer {
+
+// Exit statuses of pvtap audit.
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitFindings = 1;  // only with --fail-on errors
+inline constexpr int kExitBadInput = 2;  // usage errors and unreadable input
+
+// A one-line reason why an input cannot be audited (missing, not a capture, unsupported link
+// type), checked for all inputs before any output is written; nullopt when all are fine.
+std::optional<std::string> check_inputs(const AuditOptions& options);
+
+class AuditRun : public BusDirectory {
+ public:
+  AuditRun(const AuditOptions& options, const RegisterDecoder& decoder, OutputStream& out);
+  ~AuditRun() override;
+
+  // Runs the whole audit; returns the exit status. Errors go to stderr as one line each.
+  int run();
+
+  BusSession& gateway_bus(const Endpoint& slave_side) override;
+
+ private:
+  class BusOutput;
+  struct Bus;
+  struct DirectedFeed {
+    Direction last = Direction::Unknown;
+  };
+
+  // Reading.
+  bool open_outputs();
+  bool read_inputs();  // false when an input ended early (truncated)
+  void report_truncation() const;
+  bool read_capture(const std::string& path, std::uint64_t done_before);
+  bool read_raw(const std::string& path, std::uint64_t done_before);
+  void on_record(InputKind kind, const CapturedPacket& packet);
+  void on_network_packet(const CapturedPacket& packet);
+  void on_exported_pdu(const CapturedPacket& packet);
+  void feed_directed(BusSession& bus, Direction d, std::span<const std::uint8_t> bytes,
+                     double time);
+
+  // Buses and events.
+  Bus& bus_named(const std::string& name, InputKind kind);
+  BusSession& serial_bus(InputKind kind);
+  BusSessionOptions session_options(InputKind kind) const;
+  void on_frame(const EventContext& c, const SessionFrame& f);
+  void on_noise(const EventContext& c, const SessionNoise& n);
+  void finish_all(double time);
+
+  // Results.
+  AuditReport build_report() const;
+  void write_summary(const AuditReport& report);
+  bool has_findings(const AuditReport& report) const;
+
+  const AuditOptions& options_;
+  const RegisterDecoder& decoder_;
+  OutputStream& out_;
+  std::unique_ptr<EventWriter> events_;
+  std::optional<ExportedPduWriter> writer_;
+  std::unique_ptr<ProgressBar> progress_;
+  GatewayTraffic gateway_;
+  std::vector<std::unique_ptr<Bus>> buses_;
+  std::map<std::string, Bus*> bus_by_name_;
+  DirectedFeed serial_turns_;
+  int link_type_ = -1;
+  double last_time_ = 0;
+  std::vector<InputReport> inputs_;
+  SkippedRecords skipped_;
+  DistributionAccumulator latency_;
+  bool network_ = false;
+  // USER0-15 records of several bytes are read() chunks, stamped when the read returned.
+  bool batched_serial_records_ = false;
+};
+
+}  // namespace pvtap::analyzer

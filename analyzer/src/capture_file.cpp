@@ -1,0 +1,122 @@
+#include "capture_file.h"
+
+#include <pcap/pcap.h>
+#include <stdio_ext.h>
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+
+#include "link_types.h"
+
+namespace pvtap::analyzer {
+namespace {
+
+constexpr std::size_t kReadBuffer = 1 << 20;
+
+static_assert(dlt::kNull == DLT_NULL && dlt::kEthernet == DLT_EN10MB && dlt::kRaw == DLT_RAW &&
+              dlt::kLoop == DLT_LOOP && dlt::kLinuxSll == DLT_LINUX_SLL &&
+              dlt::kLinuxSll2 == DLT_LINUX_SLL2 && dlt::kUser0 == DLT_USER0 &&
+              dlt::kUser15 == DLT_USER15 && dlt::kIpv4 == DLT_IPV4 && dlt::kIpv6 == DLT_IPV6 &&
+              dlt::kRtacSerial == DLT_RTAC_SERIAL && dlt::kUpperPdu == DLT_WIRESHARK_UPPER_PDU);
+
+// libpcap's reason for refusing a file, in the words a user needs.
+std::string open_failure(const char* pcap_reason) {
+  const std::string reason = pcap_reason;
+  if (reason.find("unknown file format") != std::string::npos) {
+    return "not a pcap or pcapng capture (unknown file format)";
+  }
+  if (reason.find("truncated") != std::string::npos) {
+    return "not a capture: the file is empty or ends inside its header (" + reason + ")";
+  }
+  return reason;
+}
+
+}  // namespace
+
+CaptureFile::~CaptureFile() {
+  if (pcap_ != nullptr) {
+    pcap_close(pcap_);  // closes file_ too
+  } else if (file_ != nullptr) {
+    std::fclose(file_);
+  }
+}
+
+bool CaptureFile::open(const std::string& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) {
+    error_ = std::strerror(errno);
+    return false;
+  }
+  if (S_ISDIR(st.st_mode)) {
+    error_ = "is a directory";
+    return false;
+  }
+  size_ = static_cast<std::uint64_t>(st.st_size);
+  file_ = std::fopen(path.c_str(), "rb");
+  if (file_ == nullptr) {
+    error_ = std::strerror(errno);
+    return false;
+  }
+  // libpcap reads each record with two fread calls: a large buffer and no stream locking
+  // (only this thread reads the file) keep that cheap.
+  std::setvbuf(file_, nullptr, _IOFBF, kReadBuffer);
+  __fsetlocking(file_, FSETLOCKING_BYCALLER);
+  char errbuf[PCAP_ERRBUF_SIZE] = {};
+  pcap_ = pcap_fopen_offline_with_tstamp_precision(file_, PCAP_TSTAMP_PRECISION_NANO, errbuf);
+  if (pcap_ == nullptr) {
+    error_ = open_failure(errbuf);
+    return false;
+  }
+  link_type_ = pcap_datalink(pcap_);
+  return true;
+}
+
+CaptureFile::Next CaptureFile::next(CapturedPacket& packet) {
+  pcap_pkthdr* header = nullptr;
+  const u_char* data = nullptr;
+  const int rc = pcap_next_ex(pcap_, &header, &data);
+  if (rc == 1) {
+    ++packets_;
+    // With nanosecond precision libpcap puts nanoseconds in tv_usec.
+    packet.time =
+        static_cast<double>(header->ts.tv_sec) + static_cast<double>(header->ts.tv_usec) * 1e-9;
+    packet.bytes = std::span<const std::uint8_t>(data, header->caplen);
+    packet.length_on_wire = header->len;
+    return Next::Packet;
+  }
+  if (rc == PCAP_ERROR_BREAK) return Next::End;
+  error_ = pcap_geterr(pcap_);
+  return Next::Truncated;
+}
+
+std::string CaptureFile::link_type_name() const {
+  if (link_type_ >= DLT_USER0 && link_type_ <= DLT_USER15) {
+    return "USER" + std::to_string(link_type_ - DLT_USER0);
+  }
+  const char* name = pcap_datalink_val_to_name(link_type_);
+  const char* description = pcap_datalink_val_to_description(link_type_);
+  std::string out = name != nullptr ? name : "link type " + std::to_string(link_type_);
+  if (description != nullptr) out += std::string(" (") + description + ")";
+  return out;
+}
+
+std::uint64_t CaptureFile::position() const {
+  if (pcap_ == nullptr) return 0;
+  const off_t at = ftello(pcap_file(pcap_));
+  return at < 0 ? 0 : static_cast<std::uint64_t>(at);
+}
+
+std::size_t largest_early_record(const std::string& path, std::size_t records) {
+  CaptureFile file;
+  if (!file.open(path)) return 0;
+  std::size_t largest = 0;
+  CapturedPacket packet;
+  while (file.packets() < records && file.next(packet) == CaptureFile::Next::Packet) {
+    largest = std::max(largest, packet.bytes.size());
+  }
+  return largest;
+}
+
+}  // namespace pvtap::analyzer

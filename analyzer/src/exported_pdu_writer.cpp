@@ -1,0 +1,121 @@
+#include "exported_pdu_writer.h"
+
+#include <pcap/pcap.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "exported_pdu_tags.h"
+#include "link_types.h"
+#include "pvtap/framing_probe.h"
+
+namespace pvtap::analyzer {
+namespace {
+
+static_assert(dlt::kUpperPdu == DLT_WIRESHARK_UPPER_PDU);
+
+std::size_t put16(std::uint8_t* out, std::uint16_t v) {
+  out[0] = static_cast<std::uint8_t>(v >> 8);
+  out[1] = static_cast<std::uint8_t>(v);
+  return 2;
+}
+
+std::size_t put_tag(std::uint8_t* out, std::uint16_t tag, std::uint16_t length) {
+  put16(out, tag);
+  put16(out + 2, length);
+  return 4;
+}
+
+// Dissector name tag ("pvtap" padded with NULs to a multiple of 4, as Wireshark writes it),
+// direction tag (when known), end tag.
+std::size_t put_tags(std::uint8_t* out, Direction direction) {
+  std::size_t at = 0;
+  const auto name = exported_pdu::kDissectorName;
+  const auto padded = static_cast<std::uint16_t>((name.size() + 3) / 4 * 4);
+  at += put_tag(out + at, exported_pdu::kTagDissectorName, padded);
+  std::fill_n(out + at, padded, std::uint8_t{0});
+  std::copy(name.begin(), name.end(), out + at);
+  at += padded;
+  if (direction != Direction::Unknown) {
+    at += put_tag(out + at, exported_pdu::kTagP2pDirection, 4);
+    const std::int32_t p2p = direction == Direction::ToSlave ? exported_pdu::kDirectionSent
+                                                             : exported_pdu::kDirectionReceived;
+    const auto raw = static_cast<std::uint32_t>(p2p);
+    at += put16(out + at, static_cast<std::uint16_t>(raw >> 16));
+    at += put16(out + at, static_cast<std::uint16_t>(raw));
+  }
+  at += put_tag(out + at, exported_pdu::kTagEnd, 0);
+  return at;
+}
+
+}  // namespace
+
+ExportedPduWriter::~ExportedPduWriter() {
+  close();
+}
+
+bool ExportedPduWriter::open(const std::string& path) {
+  pcap_ = pcap_open_dead(DLT_WIRESHARK_UPPER_PDU, 65535);
+  if (pcap_ == nullptr) {
+    error_ = "cannot set up a pcap writer";
+    return false;
+  }
+  dumper_ = pcap_dump_open(pcap_, path.c_str());
+  if (dumper_ == nullptr) {
+    error_ = pcap_geterr(pcap_);
+    pcap_close(pcap_);
+    pcap_ = nullptr;
+    return false;
+  }
+  return true;
+}
+
+void ExportedPduWriter::write_frame(double time, Role role, std::span<const std::uint8_t> frame) {
+  write(time, role == Role::Request ? Direction::ToSlave : Direction::FromSlave, frame);
+}
+
+void ExportedPduWriter::write_noise(double time, Direction direction,
+                                    std::span<const std::uint8_t> noise) {
+  // The reassembler reports long noise in runs of at most 4 KiB; longer ones are split.
+  constexpr std::size_t kMaxRun = 4096;
+  for (std::size_t at = 0; at < noise.size(); at += kMaxRun) {
+    write(time, direction, noise.subspan(at, std::min(kMaxRun, noise.size() - at)));
+  }
+}
+
+void ExportedPduWriter::write(double time, Direction direction,
+                              std::span<const std::uint8_t> bytes) {
+  if (dumper_ == nullptr) return;
+  static_assert(sizeof(record_) >= 64 + 4096 && sizeof(record_) >= 64 + kMaxFrameLength);
+  const std::size_t tags = put_tags(record_.data(), direction);
+  const std::size_t length = std::min(bytes.size(), record_.size() - tags);
+  std::copy_n(bytes.begin(), length, record_.begin() + static_cast<std::ptrdiff_t>(tags));
+  pcap_pkthdr header{};
+  const double seconds = std::floor(time);
+  header.ts.tv_sec = static_cast<time_t>(seconds);
+  header.ts.tv_usec = static_cast<suseconds_t>(std::lround((time - seconds) * 1e6));
+  if (header.ts.tv_usec >= 1000000) {
+    header.ts.tv_sec += 1;
+    header.ts.tv_usec -= 1000000;
+  }
+  header.caplen = header.len = static_cast<bpf_u_int32>(tags + length);
+  pcap_dump(reinterpret_cast<u_char*>(dumper_), &header, record_.data());
+  ++records_;
+}
+
+bool ExportedPduWriter::close() {
+  bool ok = true;
+  if (dumper_ != nullptr) {
+    ok = pcap_dump_flush(dumper_) == 0;
+    if (!ok) error_ = "cannot write the file (disk full?)";
+    pcap_dump_close(dumper_);
+    dumper_ = nullptr;
+  }
+  if (pcap_ != nullptr) {
+    pcap_close(pcap_);
+    pcap_ = nullptr;
+  }
+  return ok;
+}
+
+}  // namespace pvtap::analyzer

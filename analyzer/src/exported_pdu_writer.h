@@ -1,0 +1,48 @@
+// ExportedPduWriter: writes frames and noise runs as a pcap of link type 252 (Wireshark's
+// exported PDUs), one per record, tagged with the dissector name "pvtap" and the direction,
+// so that Wireshark with pvtap's plugin shows the file with no set-up (record format:
+// dissector/README.md).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <string>
+
+#include "pvtap/dialect.h"
+#include "pvtap/stream_reassembler.h"
+
+typedef struct pcap pcap_t;
+typedef struct pcap_dumper pcap_dumper_t;
+
+namespace pvtap::analyzer {
+
+class ExportedPduWriter {
+ public:
+  ExportedPduWriter() = default;
+  ~ExportedPduWriter();
+  ExportedPduWriter(const ExportedPduWriter&) = delete;
+  ExportedPduWriter& operator=(const ExportedPduWriter&) = delete;
+
+  // Creates the file; false with error() set when it cannot be written.
+  bool open(const std::string& path);
+  // A frame: a request goes out as "sent" (master to slave), a response as "received".
+  void write_frame(double time, Role role, std::span<const std::uint8_t> frame);
+  // A noise run; its direction tag is left out when the direction is unknown.
+  void write_noise(double time, Direction direction, std::span<const std::uint8_t> noise);
+  // Flushes and closes; false when writing failed.
+  bool close();
+  const std::string& error() const { return error_; }
+  std::uint64_t records() const { return records_; }
+
+ private:
+  pcap_t* pcap_ = nullptr;
+  pcap_dumper_t* dumper_ = nullptr;
+  std::string error_;
+  std::uint64_t records_ = 0;
+  void write(double time, Direction direction, std::span<const std::uint8_t> bytes);
+
+  std::array<std::uint8_t, 8192> record_{};  // tags + the largest frame or noise run, reused
+};
+
+}  // namespace pvtap::analyzer

@@ -1,0 +1,59 @@
+// FlowProbe: holds the first bytes of a TCP or UDP flow until they show inverter frames, so
+// that a capture with other traffic (SSH, HTTP, DNS) needs no port to be given.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "pvtap/dialect.h"
+#include "pvtap/stream_reassembler.h"
+
+namespace pvtap::analyzer {
+
+class FlowProbe {
+ public:
+  enum class Verdict { Undecided, Bus, NotBus };
+  // Two good frames make a bus: one CRC that matches by chance in random data is plausible
+  // within 16 KiB, two are not.
+  static constexpr unsigned kGoodFramesNeeded = 2;
+  static constexpr std::size_t kMaxBytes = 16 * 1024;
+
+  // ProbeItem: data or a gap, in arrival order, for replay once the flow is accepted.
+  struct Item {
+    Direction direction = Direction::Unknown;
+    double time = 0;
+    bool gap = false;
+    std::uint64_t lost = 0;
+    std::vector<std::uint8_t> bytes;
+  };
+
+  explicit FlowProbe(DialectSet dialects) : dialects_(dialects) {}
+
+  Verdict add_data(Direction d, std::span<const std::uint8_t> bytes, double time);
+  void add_gap(Direction d, std::uint64_t lost, double time);
+  // At the end of the input a single good frame is enough (a short capture of one poll).
+  Verdict final_verdict();
+
+  const std::vector<Item>& items() const { return items_; }
+  std::uint64_t bytes() const { return bytes_; }
+  void clear();
+
+ private:
+  struct Scan {
+    std::vector<std::uint8_t> bytes;
+    std::size_t next = 0;         // first position not yet decided
+    std::size_t scanned_to = 0;   // buffer size at the last scan
+    std::size_t counted_end = 0;  // end of the last good frame counted
+  };
+  void scan(Direction d, bool final);
+
+  DialectSet dialects_;
+  std::vector<Item> items_;
+  Scan scans_[3];
+  std::uint64_t bytes_ = 0;
+  unsigned good_frames_ = 0;
+};
+
+}  // namespace pvtap::analyzer

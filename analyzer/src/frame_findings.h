@@ -1,0 +1,39 @@
+// Words for what the core found about one frame or value, shared by every output format.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "pvtap/bus_session.h"
+#include "pvtap/register_decoder.h"
+
+namespace pvtap::analyzer {
+
+// The findings of a frame as short phrases ("unsolicited reply", "exception 0x02: ...").
+// `out` is cleared first and reused, so a frame without findings costs nothing.
+void collect_issues(const SessionFrame& f, std::vector<std::string>& out);
+
+// Why a request went unanswered, as a key: "no_reply", "next_request_first", "input_ended"
+// (the input stopped before the timeout ran out) or "data_lost" (the reply may be in a gap).
+std::string_view unanswered_reason(const SessionTimeout& t);
+
+// A register value as a JSON object: {"register":"0x1006","name":"battery voltage",
+// "value":52.3,"unit":"V"}, with "text" for readings that are more than a number and
+// "warnings" when the decoder had doubts.
+void append_value_json(std::string& out, const DecodedValue& v, Dialect d);
+// The same in parts: the part that depends only on the register
+// ({"register":"0x1006","name":"battery voltage","value":), the unit part (,"unit":"V" or
+// nothing), and the rest of the object after the reading's value.
+void append_value_json_head(std::string& out, const DecodedValue& v, Dialect d);
+void append_value_json_unit(std::string& out, const DecodedValue& v);
+void append_value_json_reading(std::string& out, const DecodedValue& v);
+void append_value_json_tail(std::string& out, const DecodedValue& v);
+
+// "battery voltage 52.3 V" (or "0x1099 0x00AB" for a word outside the map).
+void append_value_words(std::string& out, const DecodedValue& v, Dialect d);
+
+// The function as text: "read holding registers (0x03)".
+void append_function(std::string& out, Dialect d, std::uint8_t function);
+
+}  // namespace pvtap::analyzer

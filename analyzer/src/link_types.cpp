@@ -1,0 +1,33 @@
+#include "link_types.h"
+
+namespace pvtap::analyzer {
+
+std::optional<InputKind> input_kind_of(int link_type) {
+  switch (link_type) {
+    case dlt::kNull:
+    case dlt::kEthernet:
+    case dlt::kRaw:
+    case dlt::kLoop:
+    case dlt::kLinuxSll:
+    case dlt::kLinuxSll2:
+    case dlt::kIpv4:
+    case dlt::kIpv6:
+      return InputKind::Network;
+    case dlt::kRtacSerial:
+      return InputKind::RtacSerial;
+    case dlt::kUpperPdu:
+      return InputKind::ExportedPdu;
+    default:
+      break;
+  }
+  if (link_type >= dlt::kUser0 && link_type <= dlt::kUser15) return InputKind::Serial;
+  return std::nullopt;
+}
+
+std::string supported_link_types_text() {
+  return "Ethernet (1), Linux cooked SLL (113) and SLL2 (276), raw IP (101, 228, 229), "
+         "loopback (0, 108), USER0-USER15 (147-162), RTAC serial (250), "
+         "exported PDU (252)";
+}
+
+}  // namespace pvtap::analyzer

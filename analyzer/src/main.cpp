@@ -1,0 +1,20 @@
+// pvtap: tools for the serial protocols of solar inverters on RS485 buses.
+#include <CLI/CLI.hpp>
+
+#include "audit_command.h"
+#include "audit_run.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"pvtap: see what crosses the wire between a data logger and its inverters", "pvtap"};
+  app.require_subcommand(1);
+  pvtap::analyzer::AuditOptions audit_options;
+  CLI::App* audit = pvtap::analyzer::add_audit_command(app, audit_options);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // Help is a success; every other parse problem is a usage error (exit 2).
+    return app.exit(e) == 0 ? pvtap::analyzer::kExitOk : pvtap::analyzer::kExitBadInput;
+  }
+  if (audit->parsed()) return pvtap::analyzer::run_audit(audit_options);
+  return pvtap::analyzer::kExitBadInput;
+}

@@ -1,0 +1,19 @@
+// The end-of-run report: as text for people, as one JSON line for jq.
+#pragma once
+
+#include "audit_report.h"
+#include "output_stream.h"
+
+namespace pvtap::analyzer {
+
+// The jsonl summary line: {"type":"summary","bytes":...,"stations":{...},...}.
+void write_json_summary(const AuditReport& report, OutputStream& out);
+
+// The text report: totals, findings with examples, latency, polling, bus timing and the
+// latest value of every register per station.
+void write_text_report(const AuditReport& report, OutputStream& out);
+
+// Key of a station in the report: "1", or "10.0.0.5:4001/1" when there are several buses.
+std::string station_key(const AuditReport& report, const BusFindings& bus, std::uint8_t station);
+
+}  // namespace pvtap::analyzer

@@ -1,0 +1,33 @@
+// ValueJsonCache: the register-dependent parts of value objects in jsonl output, rendered once
+// per register rather than once per value (a capture repeats the same registers millions of
+// times).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+
+#include "pvtap/register_decoder.h"
+
+namespace pvtap::analyzer {
+
+class ValueJsonCache {
+ public:
+  // Appends the whole {"register":...} object of `v`.
+  void append(std::string& out, const DecodedValue& v, Dialect d);
+
+ private:
+  // Direct-mapped: a slot per key hash, replaced when another register maps to it.
+  static constexpr std::size_t kSlots = 1024;  // the hash's top 10 bits
+  struct Parts {
+    std::uint64_t key = ~std::uint64_t{0};
+    const RegisterDef* def = nullptr;
+    std::string head;  // {"register":"0x1006","name":"battery voltage","value":
+    std::string unit;  // ,"unit":"V"
+  };
+  const Parts& parts_of(const DecodedValue& v, Dialect d);
+
+  std::array<Parts, kSlots> parts_;
+};
+
+}  // namespace pvtap::analyzer

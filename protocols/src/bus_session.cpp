@@ -1,0 +1,330 @@
+#include "pvtap/bus_session.h"
+
+#include <algorithm>
+#include <array>
+#include <limits>
+#include <vector>
+
+#include "bus_tally.h"
+#include "latest_readings.h"
+#include "pvtap/reply_rules.h"
+#include "pvtap/timing_statistics.h"
+#include "request_book.h"
+
+namespace pvtap {
+namespace {
+
+constexpr std::size_t kDirections = 3;
+
+std::size_t index_of(Direction d) {
+  return static_cast<std::size_t>(d);
+}
+
+}  // namespace
+
+struct BusSession::Impl : MatchSink {
+  // DirectionStream: the reassembler of one direction and where its events go.
+  struct DirectionStream : ReassemblerSink {
+    DirectionStream(Impl& o, Direction d)
+        : owner(o), direction(d), reassembler(o.options.reassembler, *this) {}
+    void on_frame(const FrameEvent& e) override { owner.on_frame(direction, e); }
+    void on_noise(const NoiseEvent& e) override { owner.sink.on_noise(SessionNoise{e, direction}); }
+
+    Impl& owner;
+    Direction direction;
+    StreamReassembler reassembler;
+    double last_feed_time = -std::numeric_limits<double>::infinity();
+  };
+
+  Impl(BusSessionOptions o, const RegisterDecoder& d, BusSessionSink& s)
+      : options(o),
+        decoder(d),
+        sink(s),
+        matcher(*this, o.matcher),
+        timing(BusTiming(o.reassembler.baud)) {}
+
+  DirectionStream& stream(Direction d) {
+    auto& slot = streams[index_of(d)];
+    if (!slot) slot = std::make_unique<DirectionStream>(*this, d);
+    return *slot;
+  }
+
+  void on_frame(Direction direction, const FrameEvent& e);
+  void handle_parsed(SessionFrame& out, const FrameEvent& e);
+  void note_transaction(SessionFrame& out, const Frame& frame);
+  void decode_values(SessionFrame& out, const Frame* request);
+  void add_timing(const SessionFrame& out, double max_inner_gap);
+  TimestampQuality timestamp_quality() const;
+  ReassemblerTotals totals() const;
+  void time_seen(double t);
+
+  // MatchSink: findings of the frame being matched are collected in `current`; timeouts are
+  // passed on at once, since they come before the frame that made them due.
+  void on_transaction(const Transaction& t) override {
+    current.transaction = t;
+    tally.add_transaction();
+  }
+  void on_timeout(const Timeout& t) override;
+  void on_unsolicited(const UnsolicitedReply& u) override { current.unsolicited = u; }
+  void on_duplicate(const DuplicateReply&) override { current.duplicate = true; }
+  void on_byte_count_mismatch(const ByteCountMismatch& m) override { current.mismatch = m; }
+  void on_role_corrected(const RoleCorrection&) override { current.role_corrected = true; }
+
+  struct MatchFindings {
+    std::optional<Transaction> transaction;
+    std::optional<UnsolicitedReply> unsolicited;
+    std::optional<ByteCountMismatch> mismatch;
+    bool duplicate = false;
+    bool role_corrected = false;
+  };
+
+  BusSessionOptions options;
+  const RegisterDecoder& decoder;
+  BusSessionSink& sink;
+  std::array<std::unique_ptr<DirectionStream>, kDirections> streams;
+  TransactionMatcher matcher;
+  TimingStatistics timing;
+  detail::BusTally tally;
+  detail::LatestReadings latest;
+  detail::RequestBook requests;
+  MatchFindings current;
+  Frame frame;  // the frame being handled; SessionFrame::frame points here
+  std::vector<DecodedValue> values;
+  std::uint64_t next_id = 0;
+  std::uint64_t loss_boundary_id = 0;  // requests before this id were waiting during a loss
+  bool any_time = false;
+  double first_time = 0;
+  double last_time = 0;
+};
+
+void BusSession::Impl::time_seen(double t) {
+  if (!options.has_timestamps) return;
+  if (!any_time) {
+    first_time = last_time = t;
+    any_time = true;
+  }
+  first_time = std::min(first_time, t);
+  last_time = std::max(last_time, t);
+}
+
+void BusSession::Impl::on_timeout(const Timeout& t) {
+  SessionTimeout out;
+  out.timeout = t;
+  const detail::RequestRecord* request =
+      requests.find(detail::RequestBook::slot_of(t.dialect, t.station), t.request_id);
+  if (request != nullptr) {
+    out.request_start = request->start_time;
+    out.request_end = request->end_time;
+  }
+  out.time = out.request_end + t.waited;
+  if (t.reason == TimeoutReason::CaptureEnded) {
+    out.kind = UnansweredKind::InputEnded;
+  } else if (t.request_id < loss_boundary_id) {
+    out.kind = UnansweredKind::AfterLoss;
+  }
+  tally.add_timeout(out);
+  sink.on_timeout(out);
+}
+
+void BusSession::Impl::on_frame(Direction direction, const FrameEvent& e) {
+  SessionFrame out;
+  out.id = next_id++;
+  out.offset = e.offset;
+  out.bytes = e.bytes;
+  out.direction = direction;
+  out.start_time = options.has_timestamps ? e.start_time : 0.0;
+  out.end_time = options.has_timestamps ? e.end_time : 0.0;
+  out.dialect = e.dialect;
+  out.role = e.role;
+  out.check = e.check;
+  ParseOutcome parsed = parse_frame(e.bytes, e.dialect, e.role);
+  if (!parsed) {
+    out.parse_error = parsed.error;
+  } else {
+    frame = *parsed.frame;
+    out.frame = &frame;
+    handle_parsed(out, e);
+  }
+  tally.add_frame(out);
+  sink.on_frame(out);
+}
+
+void BusSession::Impl::handle_parsed(SessionFrame& out, const FrameEvent& e) {
+  current = MatchFindings{};
+  const bool role_known = out.direction != Direction::Unknown;
+  FrameSummary summary = summarize(frame);
+  const Role role = matcher.on_frame(
+      ObservedFrame{out.id, summary, out.start_time, out.end_time, e.check.ok, role_known});
+  frame.role = role;
+  out.role = role;
+  out.role_corrected = current.role_corrected;
+  out.duplicate = current.duplicate;
+  out.count_mismatch = current.mismatch;
+  if (current.unsolicited) {
+    out.unsolicited = true;
+    if (current.unsolicited->late_for_request_id) out.late_by = current.unsolicited->since_request;
+  }
+  if (role == Role::Request) {
+    requests.remember(out.id, frame, out.start_time, out.end_time, e.check.ok);
+  } else {
+    summary.role = role;
+    out.reply_kind = reply_kind(summary);
+  }
+  note_transaction(out, frame);
+  add_timing(out, e.max_inner_gap);
+}
+
+void BusSession::Impl::note_transaction(SessionFrame& out, const Frame& reply) {
+  const detail::RequestRecord* request = nullptr;
+  if (current.transaction) {
+    const Transaction& t = *current.transaction;
+    out.request_id = t.request_id;
+    out.broadcast_answer = t.broadcast;
+    if (options.has_timestamps) out.latency = t.latency;
+    const std::size_t slot = t.broadcast ? detail::RequestBook::kBroadcastSlot : t.station;
+    request = requests.find(slot, t.request_id);
+  }
+  // A request with a bad check may carry a corrupted start address: do not place words by it.
+  const Frame* sound_request = request != nullptr && request->check_ok ? &request->frame : nullptr;
+  if (out.role == Role::Response && out.check.ok && out.reply_kind == ReplyKind::Normal) {
+    latest.store(reply, sound_request, out.start_time);
+  }
+  if (options.decode_values) decode_values(out, sound_request);
+}
+
+void BusSession::Impl::decode_values(SessionFrame& out, const Frame* request) {
+  values.clear();
+  // The device number heads every Hybrid reply, so it comes first.
+  if (frame.dialect == Dialect::Hybrid && frame.role == Role::Response && frame.device) {
+    values.push_back(decoder.decode_device_number(*frame.device));
+  }
+  out.decode = decoder.decode(frame, request, values);
+  out.values = values;
+}
+
+void BusSession::Impl::add_timing(const SessionFrame& out, double max_inner_gap) {
+  if (!options.has_timestamps) return;
+  // With timestamps declared too coarse the bus gaps are never judged; requests alone give
+  // the poll periods, and the gap statistics are spared the other frames.
+  if (options.reassembler.timestamps == TimestampTrust::Untrusted && out.role != Role::Request) {
+    if (out.latency) timing.add_latency(frame.station, *out.latency);
+    return;
+  }
+  timing.add_frame(FrameTiming{out.id, frame.dialect, out.role, frame.station, frame.function,
+                               out.start_time, out.end_time, max_inner_gap});
+  if (out.latency) timing.add_latency(frame.station, *out.latency);
+}
+
+BusSession::BusSession(BusSessionOptions options, const RegisterDecoder& decoder,
+                       BusSessionSink& sink)
+    : impl_(std::make_unique<Impl>(options, decoder, sink)) {}
+
+BusSession::~BusSession() = default;
+
+void BusSession::feed(const BusChunk& chunk) {
+  if (chunk.bytes.empty()) return;
+  impl_->time_seen(chunk.time);
+  Impl::DirectionStream& s = impl_->stream(chunk.direction);
+  s.last_feed_time = chunk.time;
+  s.reassembler.feed(chunk);
+}
+
+void BusSession::end_turn(Direction direction) {
+  auto& s = impl_->streams[index_of(direction)];
+  if (s && s->reassembler.pending_bytes() > 0) s->reassembler.discontinuity();
+}
+
+void BusSession::data_lost(Direction direction, double time,
+                           std::optional<std::uint64_t> lost_bytes) {
+  Impl& m = *impl_;
+  // Timeouts that fell due before the loss are plain timeouts.
+  if (m.options.has_timestamps) m.matcher.advance(time);
+  m.stream(direction).reassembler.discontinuity();
+  m.loss_boundary_id = m.next_id;
+  const SessionGap gap{direction, m.options.has_timestamps ? time : 0.0, lost_bytes};
+  m.tally.add_gap(gap);
+  m.sink.on_gap(gap);
+}
+
+void BusSession::restart(Direction direction) {
+  auto& s = impl_->streams[index_of(direction)];
+  if (s) s->reassembler.discontinuity();
+}
+
+void BusSession::idle(double now) {
+  for (auto& s : impl_->streams) {
+    if (s) s->reassembler.idle(now);
+  }
+  if (impl_->options.has_timestamps) impl_->matcher.advance(now);
+}
+
+void BusSession::finish() {
+  Impl& m = *impl_;
+  // The direction that spoke first ends first, so frames reach the matcher in bus order.
+  std::vector<Impl::DirectionStream*> order;
+  for (auto& s : m.streams) {
+    if (s) order.push_back(s.get());
+  }
+  std::sort(order.begin(), order.end(),
+            [](const auto* a, const auto* b) { return a->last_feed_time < b->last_feed_time; });
+  for (auto* s : order) s->reassembler.finish();
+  if (m.options.has_timestamps && m.any_time) m.matcher.advance(m.last_time);
+  m.matcher.finish();
+}
+
+ReassemblerTotals BusSession::Impl::totals() const {
+  ReassemblerTotals sum;
+  for (const auto& s : streams) {
+    if (!s) continue;
+    const ReassemblerTotals& t = s->reassembler.totals();
+    sum.bytes_in += t.bytes_in;
+    sum.frame_bytes += t.frame_bytes;
+    sum.noise_bytes += t.noise_bytes;
+    sum.frames += t.frames;
+    sum.bad_frames += t.bad_frames;
+    sum.noise_runs += t.noise_runs;
+  }
+  return sum;
+}
+
+TimestampQuality BusSession::Impl::timestamp_quality() const {
+  if (!options.has_timestamps) return {false, "the input has no timestamps (a plain byte dump)"};
+  for (const auto& s : streams) {
+    if (!s || s->reassembler.timing_trusted()) continue;
+    const bool declared = options.reassembler.timestamps == TimestampTrust::Untrusted;
+    if (declared && !options.timestamp_note.empty()) {
+      return {false, std::string(options.timestamp_note)};
+    }
+    return {false, std::string(s->reassembler.timing_reason())};
+  }
+  return {true, ""};
+}
+
+ReassemblerTotals BusSession::totals() const {
+  return impl_->totals();
+}
+
+BusReport BusSession::report() const {
+  const Impl& m = *impl_;
+  BusReport r;
+  r.bytes = m.totals();
+  m.tally.fill(r);
+  r.has_timestamps = m.options.has_timestamps;
+  r.first_time = m.first_time;
+  r.last_time = m.last_time;
+  r.timing = m.timing.report(m.timestamp_quality());
+  m.tally.fill_stations(r);
+  const auto readings = m.latest.decode(m.decoder);
+  for (StationSummary& s : r.stations) {
+    for (const StationLatency& l : r.timing.latency_by_station) {
+      if (l.station == s.station) s.latency = l.latency;
+    }
+    const auto it = readings.find(s.station);
+    if (it == readings.end()) continue;
+    s.last_report_time = it->second.last_time;
+    s.latest_values = it->second.values;
+  }
+  return r;
+}
+
+}  // namespace pvtap

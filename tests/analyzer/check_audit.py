@@ -1,0 +1,362 @@
+#!/usr/bin/env python3
+"""End-to-end checks of `pvtap audit` on generated captures (see tests/analyzer/forge/).
+
+Each mode runs the built pvtap and compares its output with what the capture generator knows
+the capture holds. Usage: check_audit.py --pvtap PVTAP --dir CAPTURE_DIR MODE [NAME] [options]
+Exit status 0 when every check holds, 1 with the failures listed, 77 when a needed tool is
+missing (CTest reports the test as skipped).
+"""
+
+import argparse
+import csv
+import io
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+
+SKIP = 77
+SUMMARY_COUNTS = ("bytes", "frames", "requests", "responses", "bad_checks", "timeouts",
+                  "noise_bytes", "exceptions", "lost_bytes", "gaps", "unsolicited",
+                  "unanswered_after_loss")
+
+
+class Checks:
+    """Collects failed checks instead of stopping at the first."""
+
+    def __init__(self):
+        self.failures = []
+
+    def equal(self, what, actual, expected):
+        if actual != expected:
+            self.failures.append(f"{what}: got {actual!r}, expected {expected!r}")
+
+    def true(self, what, condition):
+        if not condition:
+            self.failures.append(what)
+
+    def finish(self):
+        for failure in self.failures:
+            print("FAIL:", failure)
+        if not self.failures:
+            print("all checks hold")
+        return 1 if self.failures else 0
+
+
+def run(pvtap, args, expect_status=None, checks=None):
+    result = subprocess.run([pvtap, "audit", *args], capture_output=True, text=True, timeout=110)
+    if checks is not None and expect_status is not None:
+        checks.equal(f"exit status of pvtap audit {' '.join(args)}", result.returncode,
+                     expect_status)
+        checks.true(f"no crash report for {args}", "Sanitizer" not in result.stderr)
+    return result
+
+
+def parse_jsonl(text, checks):
+    lines = []
+    for number, line in enumerate(text.splitlines(), 1):
+        try:
+            lines.append(json.loads(line))
+        except json.JSONDecodeError as error:
+            checks.failures.append(f"line {number} is not JSON ({error}): {line[:120]}")
+    return lines
+
+
+def capture_path(directory, name):
+    stem = name.split(".")[0]
+    for extension in (".pcap", ".pcapng", ".bin"):
+        path = os.path.join(directory, stem + extension)
+        if os.path.exists(path):
+            return path
+    raise SystemExit(f"no capture for {name} in {directory}")
+
+
+def load_expectation(directory, name):
+    with open(os.path.join(directory, name + ".expect.json"), encoding="utf-8") as f:
+        expected = json.load(f)
+    expected["args"] = [a.replace("{dir}", directory) for a in expected["args"]]
+    return expected
+
+
+def input_args(directory, name, expected):
+    """The capture as pvtap's arguments: a FILE, or --raw FILE for plain dumps."""
+    args = list(expected["args"])
+    path = capture_path(directory, name)
+    if "--raw" in args:
+        args.remove("--raw")
+        return args + ["--raw", path]
+    return args + [path]
+
+
+def check_invariants(lines, checks):
+    """Every byte read is in a frame or reported as noise; the lines add up to the summary."""
+    summary = lines[-1]
+    frames = [l for l in lines if l["type"] == "frame"]
+    noise = [l for l in lines if l["type"] == "noise"]
+    gaps = [l for l in lines if l["type"] == "gap"]
+    timeouts = [l for l in lines if l["type"] == "timeout"]
+    checks.equal("byte invariant: bytes = frame bytes + noise bytes", summary["bytes"],
+                 summary["frame_bytes"] + summary["noise_bytes"])
+    checks.equal("frame lines add up to frame_bytes", sum(f["length"] for f in frames),
+                 summary["frame_bytes"])
+    checks.equal("noise lines add up to noise_bytes", sum(n["bytes"] for n in noise),
+                 summary["noise_bytes"])
+    checks.equal("gap lines add up to lost_bytes",
+                 sum(g["bytes"] for g in gaps if g["bytes"] is not None), summary["lost_bytes"])
+    checks.equal("gap lines", len(gaps), summary["gaps"])
+    checks.equal("frame lines", len(frames), summary["frames"])
+    checks.equal("timeout lines", len(timeouts), summary["timeouts"])
+    checks.equal("bad frame lines", sum(1 for f in frames if f["check"] == "bad"),
+                 summary["bad_checks"])
+    for f in frames:
+        checks.equal("frame length is its raw length", f["length"], len(f["raw"]) // 2)
+        checks.true(f"bad frame {f['raw']} says what it should have been",
+                    (f["check"] == "bad") == ("check_expected" in f))
+        checks.true(f"frame {f['raw']} has values and issues lists",
+                    isinstance(f["values"], list) and isinstance(f["issues"], list))
+
+
+def check_values(summary, expected, checks):
+    for v in expected["values"]:
+        station = summary["stations"].get(v["station"])
+        if station is None:
+            checks.failures.append(f"station {v['station']} missing from the summary")
+            continue
+        found = [x for x in station["values"] if x["register"] == v["register"]]
+        if not found:
+            checks.failures.append(f"station {v['station']} has no value for {v['register']}")
+            continue
+        checks.true(f"station {v['station']} register {v['register']}: got {found[0]['value']},"
+                    f" expected {v['value']}", abs(found[0]["value"] - v["value"]) < 1e-6)
+
+
+def audit_jsonl(options, args, checks, status=0):
+    result = run(options.pvtap, ["--format", "jsonl", *args], status, checks)
+    lines = parse_jsonl(result.stdout, checks)
+    if not lines or lines[-1].get("type") != "summary":
+        checks.failures.append("the last jsonl line is not the summary")
+        return None
+    return lines
+
+
+def mode_expect(options, checks):
+    expected = load_expectation(options.dir, options.name)
+    args = input_args(options.dir, options.name, expected)
+    lines = audit_jsonl(options, args, checks)
+    if lines is None:
+        return
+    summary = lines[-1]
+    for key, value in expected["counts"].items():
+        checks.equal(f"summary {key}", summary.get(key), value)
+    frames = [[l["raw"], l["role"], l["check"]] for l in lines if l["type"] == "frame"]
+    if expected["ordered"]:
+        checks.equal("frames (raw, role, check) in order", frames, expected["frames"])
+    else:
+        checks.equal("frames (raw, role, check)", sorted(frames), sorted(expected["frames"]))
+    check_invariants(lines, checks)
+    check_values(summary, expected, checks)
+    text = run(options.pvtap, ["--summary-only", *args], 0, checks)
+    checks.true("text report is printed", "== pvtap audit report ==" in text.stdout)
+
+
+def mode_roundtrip(options, checks):
+    expected = load_expectation(options.dir, options.name)
+    args = input_args(options.dir, options.name, expected)
+    with tempfile.TemporaryDirectory() as tmp:
+        written = os.path.join(tmp, "frames.pcap")
+        first = audit_jsonl(options, ["--write", written, *args], checks)
+        again = audit_jsonl(options, [written], checks)
+        if first is None or again is None:
+            return
+        before = [[l["raw"], l["role"], l["check"]] for l in first if l["type"] == "frame"]
+        after = [[l["raw"], l["role"], l["check"]] for l in again if l["type"] == "frame"]
+        checks.equal("frames read back from the written capture", after, before)
+        checks.equal("noise read back", again[-1]["noise_bytes"], first[-1]["noise_bytes"])
+        checks.equal("bytes read back", again[-1]["bytes"], first[-1]["bytes"])
+        # The written file holds frames only: a request whose reply was in lost capture data
+        # reads back as a plain timeout.
+        checks.equal("timeouts read back", again[-1]["timeouts"],
+                     first[-1]["timeouts"] + first[-1]["unanswered_after_loss"])
+        checks.equal("bad checks read back", again[-1]["bad_checks"], first[-1]["bad_checks"])
+
+
+def mode_fail_on(options, checks):
+    findings = capture_path(options.dir, "user0")
+    clean = capture_path(options.dir, "eth_clean")
+    run(options.pvtap, ["--summary-only", findings], 0, checks)
+    run(options.pvtap, ["--summary-only", "--fail-on", "errors", findings], 1, checks)
+    run(options.pvtap, ["--format", "jsonl", "--fail-on", "errors", findings], 1, checks)
+    run(options.pvtap, ["--summary-only", "--fail-on", "errors", clean], 0, checks)
+
+
+def expect_one_line_error(options, args, phrases, checks, stdout_empty=True):
+    result = run(options.pvtap, args, 2, checks)
+    lines = result.stderr.strip().splitlines()
+    checks.equal(f"stderr lines for {args}", len(lines), 1)
+    for phrase in phrases:
+        checks.true(f"error for {args} mentions {phrase!r}: {result.stderr.strip()}",
+                    phrase in result.stderr)
+    if stdout_empty:
+        checks.equal(f"stdout for {args}", result.stdout, "")
+    return result
+
+
+def mode_bad_inputs(options, checks):
+    d = options.dir
+    expect_one_line_error(options, [os.path.join(d, "missing.pcap")],
+                          ["missing.pcap", "No such file"], checks)
+    expect_one_line_error(options, [os.path.join(d, "not_a_capture.txt")],
+                          ["not a pcap or pcapng capture"], checks)
+    expect_one_line_error(options, [os.path.join(d, "empty.pcap")], ["empty"], checks)
+    expect_one_line_error(options, [os.path.join(d, "unsupported.pcap")],
+                          ["unsupported link type", "IEEE802_11", "supported:", "USER0"], checks)
+    expect_one_line_error(options, [d], ["is a directory"], checks)
+    expect_one_line_error(options, ["--raw", os.path.join(d, "missing.bin")],
+                          ["No such file"], checks)
+    expect_one_line_error(options, ["--write", "/nonexistent-dir/out.pcap",
+                                    capture_path(d, "user0")], ["cannot write"], checks)
+    # A missing file after a good one: nothing is printed before the error.
+    expect_one_line_error(options, [capture_path(d, "user0"), os.path.join(d, "missing.pcap")],
+                          ["missing.pcap"], checks)
+    result = run(options.pvtap, ["--map", os.path.join(d, "bad_map.toml"),
+                                 capture_path(d, "user0")], 2, checks)
+    checks.true("a bad map names the file and line", "bad_map.toml:" in result.stderr)
+    # Truncated: results up to the cut are printed, then one error line, exit 2.
+    full = audit_jsonl(options, [capture_path(d, "user0")], checks)
+    result = expect_one_line_error(options, ["--format", "jsonl",
+                                             os.path.join(d, "truncated.pcap")],
+                                   ["truncated", "records"], checks, stdout_empty=False)
+    partial = parse_jsonl(result.stdout, checks)
+    if full and partial:
+        checks.equal("truncated capture still ends with a summary", partial[-1]["type"],
+                     "summary")
+        checks.true("truncated capture gives part of the frames",
+                    0 < partial[-1]["frames"] < full[-1]["frames"])
+        check_invariants(partial, checks)
+
+
+def mode_usage(options, checks):
+    capture = capture_path(options.dir, "user0")
+    for args in (["--format", "xml", capture], ["--fail-on", "warnings", capture],
+                 ["--baud", "0", capture], ["--no-such-option", capture], [],
+                 ["--raw", capture, capture], ["--port", "http", capture]):
+        run(options.pvtap, args, 2, checks)
+    top = subprocess.run([options.pvtap], capture_output=True, text=True)
+    checks.equal("pvtap without a subcommand", top.returncode, 2)
+    helped = run(options.pvtap, ["--help"], 0, checks)
+    for phrase in ("--format", "--fail-on", "Exit status", "USER0", "--raw"):
+        checks.true(f"--help explains {phrase}", phrase in helped.stdout)
+
+
+def mode_formats(options, checks):
+    expected = load_expectation(options.dir, options.name)
+    args = input_args(options.dir, options.name, expected)
+    lines = audit_jsonl(options, args, checks)
+    if lines is None:
+        return
+    result = run(options.pvtap, ["--format", "csv", *args], 0, checks)
+    rows = list(csv.reader(io.StringIO(result.stdout)))
+    checks.equal("csv header", rows[0],
+                 ["type", "ts", "bus", "dialect", "role", "station", "function", "length",
+                  "check", "check_expected", "latency_ms", "raw", "values", "issues"])
+    checks.true("every csv row has 14 fields", all(len(r) == 14 for r in rows))
+    events = [l for l in lines if l["type"] != "summary"]
+    checks.equal("csv rows (one per event)", len(rows) - 1, len(events))
+    csv_frames = [r[11] for r in rows[1:] if r[0] == "frame"]
+    checks.equal("csv frames", csv_frames, [l["raw"] for l in lines if l["type"] == "frame"])
+    text = run(options.pvtap, args, 0, checks)
+    for phrase in ("== pvtap audit report ==", "latest values", "poll period", "bus timing",
+                   "BAD CRC", "TIMEOUT", "GAP", "latency"):
+        checks.true(f"text output shows {phrase!r}", phrase in text.stdout)
+    summary_only = run(options.pvtap, ["--format", "jsonl", "--summary-only", *args], 0, checks)
+    only = parse_jsonl(summary_only.stdout, checks)
+    checks.equal("--summary-only jsonl is one line", len(only), 1)
+    if only:
+        checks.equal("--summary-only gives the same summary", only[0], lines[-1])
+
+
+def mode_demo(options, checks):
+    with tempfile.TemporaryDirectory() as tmp:
+        fresh = os.path.join(tmp, "demo.pcap")
+        subprocess.run([options.generator, "demo", fresh], check=True)
+        with open(fresh, "rb") as a, open(options.committed, "rb") as b:
+            checks.true("the committed demo capture is what its generator writes",
+                        a.read() == b.read())
+    lines = audit_jsonl(options, [options.committed], checks)
+    if lines is None:
+        return
+    summary = lines[-1]
+    for key, value in (("bad_checks", 1), ("timeouts", 1), ("exceptions", 2),
+                       ("noise_bytes", 3), ("gaps", 0)):
+        checks.equal(f"demo {key}", summary[key], value)
+    checks.true("demo has latency statistics", summary["latency_ms"]["count"] > 40)
+    check_invariants(lines, checks)
+
+
+NOBODY = 65534
+PLUGIN_SUBDIR = os.path.join(".local", "lib", "wireshark", "plugins", "4.0", "epan")
+
+
+def run_tshark(home, args):
+    """tshark with the plugin in a temporary personal folder; as root (which makes tshark
+    ignore personal plugins) it runs as the unprivileged user 65534."""
+    command = ["env", "-i", "HOME=" + home, "PATH=/usr/sbin:/usr/bin:/sbin:/bin",
+               "LC_ALL=C.UTF-8", "tshark", *args]
+    if os.geteuid() == 0:
+        command = ["setpriv", f"--reuid={NOBODY}", f"--regid={NOBODY}", "--clear-groups",
+                   *command]
+    return subprocess.run(command, capture_output=True, text=True, timeout=110)
+
+
+def mode_tshark(options, checks):
+    if not options.plugin or not os.path.exists(options.plugin) or shutil.which("tshark") is None:
+        print("skipped: needs tshark and the built Wireshark plugin")
+        return SKIP
+    expected = load_expectation(options.dir, options.name)
+    args = input_args(options.dir, options.name, expected)
+    home = tempfile.mkdtemp(prefix="pvtap-audit-tshark-")
+    try:
+        written = os.path.join(home, "frames.pcap")
+        lines = audit_jsonl(options, ["--write", written, *args], checks)
+        os.makedirs(os.path.join(home, PLUGIN_SUBDIR))
+        shutil.copy(options.plugin, os.path.join(home, PLUGIN_SUBDIR, "pvtap.so"))
+        if os.geteuid() == 0:
+            for root, dirs, files in os.walk(home):
+                for name in [root] + [os.path.join(root, n) for n in dirs + files]:
+                    os.chown(name, NOBODY, NOBODY)
+        plugins = run_tshark(home, ["-G", "plugins"])
+        checks.true("tshark loads pvtap.so", "pvtap.so" in plugins.stdout)
+        result = run_tshark(home, ["-r", written, "-T", "fields", "-e", "frame.number",
+                                   "-Y", "invrtu.role || invascii.role"])
+        checks.equal(f"tshark exit status ({result.stderr.strip()[:200]})", result.returncode, 0)
+        if lines is not None:
+            checks.equal("frames tshark shows with the plugin", len(result.stdout.splitlines()),
+                         lines[-1]["frames"])
+    finally:
+        shutil.rmtree(home, ignore_errors=True)
+    return None
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--pvtap", required=True)
+    parser.add_argument("--dir", required=True)
+    parser.add_argument("--generator")
+    parser.add_argument("--committed")
+    parser.add_argument("--plugin", default="")
+    parser.add_argument("mode")
+    parser.add_argument("name", nargs="?")
+    options = parser.parse_args()
+    checks = Checks()
+    modes = {"expect": mode_expect, "roundtrip": mode_roundtrip, "fail-on": mode_fail_on,
+             "bad-inputs": mode_bad_inputs, "usage": mode_usage, "formats": mode_formats,
+             "demo": mode_demo, "tshark": mode_tshark}
+    if modes[options.mode](options, checks) == SKIP:
+        return SKIP
+    return checks.finish()
+
+
+if __name__ == "__main__":
+    sys.exit(main())

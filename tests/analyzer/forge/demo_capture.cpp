@@ -1,0 +1,104 @@
+// The demo capture and the benchmark capture.
+#include <pcap/pcap.h>
+
+#include "capture_out.h"
+#include "gateway_render.h"
+#include "inverter_traffic.h"
+#include "test_captures.h"
+
+namespace pvtap::forge {
+namespace {
+
+constexpr double kDemoStart = 1790000000.0;
+
+BusPlan demo_plan() {
+  BusPlan plan;
+  std::vector<RoundFaults> faults(12);
+  faults[2].hybrid_bad_crc = true;
+  faults[4].gsl2_silent = true;
+  faults[6].gsl2_exception = true;
+  faults[8].noise_after_ascii = true;
+  faults[9].hybrid_error_reply = true;
+  for (unsigned r = 0; r < faults.size(); ++r) {
+    poll_round(plan, kDemoStart + 5.0 * r, r, faults[r]);
+  }
+  expect_round_values(plan, 11);
+  return plan;
+}
+
+// BenchStream: one TCP connection written packet by packet, for captures too big to plan.
+class BenchStream {
+ public:
+  BenchStream(CaptureOut& out, const GatewayLayout& layout) : out_(out), g_(layout) {}
+
+  void handshake(double t) {
+    out_.write(t, tcp_packet(g_.link, g_.master, g_.gateway, {mseq_ - 1, 0, kSyn}, {}));
+    out_.write(t + 1e-4,
+               tcp_packet(g_.link, g_.gateway, g_.master, {sseq_ - 1, mseq_, kSyn | kAck}, {}));
+    out_.write(t + 2e-4, tcp_packet(g_.link, g_.master, g_.gateway, {mseq_, sseq_, kAck}, {}));
+  }
+  // One data segment and the receiver's acknowledgement.
+  void send(bool to_gateway, std::span<const std::uint8_t> bytes, double t) {
+    const Host& from = to_gateway ? g_.master : g_.gateway;
+    const Host& to = to_gateway ? g_.gateway : g_.master;
+    std::uint32_t& seq = to_gateway ? mseq_ : sseq_;
+    const std::uint32_t peer = to_gateway ? sseq_ : mseq_;
+    out_.write(t, tcp_packet(g_.link, from, to, {seq, peer, kAck | kPsh}, bytes));
+    seq += static_cast<std::uint32_t>(bytes.size());
+    out_.write(t + 3e-4, tcp_packet(g_.link, to, from, {peer, seq, kAck}, {}));
+  }
+
+ private:
+  CaptureOut& out_;
+  GatewayLayout g_;
+  std::uint32_t mseq_ = 1000001;
+  std::uint32_t sseq_ = 0xFFFFFF01;
+};
+
+}  // namespace
+
+void write_demo_capture(const std::string& path) {
+  const BusPlan plan = demo_plan();
+  GatewayRender g(plan, GatewayLayout{});
+  for (std::size_t i = 0; i < plan.items().size(); ++i) {
+    const BusItem& item = plan.items()[i];
+    if (item.dialect == Dialect::Hybrid && item.role == Role::Response && item.bytes.size() > 40) {
+      g.split(g.segment_of(i), 30);
+    }
+  }
+  PcapOut out(path, DLT_EN10MB);
+  g.write(out);
+}
+
+void write_bench_capture(const std::string& path, unsigned megabytes) {
+  PcapOut out(path, DLT_EN10MB);
+  BenchStream stream(out, GatewayLayout{});
+  stream.handshake(kDemoStart - 0.01);
+  const std::uint64_t target = std::uint64_t{megabytes} << 20;
+  std::uint64_t written = 24;  // pcap file header
+  double t = kDemoStart;
+  for (unsigned round = 0; written < target; ++round) {
+    RoundFaults faults;
+    faults.hybrid_bad_crc = round % 97 == 5;
+    faults.gsl2_silent = round % 101 == 7;
+    faults.gsl2_exception = round % 89 == 3;
+    faults.noise_after_ascii = round % 53 == 1;
+    BusPlan plan;
+    t = poll_round(plan, t, round, faults);
+    for (const BusItem& item : plan.items()) {
+      const bool to_gateway = item.direction == Direction::ToSlave;
+      const std::span<const std::uint8_t> bytes(item.bytes);
+      if (!to_gateway && bytes.size() > 40) {
+        stream.send(false, bytes.first(30), item.end - 0.01);
+        stream.send(false, bytes.subspan(30), item.end + 2e-4);
+      } else {
+        stream.send(to_gateway, bytes, item.end + 2e-4);
+      }
+      // Two packets per segment: 16-byte record headers, 54 bytes of headers (60 minimum).
+      written += 2 * (16 + 54) + 6 + bytes.size() + (bytes.size() > 40 ? 16 + 54 + 16 + 60 : 0);
+    }
+    t += 0.2;
+  }
+}
+
+}  // namespace pvtap::forge

@@ -1,0 +1,66 @@
+// FlowProbe: whether a flow carries inverter frames, decided from its first bytes.
+#include "flow_probe.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+namespace pvtap::analyzer {
+namespace {
+
+using Bytes = std::vector<std::uint8_t>;
+
+const Bytes kRequest = {0x01, 0x03, 0x00, 0x00, 0x00, 0x0A, 0xC5, 0xCD};
+const Bytes kAsciiRequest = {0x05, 0x30, 0x31, 0x52, 0x30, 0x30, 0x30, 0x34,
+                             0x30, 0x34, 0x30, 0x31, 0x64, 0x62, 0x04};
+
+TEST(FlowProbe, TwoGoodFramesMakeABus) {
+  FlowProbe probe(DialectSet::all());
+  EXPECT_EQ(probe.add_data(Direction::ToSlave, kRequest, 1.0), FlowProbe::Verdict::Undecided);
+  EXPECT_EQ(probe.add_data(Direction::ToSlave, kAsciiRequest, 2.0), FlowProbe::Verdict::Bus);
+  ASSERT_EQ(probe.items().size(), 2u);  // kept for replay
+  EXPECT_EQ(probe.items()[1].bytes, kAsciiRequest);
+}
+
+TEST(FlowProbe, FramesSplitAcrossSegmentsAreFoundAndCountedOnce) {
+  FlowProbe probe(DialectSet::all());
+  const Bytes first(kRequest.begin(), kRequest.begin() + 3);
+  const Bytes rest(kRequest.begin() + 3, kRequest.end());
+  EXPECT_EQ(probe.add_data(Direction::ToSlave, first, 1.0), FlowProbe::Verdict::Undecided);
+  EXPECT_EQ(probe.add_data(Direction::ToSlave, rest, 1.0), FlowProbe::Verdict::Undecided);
+  EXPECT_EQ(probe.add_data(Direction::ToSlave, Bytes{0x41}, 1.1), FlowProbe::Verdict::Undecided);
+  EXPECT_EQ(probe.final_verdict(), FlowProbe::Verdict::Bus);  // one frame at the end suffices
+}
+
+TEST(FlowProbe, TextTrafficIsNotABus) {
+  FlowProbe probe(DialectSet::all());
+  const std::string line = "GET /index.html HTTP/1.1\r\nHost: portal\r\n\r\n";
+  FlowProbe::Verdict v = FlowProbe::Verdict::Undecided;
+  for (int i = 0; i < 500 && v == FlowProbe::Verdict::Undecided; ++i) {
+    v = probe.add_data(Direction::ToSlave, Bytes(line.begin(), line.end()), i);
+  }
+  EXPECT_EQ(v, FlowProbe::Verdict::NotBus);
+  FlowProbe short_text(DialectSet::all());
+  short_text.add_data(Direction::FromSlave, Bytes(line.begin(), line.end()), 0);
+  EXPECT_EQ(short_text.final_verdict(), FlowProbe::Verdict::NotBus);
+}
+
+TEST(FlowProbe, FramesNeverJoinAcrossAGap) {
+  FlowProbe probe(DialectSet::all());
+  probe.add_data(Direction::ToSlave, Bytes(kRequest.begin(), kRequest.begin() + 4), 1.0);
+  probe.add_gap(Direction::ToSlave, 10, 1.1);
+  probe.add_data(Direction::ToSlave, Bytes(kRequest.begin() + 4, kRequest.end()), 1.2);
+  EXPECT_EQ(probe.final_verdict(), FlowProbe::Verdict::NotBus);
+  EXPECT_TRUE(probe.items()[1].gap);
+}
+
+TEST(FlowProbe, OnlyTheChosenDialectsCount) {
+  FlowProbe probe(DialectSet::only(Dialect::Hybrid));
+  probe.add_data(Direction::ToSlave, kRequest, 1.0);
+  probe.add_data(Direction::ToSlave, kAsciiRequest, 1.0);
+  EXPECT_EQ(probe.final_verdict(), FlowProbe::Verdict::NotBus);
+}
+
+}  // namespace
+}  // namespace pvtap::analyzer

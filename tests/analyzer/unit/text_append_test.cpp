@@ -1,0 +1,91 @@
+// Number, hex, JSON and CSV text as the output formats write it.
+#include "text_append.h"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace pvtap::analyzer {
+namespace {
+
+std::string fixed(double v, int decimals) {
+  std::string out;
+  append_fixed(out, v, decimals);
+  return out;
+}
+
+std::string reference_fixed(double v, int decimals) {
+  std::array<char, 64> buf{};
+  const auto r =
+      std::to_chars(buf.data(), buf.data() + buf.size(), v, std::chars_format::fixed, decimals);
+  return std::string(buf.data(), r.ptr);
+}
+
+TEST(TextAppend, FixedPointAsRegistersScaleIt) {
+  EXPECT_EQ(fixed(523 * 0.1, 1), "52.3");
+  EXPECT_EQ(fixed(5001 * 0.01, 2), "50.01");
+  EXPECT_EQ(fixed(7 * 0.001, 3), "0.007");
+  EXPECT_EQ(fixed(-12.5, 1), "-12.5");
+  EXPECT_EQ(fixed(-0.04, 1), "0.0");  // no "-0.0"
+  EXPECT_EQ(fixed(266, 0), "266");
+  EXPECT_EQ(fixed(1e20, 1), "100000000000000000000.0");
+  EXPECT_EQ(fixed(NAN, 2), "0.00");
+}
+
+// Register maps show as many decimals as their scale has, so no value sits halfway between
+// two printed numbers; there the fast path must print what to_chars prints.
+TEST(TextAppend, FixedPointAgreesWithToCharsOnRegisterValues) {
+  const std::pair<double, int> scales[] = {{1, 0},     {0.1, 1}, {0.01, 2},
+                                           {0.001, 3}, {0.5, 1}, {100, 0}};
+  for (const auto& [scale, decimals] : scales) {
+    for (std::int64_t raw = -70000; raw <= 70000; raw += 7) {
+      const double v = static_cast<double>(raw) * scale;
+      std::string expected = reference_fixed(v, decimals);
+      if (expected[0] == '-' && expected.find_first_not_of("-0.") == std::string::npos) {
+        expected.erase(0, 1);
+      }
+      ASSERT_EQ(fixed(v, decimals), expected) << raw << " * " << scale;
+    }
+  }
+}
+
+TEST(TextAppend, JsonStringsAreEscaped) {
+  std::string out;
+  append_json_string(out, "a\"b\\c\nd\te\x01 °C");
+  EXPECT_EQ(out, "\"a\\\"b\\\\c\\nd\\te\\u0001 °C\"");
+}
+
+TEST(TextAppend, CsvFieldsAreQuotedOnlyWhenNeeded) {
+  std::string out;
+  append_csv_field(out, "plain");
+  out += '|';
+  append_csv_field(out, "a, b");
+  out += '|';
+  append_csv_field(out, "say \"hi\"");
+  out += '|';
+  append_csv_field(out, "two\nlines");
+  EXPECT_EQ(out, "plain|\"a, b\"|\"say \"\"hi\"\"\"|\"two\nlines\"");
+}
+
+TEST(TextAppend, HexAndTimes) {
+  std::string out;
+  const std::vector<std::uint8_t> bytes = {0x01, 0xAB, 0xFF};
+  append_hex(out, bytes);
+  out += '|';
+  append_spaced_hex(out, bytes);
+  out += '|';
+  append_hex_byte(out, 0x1F);
+  EXPECT_EQ(out, "01abff|01 ab ff|0x1F");
+  out.clear();
+  append_utc_date_time(out, 1790000000.0123456);
+  EXPECT_EQ(out, "2026-09-21 14:13:20.012346");
+}
+
+}  // namespace
+}  // namespace pvtap::analyzer

@@ -1,0 +1,262 @@
+// BusSession: the core pipeline for one bus, as the analyzer and the live sniffer drive it.
+#include "pvtap/bus_session.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "frame_builders.h"
+#include "hex_bytes.h"
+#include "pvtap/bus_timing.h"
+#include "pvtap/frame_codec.h"
+
+namespace pvtap {
+namespace {
+
+using Bytes = std::vector<std::uint8_t>;
+
+Frame gsl_read(std::uint8_t station, std::uint16_t start, std::uint16_t count) {
+  return test::read_request(Dialect::Gsl, station, 0x03, start, count);
+}
+
+Frame gsl_reply(std::uint8_t station, WordList words) {
+  Frame f = test::frame_of(Dialect::Gsl, Role::Response, station, 0x03);
+  f.byte_count = static_cast<std::uint8_t>(2 * words.size());
+  f.words = words;
+  return f;
+}
+
+Frame gsl_exception(std::uint8_t station, std::uint8_t code) {
+  Frame f = test::frame_of(Dialect::Gsl, Role::Response, station, 0x83);
+  f.exception_code = code;
+  return f;
+}
+
+// Records what the session reports.
+struct Recorder : BusSessionSink {
+  void on_frame(const SessionFrame& f) override {
+    frames.push_back(f);
+    frames.back().bytes = {};
+    frames.back().frame = nullptr;
+    frames.back().values = {};
+    value_texts.emplace_back();
+    for (const DecodedValue& v : f.values) value_texts.back().push_back(std::string(v.key()));
+    raw.emplace_back(f.bytes.begin(), f.bytes.end());
+  }
+  void on_timeout(const SessionTimeout& t) override { timeouts.push_back(t); }
+  void on_noise(const SessionNoise& n) override { noise_bytes += n.noise.bytes.size(); }
+  void on_gap(const SessionGap& g) override { gaps.push_back(g); }
+
+  std::vector<SessionFrame> frames;
+  std::vector<std::vector<std::string>> value_texts;
+  std::vector<Bytes> raw;
+  std::vector<SessionTimeout> timeouts;
+  std::vector<SessionGap> gaps;
+  std::size_t noise_bytes = 0;
+};
+
+class BusSessionTest : public ::testing::Test {
+ protected:
+  void make(BusSessionOptions options = {}) {
+    session_ = std::make_unique<BusSession>(options, decoder_, recorder_);
+  }
+  void feed(const Bytes& bytes, double time, Direction d = Direction::Unknown) {
+    session_->feed(BusChunk{bytes, time, d});
+  }
+  const DecodedValue* latest(std::uint8_t station, std::string_view key) {
+    report_ = session_->report();
+    for (const StationSummary& s : report_.stations) {
+      if (s.station != station) continue;
+      for (const LatestValue& v : s.latest_values) {
+        if (v.value.key() == key) return &v.value;
+      }
+    }
+    return nullptr;
+  }
+
+  RegisterDecoder decoder_;
+  Recorder recorder_;
+  std::unique_ptr<BusSession> session_;
+  BusReport report_;
+};
+
+TEST_F(BusSessionTest, TapOnTheBusGivesTransactionsLatencyAndLatestValues) {
+  make();
+  feed(encode_frame(gsl_read(1, 0x041A, 7)), 10.0);  // IDs 1050..1056
+  feed(encode_frame(gsl_reply(1, {2301, 2302, 2303, 10, 11, 12, 5001})), 10.050);
+  feed(encode_frame(gsl_read(1, 0x0420, 1)), 11.0);  // 1056 again
+  feed(encode_frame(gsl_reply(1, {4999})), 11.030);
+  session_->finish();
+
+  ASSERT_EQ(recorder_.frames.size(), 4u);
+  const SessionFrame& reply = recorder_.frames[1];
+  EXPECT_EQ(reply.role, Role::Response);
+  ASSERT_TRUE(reply.latency.has_value());
+  // The reply's chunk time is its last byte: its start is 19 characters earlier.
+  const double char_time = BusTiming(9600).char_time;
+  EXPECT_NEAR(*reply.latency, 0.050 - 19 * char_time, 1e-9);
+  EXPECT_EQ(recorder_.value_texts[1].size(), 7u);
+  EXPECT_TRUE(recorder_.timeouts.empty());
+
+  const DecodedValue* frequency = latest(1, "grid_frequency");
+  ASSERT_NE(frequency, nullptr);
+  EXPECT_NEAR(frequency->value, 49.99, 1e-9);  // the newer reply wins
+  const DecodedValue* voltage = latest(1, "grid_voltage_ab");
+  ASSERT_NE(voltage, nullptr);
+  EXPECT_NEAR(voltage->value, 230.1, 1e-9);
+  EXPECT_EQ(report_.requests, 2u);
+  EXPECT_EQ(report_.responses, 2u);
+  EXPECT_EQ(report_.transactions, 2u);
+  ASSERT_EQ(report_.stations.size(), 1u);
+  EXPECT_EQ(report_.stations[0].latency.count, 2u);
+  EXPECT_EQ(report_.bytes.bytes_in, report_.bytes.frame_bytes + report_.bytes.noise_bytes);
+}
+
+TEST_F(BusSessionTest, TimeoutsExceptionsAndTheEndOfInputAreJudgedApart) {
+  make();
+  feed(encode_frame(gsl_read(2, 0x041A, 1)), 1.0);  // never answered: a timeout
+  feed(encode_frame(gsl_read(3, 0x041A, 1)), 3.0);
+  feed(encode_frame(gsl_exception(3, 0x02)), 3.02);
+  feed(test::hex_bytes("06 18 10 2A 09 3C 03 36"), 4.0);
+  // Hybrid error reply with a good CRC (the reference's vector has a bad one).
+  Frame error = test::frame_of(Dialect::Hybrid, Role::Response, 6, 0xFF);
+  error.byte_count = 8;
+  error.device = DeviceNumber{0x31, 103};
+  error.start = 0x1000;
+  error.count = 0x00FF;
+  feed(encode_frame(error), 4.05);
+  feed(encode_frame(gsl_read(4, 0x041A, 1)), 9.0);  // the input ends 0.5 s later
+  feed(Bytes{0x00}, 9.5);                           // one noise byte
+  session_->finish();
+  report_ = session_->report();
+
+  ASSERT_EQ(recorder_.timeouts.size(), 2u);
+  EXPECT_EQ(recorder_.timeouts[0].kind, UnansweredKind::Timeout);
+  EXPECT_EQ(recorder_.timeouts[0].timeout.station, 2);
+  EXPECT_EQ(recorder_.timeouts[1].kind, UnansweredKind::InputEnded);
+  EXPECT_EQ(report_.timeouts, 1u);
+  EXPECT_EQ(report_.unanswered_at_end, 1u);
+  EXPECT_EQ(report_.exceptions, 2u);
+  ASSERT_EQ(report_.exception_codes.size(), 2u);
+  EXPECT_EQ(report_.exception_codes[0].dialect, Dialect::Hybrid);
+  EXPECT_EQ(report_.exception_codes[0].code, 0xFF);
+  EXPECT_EQ(report_.exception_codes[1].dialect, Dialect::Gsl);
+  EXPECT_EQ(report_.exception_codes[1].code, 0x02);
+  EXPECT_EQ(report_.bytes.noise_bytes, 1u);
+  EXPECT_EQ(recorder_.noise_bytes, 1u);
+}
+
+TEST_F(BusSessionTest, BadCheckRequestOfOneDirectionEndsWithTheTurn) {
+  make();
+  Bytes bad_request = encode_frame(gsl_read(1, 0x041A, 1));
+  bad_request[7] ^= 0x55;
+  feed(bad_request, 1.0, Direction::ToSlave);
+  // The reply arrives in two pieces; the master's turn ended when the slave began.
+  session_->end_turn(Direction::ToSlave);
+  const Bytes reply = encode_frame(gsl_reply(1, {2300}));
+  feed(Bytes(reply.begin(), reply.begin() + 3), 1.05, Direction::FromSlave);
+  feed(Bytes(reply.begin() + 3, reply.end()), 1.06, Direction::FromSlave);
+  session_->finish();
+  report_ = session_->report();
+
+  ASSERT_EQ(recorder_.frames.size(), 2u);
+  EXPECT_FALSE(recorder_.frames[0].check.ok);
+  EXPECT_EQ(recorder_.frames[0].role, Role::Request);
+  EXPECT_TRUE(recorder_.frames[1].request_id.has_value());  // answered, not unsolicited
+  EXPECT_FALSE(recorder_.frames[1].unsolicited);
+  EXPECT_EQ(report_.bytes.bad_frames, 1u);
+  ASSERT_EQ(report_.bad_check_examples.size(), 1u);
+  EXPECT_EQ(report_.bad_check_examples[0].bytes, bad_request);
+  // The bad request's start address is not trusted to place the reply's words.
+  EXPECT_EQ(latest(1, "grid_voltage_ab"), nullptr);
+}
+
+TEST_F(BusSessionTest, LossInOneDirectionLeavesTheOtherIntact) {
+  make();
+  feed(encode_frame(gsl_read(1, 0x041A, 1)), 1.0, Direction::ToSlave);
+  const Bytes reply = encode_frame(gsl_reply(1, {2300}));
+  feed(Bytes(reply.begin(), reply.begin() + 4), 1.05, Direction::FromSlave);
+  session_->data_lost(Direction::ToSlave, 1.055, 12);
+  feed(Bytes(reply.begin() + 4, reply.end()), 1.06, Direction::FromSlave);
+  const Bytes cut = encode_frame(gsl_read(2, 0x041A, 1));
+  feed(Bytes(cut.begin(), cut.begin() + 5), 2.0, Direction::ToSlave);
+  session_->data_lost(Direction::ToSlave, 2.5, std::nullopt);
+  session_->finish();
+  report_ = session_->report();
+
+  ASSERT_EQ(recorder_.frames.size(), 2u);
+  EXPECT_TRUE(recorder_.frames[1].request_id.has_value());
+  ASSERT_EQ(recorder_.gaps.size(), 2u);
+  EXPECT_EQ(recorder_.gaps[0].lost_bytes, 12u);
+  EXPECT_FALSE(recorder_.gaps[1].lost_bytes.has_value());
+  EXPECT_EQ(report_.gaps.gaps, 2u);
+  EXPECT_EQ(report_.gaps.lost_bytes, 12u);
+  EXPECT_EQ(report_.gaps.gaps_of_unknown_size, 1u);
+  EXPECT_EQ(recorder_.noise_bytes, 5u);  // what was left of the cut request
+  EXPECT_EQ(report_.bytes.bytes_in, report_.bytes.frame_bytes + report_.bytes.noise_bytes);
+}
+
+TEST_F(BusSessionTest, RequestWaitingDuringALossIsNotATimeout) {
+  make();
+  feed(encode_frame(gsl_read(1, 0x041A, 1)), 1.0, Direction::ToSlave);
+  session_->data_lost(Direction::FromSlave, 1.1, 40);
+  feed(encode_frame(gsl_read(1, 0x041A, 1)), 5.0, Direction::ToSlave);
+  feed(encode_frame(gsl_reply(1, {2300})), 5.05, Direction::FromSlave);
+  session_->finish();
+  report_ = session_->report();
+  ASSERT_EQ(recorder_.timeouts.size(), 1u);
+  EXPECT_EQ(recorder_.timeouts[0].kind, UnansweredKind::AfterLoss);
+  EXPECT_EQ(report_.timeouts, 0u);
+  EXPECT_EQ(report_.unanswered_after_loss, 1u);
+}
+
+TEST_F(BusSessionTest, PlainDumpHasNoLatencyAndSaysWhyTimingIsNotJudged) {
+  BusSessionOptions options;
+  options.has_timestamps = false;
+  options.reassembler.timestamps = TimestampTrust::Untrusted;
+  make(options);
+  Bytes all = encode_frame(gsl_read(1, 0x041A, 1));
+  const Bytes reply = encode_frame(gsl_reply(1, {2300}));
+  all.insert(all.end(), reply.begin(), reply.end());
+  feed(all, 0.0);
+  session_->finish();
+  report_ = session_->report();
+  ASSERT_EQ(recorder_.frames.size(), 2u);
+  EXPECT_FALSE(recorder_.frames[1].latency.has_value());
+  EXPECT_TRUE(recorder_.frames[1].request_id.has_value());
+  EXPECT_FALSE(report_.timing.bus.measurable);
+  EXPECT_NE(report_.timing.bus.not_measurable_reason.find("no timestamps"), std::string::npos);
+  EXPECT_EQ(report_.timing.latency.count, 0u);
+}
+
+TEST_F(BusSessionTest, WithoutValueDecodingTheLatestTableIsStillKept) {
+  BusSessionOptions options;
+  options.decode_values = false;
+  make(options);
+  feed(encode_frame(test::ascii_reply(1, 0x0020, {266, 57})), 1.0);  // carries its start
+  session_->finish();
+  ASSERT_EQ(recorder_.frames.size(), 1u);
+  EXPECT_TRUE(recorder_.value_texts[0].empty());
+  EXPECT_TRUE(recorder_.frames[0].unsolicited);
+  const DecodedValue* pv = latest(1, "pv_voltage");
+  ASSERT_NE(pv, nullptr);
+  EXPECT_DOUBLE_EQ(pv->value, 266.0);
+}
+
+TEST_F(BusSessionTest, HybridRepliesCarryTheDeviceNumberFirst) {
+  make();
+  feed(test::hex_bytes("FF 11 10 60 00 02 6D 08"), 1.0);
+  feed(test::hex_bytes("09 11 08 22 00 00 6B 22 00 00 6B F2 77"), 1.05);
+  session_->finish();
+  ASSERT_EQ(recorder_.frames.size(), 2u);
+  EXPECT_TRUE(recorder_.frames[1].broadcast_answer);
+  ASSERT_FALSE(recorder_.value_texts[1].empty());
+  EXPECT_EQ(recorder_.value_texts[1][0], "device_number");
+  const DecodedValue* device = latest(9, "device_number");
+  ASSERT_NE(device, nullptr);
+  EXPECT_EQ(device->device.serial, 107u);
+}
+
+}  // namespace
+}  // namespace pvtap
