@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace pvtap {
 namespace {
@@ -14,6 +15,9 @@ struct Geometry {
   std::size_t regular;  // buckets 1..regular cover (kMinValue, kMinValue * gamma^regular]
   std::size_t overflow;
   std::size_t buckets;
+  // Upper bound of each bucket 0..regular, computed once: finding a value's bucket is then a
+  // binary search instead of a log and a pow per value (a latency is added for every reply).
+  std::vector<double> bounds;
 };
 
 const Geometry& geometry() {
@@ -25,6 +29,10 @@ const Geometry& geometry() {
         std::ceil(std::log(LogHistogram::kMaxValue / LogHistogram::kMinValue) / r.log_gamma));
     r.overflow = r.regular + 1;
     r.buckets = r.regular + 2;
+    r.bounds.resize(r.regular + 1);
+    for (std::size_t b = 0; b <= r.regular; ++b) {
+      r.bounds[b] = LogHistogram::kMinValue * std::pow(r.gamma, static_cast<double>(b));
+    }
     return r;
   }();
   return g;
@@ -55,17 +63,18 @@ double LogHistogram::quantile(double q) const {
 std::size_t LogHistogram::bucket_of(double value) {
   const Geometry& g = geometry();
   if (!(value > kMinValue)) return 0;
-  if (value > upper_bound(g.regular)) return g.overflow;
+  if (value > g.bounds[g.regular]) return g.overflow;
+  // Bucket b holds (bounds[b - 1], bounds[b]]. One logarithm lands on b or next to it at a
+  // boundary; the table settles which.
   auto b = static_cast<std::size_t>(std::ceil(std::log(value / kMinValue) / g.log_gamma));
-  // The logarithm may land one bucket off at a boundary; the bounds themselves decide.
   b = std::clamp<std::size_t>(b, 1, g.regular);
-  if (value > upper_bound(b) && b < g.regular) ++b;
-  if (b > 1 && value <= upper_bound(b - 1)) --b;
+  while (b < g.regular && value > g.bounds[b]) ++b;
+  while (b > 1 && value <= g.bounds[b - 1]) --b;
   return b;
 }
 
 double LogHistogram::upper_bound(std::size_t bucket) {
-  return kMinValue * std::pow(geometry().gamma, static_cast<double>(bucket));
+  return geometry().bounds[bucket];
 }
 
 // The point of (upper/gamma, upper] whose relative distance to both ends is kRelativeError.

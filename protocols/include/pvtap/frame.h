@@ -45,7 +45,9 @@ class WordList {
   }
 
  private:
-  std::array<std::uint16_t, kCapacity> words_{};
+  // Left unfilled: only the first size_ words are ever read, and zeroing 512 bytes for every
+  // parsed frame showed in audit profiles.
+  std::array<std::uint16_t, kCapacity> words_;
   std::size_t size_ = 0;
 };
 
