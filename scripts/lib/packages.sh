@@ -19,6 +19,14 @@ PVTAP_PACKAGES=(
   libpcap-dev
   libcli11-dev
   python3
+  # The real-peer capture test (captures/real-peer/record): software we did not write.
+  mbpoll
+  python3-pymodbus
+  python3-serial
+  python3-serial-asyncio
+  ser2net
+  socat
+  tcpdump
 )
 
 # Prints the packages of PVTAP_PACKAGES that are not installed, one per line.

@@ -277,28 +277,6 @@ def mode_formats(options, checks):
         checks.equal("--summary-only gives the same summary", only[0], lines[-1])
 
 
-def mode_demo(options, checks):
-    with tempfile.TemporaryDirectory() as tmp:
-        fresh = os.path.join(tmp, "demo.pcap")
-        subprocess.run([options.generator, "demo", fresh], check=True)
-        with open(fresh, "rb") as a, open(options.committed, "rb") as b:
-            checks.true("the committed demo capture is what its generator writes",
-                        a.read() == b.read())
-    lines = audit_jsonl(options, [options.committed], checks)
-    if lines is None:
-        return
-    summary = lines[-1]
-    for key, value in (("bad_checks", 1), ("timeouts", 1), ("exceptions", 2),
-                       ("noise_bytes", 3), ("gaps", 0)):
-        checks.equal(f"demo {key}", summary[key], value)
-    checks.true("demo has latency statistics", summary["latency_ms"]["count"] > 40)
-    check_invariants(lines, checks)
-
-
-NOBODY = 65534
-PLUGIN_SUBDIR = os.path.join(".local", "lib", "wireshark", "plugins", "4.0", "epan")
-
-
 def run_tshark(home, args):
     """tshark with the plugin in a temporary personal folder; as root (which makes tshark
     ignore personal plugins) it runs as the unprivileged user 65534."""
@@ -343,8 +321,6 @@ def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--pvtap", required=True)
     parser.add_argument("--dir", required=True)
-    parser.add_argument("--generator")
-    parser.add_argument("--committed")
     parser.add_argument("--plugin", default="")
     parser.add_argument("mode")
     parser.add_argument("name", nargs="?")
@@ -352,7 +328,7 @@ def main():
     checks = Checks()
     modes = {"expect": mode_expect, "roundtrip": mode_roundtrip, "fail-on": mode_fail_on,
              "bad-inputs": mode_bad_inputs, "usage": mode_usage, "formats": mode_formats,
-             "demo": mode_demo, "tshark": mode_tshark}
+             "tshark": mode_tshark}
     if modes[options.mode](options, checks) == SKIP:
         return SKIP
     return checks.finish()

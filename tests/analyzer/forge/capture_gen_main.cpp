@@ -1,6 +1,5 @@
 // pvtap-capture-gen: writes deterministic captures with known content.
 //   pvtap-capture-gen tests DIR           every end-to-end test capture and its expected audit
-//   pvtap-capture-gen demo FILE           the demo capture (captures/demo-gateway.pcap)
 //   pvtap-capture-gen bench FILE MB       a gateway capture of at least MB megabytes
 #include <cstdio>
 #include <cstdlib>
@@ -14,13 +13,11 @@ int main(int argc, char** argv) {
   try {
     if (what == "tests" && argc == 3) {
       pvtap::forge::write_test_captures(argv[2]);
-    } else if (what == "demo" && argc == 3) {
-      pvtap::forge::write_demo_capture(argv[2]);
     } else if (what == "bench" && argc == 4) {
       pvtap::forge::write_bench_capture(argv[2],
                                         static_cast<unsigned>(std::strtoul(argv[3], nullptr, 10)));
     } else {
-      std::fprintf(stderr, "usage: pvtap-capture-gen tests DIR | demo FILE | bench FILE MB\n");
+      std::fprintf(stderr, "usage: pvtap-capture-gen tests DIR | bench FILE MB\n");
       return 2;
     }
   } catch (const std::exception& e) {

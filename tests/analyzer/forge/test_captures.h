@@ -9,10 +9,6 @@ namespace pvtap::forge {
 // .bin) with NAME.expect.json next to it, plus the bad inputs and a user register map.
 void write_test_captures(const std::string& dir);
 
-// The bundled demo capture: a logger polling four inverters through a TCP gateway for a
-// minute, with a bad CRC, a timeout, an exception, an error reply and line noise.
-void write_demo_capture(const std::string& path);
-
 // A gateway capture of at least `megabytes` MB for the throughput benchmark, written as it
 // is generated (memory stays small).
 void write_bench_capture(const std::string& path, unsigned megabytes);

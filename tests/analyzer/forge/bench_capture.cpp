@@ -1,4 +1,4 @@
-// The demo capture and the benchmark capture.
+// The benchmark capture: a gateway stream of poll rounds, written packet by packet.
 #include <pcap/pcap.h>
 
 #include "capture_out.h"
@@ -9,22 +9,7 @@
 namespace pvtap::forge {
 namespace {
 
-constexpr double kDemoStart = 1790000000.0;
-
-BusPlan demo_plan() {
-  BusPlan plan;
-  std::vector<RoundFaults> faults(12);
-  faults[2].hybrid_bad_crc = true;
-  faults[4].gsl2_silent = true;
-  faults[6].gsl2_exception = true;
-  faults[8].noise_after_ascii = true;
-  faults[9].hybrid_error_reply = true;
-  for (unsigned r = 0; r < faults.size(); ++r) {
-    poll_round(plan, kDemoStart + 5.0 * r, r, faults[r]);
-  }
-  expect_round_values(plan, 11);
-  return plan;
-}
+constexpr double kBenchStart = 1790000000.0;
 
 // BenchStream: one TCP connection written packet by packet, for captures too big to plan.
 class BenchStream {
@@ -57,26 +42,13 @@ class BenchStream {
 
 }  // namespace
 
-void write_demo_capture(const std::string& path) {
-  const BusPlan plan = demo_plan();
-  GatewayRender g(plan, GatewayLayout{});
-  for (std::size_t i = 0; i < plan.items().size(); ++i) {
-    const BusItem& item = plan.items()[i];
-    if (item.dialect == Dialect::Hybrid && item.role == Role::Response && item.bytes.size() > 40) {
-      g.split(g.segment_of(i), 30);
-    }
-  }
-  PcapOut out(path, DLT_EN10MB);
-  g.write(out);
-}
-
 void write_bench_capture(const std::string& path, unsigned megabytes) {
   PcapOut out(path, DLT_EN10MB);
   BenchStream stream(out, GatewayLayout{});
-  stream.handshake(kDemoStart - 0.01);
+  stream.handshake(kBenchStart - 0.01);
   const std::uint64_t target = std::uint64_t{megabytes} << 20;
   std::uint64_t written = 24;  // pcap file header
-  double t = kDemoStart;
+  double t = kBenchStart;
   for (unsigned round = 0; written < target; ++round) {
     RoundFaults faults;
     faults.hybrid_bad_crc = round % 97 == 5;

@@ -1,0 +1,64 @@
+// BusEvent: one run of bytes on the simulated RS485 bus (a frame or noise) with its timing,
+// and what the ground truth says about it.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "pvtap/dialect.h"
+
+namespace pvtap::sim {
+
+using Micros = std::int64_t;  // simulated time, microseconds since the Unix epoch
+
+// RegisterTruth: the value one register held when an inverter answered.
+struct RegisterTruth {
+  std::string address;  // as the reference writes it ("0x1006", "1056")
+  std::string key;
+  std::uint32_t raw = 0;
+  double value = 0.0;  // raw x scale (signed when the map says so)
+  bool numeric = false;
+  std::string text;  // text registers: the characters (printable ASCII; raw is the first word)
+};
+
+struct BusEvent {
+  enum class Kind { Frame, Noise } kind = Kind::Frame;
+  Micros start = 0;  // first byte on the wire
+  Micros end = 0;    // last byte on the wire
+  std::vector<std::uint8_t> bytes;
+  Dialect dialect = Dialect::Gsl;
+  Role role = Role::Request;  // noise: the slave side, where a gateway forwards it from
+  std::uint8_t station = 0;
+  std::uint8_t function = 0;
+  bool check_ok = true;
+  std::string fault;   // empty when the event is clean
+  Micros latency = 0;  // replies: from the end of the request to the first byte
+  std::vector<RegisterTruth> values;
+};
+
+// TimeoutTruth: a request that the master gave up on.
+struct TimeoutTruth {
+  Micros request_start = 0;
+  Micros request_end = 0;
+  std::uint8_t station = 0;
+  std::uint8_t function = 0;
+};
+
+// FaultTruth: one fault the simulator injected, at the end of the request it spoiled.
+struct FaultTruth {
+  Micros time = 0;
+  std::uint8_t station = 0;
+  std::string kind;
+};
+
+// BusTimeline: everything the simulated bus carried, in time order.
+struct BusTimeline {
+  std::vector<BusEvent> events;
+  std::vector<TimeoutTruth> timeouts;
+  std::vector<FaultTruth> faults;
+  // Requests still waiting when the capture ends: no capture can show their timeout.
+  std::vector<TimeoutTruth> unanswered_at_end;
+};
+
+}  // namespace pvtap::sim

@@ -1,0 +1,34 @@
+// FaultPlan: how often each kind of fault is injected, parsed from "kind=percent,...".
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace pvtap::sim {
+
+enum class FaultKind : unsigned {
+  Corrupt,        // one byte of a reply changed: bad check
+  Missing,        // no reply: the master times out
+  Slow,           // a reply that comes late, still inside the timeout
+  Noise,          // a burst of bytes of no frame after a reply
+  ErrorReply,     // GSL exception / Hybrid 0xFF error reply (ASCII: no reply, its error path)
+  CountMismatch,  // a reply with fewer registers than asked for
+  Duplicate,      // the same reply twice
+};
+inline constexpr std::size_t kFaultKinds = 7;
+
+std::string_view to_string(FaultKind kind);
+
+struct FaultPlan {
+  std::array<unsigned, kFaultKinds> percent{};  // chance per reply
+  unsigned& operator[](FaultKind k) { return percent[static_cast<unsigned>(k)]; }
+  unsigned operator[](FaultKind k) const { return percent[static_cast<unsigned>(k)]; }
+};
+
+// "none", "all" (every kind at 4 %) or "corrupt=5,missing=3,...". nullopt with `error` set
+// when the text names an unknown kind or a bad number.
+std::optional<FaultPlan> parse_fault_plan(std::string_view text, std::string& error);
+
+}  // namespace pvtap::sim
