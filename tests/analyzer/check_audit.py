@@ -277,6 +277,10 @@ def mode_formats(options, checks):
         checks.equal("--summary-only gives the same summary", only[0], lines[-1])
 
 
+NOBODY = 65534
+PLUGIN_SUBDIR = os.path.join(".local", "lib", "wireshark", "plugins", "4.0", "epan")
+
+
 def run_tshark(home, args):
     """tshark with the plugin in a temporary personal folder; as root (which makes tshark
     ignore personal plugins) it runs as the unprivileged user 65534."""
