@@ -95,6 +95,7 @@ struct BusSession::Impl : MatchSink {
   bool any_time = false;
   double first_time = 0;
   double last_time = 0;
+  double bus_free_at = -std::numeric_limits<double>::infinity();  // end of the last frame
 };
 
 void BusSession::Impl::time_seen(double t) {
@@ -134,6 +135,13 @@ void BusSession::Impl::on_frame(Direction direction, const FrameEvent& e) {
   out.direction = direction;
   out.start_time = options.has_timestamps ? e.start_time : 0.0;
   out.end_time = options.has_timestamps ? e.end_time : 0.0;
+  // A frame's start is estimated back from its last byte at the configured baud rate; a pty
+  // or a gateway that delivers faster would put a reply's start before its request's end.
+  // The bus is half duplex: nothing starts before the frame before it ended.
+  if (options.has_timestamps && out.end_time >= bus_free_at) {
+    if (out.start_time < bus_free_at) out.start_time = bus_free_at;
+    bus_free_at = out.end_time;
+  }
   out.dialect = e.dialect;
   out.role = e.role;
   out.check = e.check;

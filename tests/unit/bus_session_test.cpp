@@ -113,6 +113,25 @@ TEST_F(BusSessionTest, TapOnTheBusGivesTransactionsLatencyAndLatestValues) {
   EXPECT_EQ(report_.bytes.bytes_in, report_.bytes.frame_bytes + report_.bytes.noise_bytes);
 }
 
+// A gateway or pty faster than the configured baud rate: the reply's bytes arrive 2 ms after
+// the request, although 19 characters take 20 ms at 9600 baud. Estimated back from its last
+// byte, the reply would start before its request ended; on a half-duplex bus it cannot.
+TEST_F(BusSessionTest, FrameNeverStartsBeforeThePreviousFrameEnded) {
+  BusSessionOptions options;
+  options.reassembler.timestamps = TimestampTrust::Untrusted;
+  make(options);
+  feed(encode_frame(gsl_read(1, 0x041A, 7)), 20.0, Direction::ToSlave);
+  feed(encode_frame(gsl_reply(1, {1, 2, 3, 4, 5, 6, 7})), 20.002, Direction::FromSlave);
+  session_->finish();
+
+  ASSERT_EQ(recorder_.frames.size(), 2u);
+  const SessionFrame& reply = recorder_.frames[1];
+  EXPECT_DOUBLE_EQ(reply.start_time, recorder_.frames[0].end_time);
+  EXPECT_DOUBLE_EQ(reply.end_time, 20.002);
+  ASSERT_TRUE(reply.latency.has_value());
+  EXPECT_DOUBLE_EQ(*reply.latency, 0.0);
+}
+
 TEST_F(BusSessionTest, TimeoutsExceptionsAndTheEndOfInputAreJudgedApart) {
   make();
   feed(encode_frame(gsl_read(2, 0x041A, 1)), 1.0);  // never answered: a timeout
