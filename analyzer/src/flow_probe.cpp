@@ -9,17 +9,6 @@ namespace {
 // rescan waits for this much new data.
 constexpr std::size_t kRescanStep = 256;
 
-RoleHint hint_of(Direction d) {
-  switch (d) {
-    case Direction::ToSlave:
-      return RoleHint::Request;
-    case Direction::FromSlave:
-      return RoleHint::Response;
-    default:
-      return RoleHint::Unknown;
-  }
-}
-
 }  // namespace
 
 FlowProbe::Verdict FlowProbe::add_data(Direction d, std::span<const std::uint8_t> bytes,
@@ -54,7 +43,7 @@ void FlowProbe::scan(Direction d, bool final) {
   std::size_t at = s.next;
   std::size_t resume = all.size();
   while (at < all.size()) {
-    const ProbeResult r = probe_frame(all.subspan(at), hint_of(d), dialects_);
+    const ProbeResult r = probe_frame(all.subspan(at), role_hint(d), dialects_);
     if (r.status == ProbeResult::Status::Complete && r.check.ok) {
       // A rescan from an undecided position meets frames it counted before.
       if (at >= s.counted_end) ++good_frames_;

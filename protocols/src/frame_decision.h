@@ -35,15 +35,4 @@ struct Decision {
 // noise: a reading that begins inside noise would turn noise into made-up frames.
 Decision decide_at(const DecisionInput& in);
 
-constexpr RoleHint role_hint(Direction d) {
-  switch (d) {
-    case Direction::ToSlave:
-      return RoleHint::Request;
-    case Direction::FromSlave:
-      return RoleHint::Response;
-    default:
-      return RoleHint::Unknown;
-  }
-}
-
 }  // namespace pvtap::detail

@@ -14,6 +14,18 @@ namespace pvtap {
 // Direction: what the capture path knows about who sent a chunk.
 enum class Direction : std::uint8_t { Unknown = 0, ToSlave = 1, FromSlave = 2 };
 
+// What a direction says about the role of the frames in it.
+constexpr RoleHint role_hint(Direction d) {
+  switch (d) {
+    case Direction::ToSlave:
+      return RoleHint::Request;
+    case Direction::FromSlave:
+      return RoleHint::Response;
+    default:
+      return RoleHint::Unknown;
+  }
+}
+
 // TimestampTrust: whether chunk timestamps are fine enough to use silent gaps as evidence.
 //   Auto starts trusting and stops at the first chunk that arrived faster than the baud
 //   rate allows (batched delivery by a USB adapter or a gateway).
