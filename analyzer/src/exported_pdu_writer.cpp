@@ -50,24 +50,8 @@ std::size_t put_tags(std::uint8_t* out, Direction direction) {
 
 }  // namespace
 
-ExportedPduWriter::~ExportedPduWriter() {
-  close();
-}
-
 bool ExportedPduWriter::open(const std::string& path) {
-  pcap_ = pcap_open_dead(DLT_WIRESHARK_UPPER_PDU, 65535);
-  if (pcap_ == nullptr) {
-    error_ = "cannot set up a pcap writer";
-    return false;
-  }
-  dumper_ = pcap_dump_open(pcap_, path.c_str());
-  if (dumper_ == nullptr) {
-    error_ = pcap_geterr(pcap_);
-    pcap_close(pcap_);
-    pcap_ = nullptr;
-    return false;
-  }
-  return true;
+  return file_.open(path, DLT_WIRESHARK_UPPER_PDU);
 }
 
 void ExportedPduWriter::write_frame(double time, Role role, std::span<const std::uint8_t> frame) {
@@ -85,37 +69,20 @@ void ExportedPduWriter::write_noise(double time, Direction direction,
 
 void ExportedPduWriter::write(double time, Direction direction,
                               std::span<const std::uint8_t> bytes) {
-  if (dumper_ == nullptr) return;
+  if (!file_.is_open()) return;
   static_assert(sizeof(record_) >= 64 + 4096 && sizeof(record_) >= 64 + kMaxFrameLength);
   const std::size_t tags = put_tags(record_.data(), direction);
   const std::size_t length = std::min(bytes.size(), record_.size() - tags);
   std::copy_n(bytes.begin(), length, record_.begin() + static_cast<std::ptrdiff_t>(tags));
-  pcap_pkthdr header{};
   const double seconds = std::floor(time);
-  header.ts.tv_sec = static_cast<time_t>(seconds);
-  header.ts.tv_usec = static_cast<suseconds_t>(std::lround((time - seconds) * 1e6));
-  if (header.ts.tv_usec >= 1000000) {
-    header.ts.tv_sec += 1;
-    header.ts.tv_usec -= 1000000;
-  }
-  header.caplen = header.len = static_cast<bpf_u_int32>(tags + length);
-  pcap_dump(reinterpret_cast<u_char*>(dumper_), &header, record_.data());
+  const std::int64_t micros =
+      static_cast<std::int64_t>(seconds) * 1'000'000 + std::lround((time - seconds) * 1e6);
+  file_.write(micros, std::span(record_).first(tags + length));
   ++records_;
 }
 
 bool ExportedPduWriter::close() {
-  bool ok = true;
-  if (dumper_ != nullptr) {
-    ok = pcap_dump_flush(dumper_) == 0;
-    if (!ok) error_ = "cannot write the file (disk full?)";
-    pcap_dump_close(dumper_);
-    dumper_ = nullptr;
-  }
-  if (pcap_ != nullptr) {
-    pcap_close(pcap_);
-    pcap_ = nullptr;
-  }
-  return ok;
+  return file_.close();
 }
 
 }  // namespace pvtap::analyzer

@@ -9,21 +9,14 @@
 #include <span>
 #include <string>
 
+#include "pcap_writer.h"
 #include "pvtap/dialect.h"
 #include "pvtap/stream_reassembler.h"
-
-typedef struct pcap pcap_t;
-typedef struct pcap_dumper pcap_dumper_t;
 
 namespace pvtap::analyzer {
 
 class ExportedPduWriter {
  public:
-  ExportedPduWriter() = default;
-  ~ExportedPduWriter();
-  ExportedPduWriter(const ExportedPduWriter&) = delete;
-  ExportedPduWriter& operator=(const ExportedPduWriter&) = delete;
-
   // Creates the file; false with error() set when it cannot be written.
   bool open(const std::string& path);
   // A frame: a request goes out as "sent" (master to slave), a response as "received".
@@ -32,13 +25,11 @@ class ExportedPduWriter {
   void write_noise(double time, Direction direction, std::span<const std::uint8_t> noise);
   // Flushes and closes; false when writing failed.
   bool close();
-  const std::string& error() const { return error_; }
+  const std::string& error() const { return file_.error(); }
   std::uint64_t records() const { return records_; }
 
  private:
-  pcap_t* pcap_ = nullptr;
-  pcap_dumper_t* dumper_ = nullptr;
-  std::string error_;
+  PcapWriter file_;
   std::uint64_t records_ = 0;
   void write(double time, Direction direction, std::span<const std::uint8_t> bytes);
 

@@ -4,7 +4,7 @@
 
 #include "bus_bytes.h"
 #include "capture_outputs.h"
-#include "pcap_file.h"
+#include "pcap_writer.h"
 #include "sim_random.h"
 #include "tcp_packet.h"
 
@@ -74,7 +74,7 @@ std::string write_gateway_capture(const BusTimeline& timeline, const std::string
   std::stable_sort(plan.begin(), plan.end(),
                    [](const auto& a, const auto& b) { return a.time < b.time; });
 
-  PcapFile file;
+  analyzer::PcapWriter file;
   if (!file.open(path, DLT_EN10MB)) return file.error();
   // Sequence numbers: each side's next byte; SYN and FIN count as one byte each.
   std::uint32_t next_seq[2] = {0x1A2B3C00u, 0x5F000000u};  // master, gateway

@@ -1,14 +1,14 @@
-#include "pcap_file.h"
+#include "pcap_writer.h"
 
 #include <pcap/pcap.h>
 
-namespace pvtap::sim {
+namespace pvtap::analyzer {
 
-PcapFile::~PcapFile() {
+PcapWriter::~PcapWriter() {
   close();
 }
 
-bool PcapFile::open(const std::string& path, int link_type) {
+bool PcapWriter::open(const std::string& path, int link_type) {
   pcap_ = pcap_open_dead(link_type, 65535);
   if (pcap_ == nullptr) {
     error_ = "cannot set up a pcap writer";
@@ -17,25 +17,27 @@ bool PcapFile::open(const std::string& path, int link_type) {
   dumper_ = pcap_dump_open(pcap_, path.c_str());
   if (dumper_ == nullptr) {
     error_ = pcap_geterr(pcap_);
+    pcap_close(pcap_);
+    pcap_ = nullptr;
     return false;
   }
   return true;
 }
 
-void PcapFile::write(Micros time, std::span<const std::uint8_t> record) {
+void PcapWriter::write(std::int64_t micros, std::span<const std::uint8_t> record) {
   if (dumper_ == nullptr) return;
   pcap_pkthdr header{};
-  header.ts.tv_sec = static_cast<time_t>(time / 1'000'000);
-  header.ts.tv_usec = static_cast<suseconds_t>(time % 1'000'000);
+  header.ts.tv_sec = static_cast<time_t>(micros / 1'000'000);
+  header.ts.tv_usec = static_cast<suseconds_t>(micros % 1'000'000);
   header.caplen = header.len = static_cast<bpf_u_int32>(record.size());
   pcap_dump(reinterpret_cast<u_char*>(dumper_), &header, record.data());
 }
 
-bool PcapFile::close() {
+bool PcapWriter::close() {
   bool ok = true;
   if (dumper_ != nullptr) {
     ok = pcap_dump_flush(dumper_) == 0;
-    if (!ok) error_ = "cannot write the capture (disk full?)";
+    if (!ok) error_ = "cannot write the file (disk full?)";
     pcap_dump_close(dumper_);
     dumper_ = nullptr;
   }
@@ -46,4 +48,4 @@ bool PcapFile::close() {
   return ok;
 }
 
-}  // namespace pvtap::sim
+}  // namespace pvtap::analyzer
