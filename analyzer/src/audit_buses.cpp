@@ -45,6 +45,7 @@ BusSession& AuditRun::serial_bus(InputKind kind) {
 }
 
 void AuditRun::on_frame(const EventContext& c, const SessionFrame& f) {
+  ++frames_seen_;
   if (f.latency) latency_.add(*f.latency);
   if (writer_) writer_->write_frame(f.end_time, f.role, f.bytes);
   if (events_) events_->frame(c, f);
@@ -74,6 +75,7 @@ AuditReport AuditRun::build_report() const {
   r.skipped = skipped_;
   r.latency = latency_.summary();
   r.written_records = writer_ ? writer_->records() : 0;
+  r.live = live_;
   return r;
 }
 

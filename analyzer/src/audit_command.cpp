@@ -7,8 +7,8 @@
 #include <string>
 
 #include "audit_run.h"
+#include "common_options.h"
 #include "link_types.h"
-#include "pvtap/register_map.h"
 
 namespace pvtap::analyzer {
 namespace {
@@ -58,102 +58,16 @@ void add_input_options(CLI::App& audit, AuditOptions& o) {
       ->allow_extra_args(false);
 }
 
-void add_protocol_options(CLI::App& audit, AuditOptions& o) {
-  audit.add_option("--dialect", o.dialect, "dialect(s) to recognize: auto|ascii|hybrid|gsl")
-      ->check(CLI::IsMember({"auto", "ascii", "hybrid", "gsl"}).description(""))
-      ->type_name("NAME")
-      ->default_str("auto");
-  audit.add_option("--baud", o.baud, "bus baud rate (300 to 4000000), for the timing rules")
-      ->check(CLI::Range(300u, 4000000u).description(""))
-      ->type_name("BAUD")
-      ->default_str("9600");
-  audit
-      .add_option("--timeout", o.timeout,
-                  "seconds a request may wait for its reply before it counts as a timeout")
-      ->check(CLI::Range(0.001, 3600.0).description(""))
-      ->type_name("SECONDS")
-      ->default_str("1");
-  audit
-      .add_option("--gsl-ids", o.gsl_id_reading,
-                  "how GSL register IDs go on the wire: decimal (ID 1050 is 0x041A) or hex "
-                  "(1050 is 0x1050)")
-      ->check(CLI::IsMember({"decimal", "hex"}).description(""))
-      ->type_name("READING")
-      ->default_str("decimal");
-  audit
-      .add_option("--map", o.maps,
-                  "register map (TOML, see protocols/maps/README.md) replacing or extending the "
-                  "built-in map of its dialect; repeatable")
-      ->type_name("FILE")
-      ->allow_extra_args(false);
-}
-
-void add_output_options(CLI::App& audit, AuditOptions& o) {
-  audit.add_option("--format", o.format_name, "output format: text, jsonl or csv")
-      ->check(CLI::IsMember({"text", "jsonl", "csv"}).description(""))
-      ->type_name("FORMAT")
-      ->default_str("text");
-  audit.add_flag("--summary-only", o.summary_only, "print only the report, no per-frame lines");
-  audit
-      .add_option("--write", o.write_path,
-                  "also write the frames (and noise runs) to FILE as pcap with link type 252 "
-                  "(exported PDUs, dissector \"pvtap\"), for Wireshark with pvtap's plugin")
-      ->type_name("FILE");
-  audit
-      .add_option("--fail-on", o.fail_on,
-                  "'errors': exit 1 when bad checks, timeouts or exceptions were found "
-                  "(without it, findings never change the exit status)")
-      ->check(CLI::IsMember({"errors"}).description(""))
-      ->type_name("errors");
-}
-
-// Loads the --map files into the decoder; false (after printing why) when one is bad.
-bool load_maps(const AuditOptions& o, RegisterDecoder& decoder) {
-  for (const std::string& path : o.maps) {
-    const RegisterMapResult loaded = load_register_map_file(path);
-    const RegisterMapResult resolved =
-        loaded ? resolve_user_register_map(*loaded.map) : RegisterMapResult{};
-    const RegisterMapResult& failed = loaded ? resolved : loaded;
-    if (!loaded || !resolved) {
-      std::fprintf(stderr, "pvtap: %s: bad register map\n%s", path.c_str(),
-                   failed.error_text().c_str());
-      return false;
-    }
-    decoder.use_map(*resolved.map);
-  }
-  return true;
-}
-
 }  // namespace
 
 CLI::App* add_audit_command(CLI::App& app, AuditOptions& options) {
   CLI::App* audit = app.add_subcommand("audit", kDescription);
   audit->footer(footer_text());
   add_input_options(*audit, options);
-  add_protocol_options(*audit, options);
+  add_protocol_options(*audit, options, kAnyBaud);
   add_output_options(*audit, options);
   return audit;
 }
-
-namespace {
-
-DialectSet dialects_named(const std::string& name) {
-  if (name == "ascii") return DialectSet::only(Dialect::Ascii);
-  if (name == "hybrid") return DialectSet::only(Dialect::Hybrid);
-  if (name == "gsl") return DialectSet::only(Dialect::Gsl);
-  return DialectSet::all();
-}
-
-void apply_choices(AuditOptions& o) {
-  o.dialects = dialects_named(o.dialect);
-  o.gsl_ids = o.gsl_id_reading == "hex" ? GslIdReading::Hex : GslIdReading::Decimal;
-  o.format = o.format_name == "jsonl" ? OutputFormat::Jsonl
-             : o.format_name == "csv" ? OutputFormat::Csv
-                                      : OutputFormat::Text;
-  o.fail_on_errors = o.fail_on == "errors";
-}
-
-}  // namespace
 
 int run_audit(AuditOptions& options) {
   apply_choices(options);

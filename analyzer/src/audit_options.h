@@ -11,6 +11,32 @@
 
 namespace pvtap::analyzer {
 
+// SerialLine: the character format of a tapped RS485 line besides its baud rate (the tap
+// must match the bus, or characters read as framing or parity errors).
+struct SerialLine {
+  char parity = 'N';  // 'N', 'E' or 'O'
+  int stop_bits = 1;
+  // Bits on the wire per character: start, 8 data, parity, stop.
+  unsigned bits_per_char() const {
+    return 9u + (parity == 'N' ? 0u : 1u) + static_cast<unsigned>(stop_bits);
+  }
+};
+
+// LiveOptions: what `pvtap sniff` reads instead of files, and when it stops.
+struct LiveOptions {
+  std::vector<std::string> devices;  // serial devices (RS485 taps), each its own bus
+  SerialLine line;
+  std::string interface;     // a network interface with a gateway's TCP traffic (libpcap)
+  std::string filter;        // BPF filter for the interface, added to the --port filter
+  double duration = 0;       // seconds; 0 runs until SIGINT/SIGTERM
+  std::uint64_t count = 0;   // frames; 0 means no limit
+  bool status_line = false;  // a live status line on stderr
+  bool quiet = false;        // nothing on stdout (extcap: the frames go to the fifo)
+  // Each record written to --write is flushed at once, so an abrupt end loses nothing.
+  bool flush_each_record = false;
+  bool active() const { return !devices.empty() || !interface.empty(); }
+};
+
 struct AuditOptions {
   std::vector<std::string> captures;   // pcap/pcapng files, read in order as one capture
   std::vector<std::string> raw_dumps;  // plain bus byte dumps (--raw)
@@ -31,6 +57,7 @@ struct AuditOptions {
   std::string write_path;
   bool fail_on_errors = false;
   bool progress = false;  // draw a progress bar on stderr
+  LiveOptions live;       // pvtap sniff: live sources instead of the files above
 };
 
 }  // namespace pvtap::analyzer

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "gateway_traffic.h"
+#include "live_report.h"
 #include "pvtap/bus_report.h"
 #include "pvtap/distribution_summary.h"
 
@@ -53,6 +54,7 @@ struct AuditReport {
   SkippedRecords skipped;
   DistributionSummary latency;  // over every bus
   std::uint64_t written_records = 0;
+  LiveSources live;  // pvtap sniff only
 
   // Sums over all buses.
   BusReport totals() const;

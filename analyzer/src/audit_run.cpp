@@ -9,7 +9,9 @@
 #include <cstdio>
 #include <cstring>
 
+#include "stop_signal.h"
 #include "summary_writers.h"
+#include "wall_clock.h"
 
 namespace pvtap::analyzer {
 namespace {
@@ -80,6 +82,7 @@ bool AuditRun::open_outputs() {
                    writer_->error().c_str());
       return false;
     }
+    writer_->flush_each_record(options_.live.flush_each_record);
   }
   if (!options_.summary_only) {
     events_ = make_event_writer(options_.format, out_);
@@ -89,6 +92,8 @@ bool AuditRun::open_outputs() {
 }
 
 bool AuditRun::read_inputs() {
+  if (!options_.live.devices.empty()) return read_devices();
+  if (!options_.live.interface.empty()) return read_live_interface();
   std::uint64_t total = 0;
   for (const auto& path : options_.captures) total += file_size(path);
   for (const auto& path : options_.raw_dumps) total += file_size(path);
@@ -120,8 +125,10 @@ void AuditRun::report_truncation() const {
 int AuditRun::run() {
   if (!open_outputs()) return kExitBadInput;
   const bool complete = read_inputs();
+  // A live source that could not be opened at the start: the reason is printed, nothing ran.
+  if (!complete && options_.live.active()) return kExitBadInput;
   finish_all(last_time_);
-  progress_->clear();
+  if (progress_) progress_->clear();
   const AuditReport report = build_report();
   write_summary(report);
   out_.flush();
@@ -135,6 +142,13 @@ int AuditRun::run() {
     return kExitBadInput;
   }
   return options_.fail_on_errors && has_findings(report) ? kExitFindings : kExitOk;
+}
+
+bool AuditRun::live_should_stop(double started) const {
+  if (stop_requested()) return true;
+  const LiveOptions& live = options_.live;
+  if (live.count > 0 && frames_seen_ >= live.count) return true;
+  return live.duration > 0 && wall_clock_seconds() - started >= live.duration;
 }
 
 bool AuditRun::read_capture(const std::string& path, std::uint64_t done_before) {

@@ -54,6 +54,11 @@ class AuditRun : public BusDirectory {
   void report_truncation() const;
   bool read_capture(const std::string& path, std::uint64_t done_before);
   bool read_raw(const std::string& path, std::uint64_t done_before);
+  // Live capture (pvtap sniff), until a stop signal, --duration or --count; false when a
+  // source could not be opened at the start.
+  bool read_devices();         // device_reading.cpp
+  bool read_live_interface();  // interface_reading.cpp
+  bool live_should_stop(double started) const;
   void on_record(InputKind kind, const CapturedPacket& packet);
   void on_network_packet(const CapturedPacket& packet);
   void on_exported_pdu(const CapturedPacket& packet);
@@ -89,6 +94,8 @@ class AuditRun : public BusDirectory {
   SkippedRecords skipped_;
   DistributionAccumulator latency_;
   bool network_ = false;
+  LiveSources live_;
+  std::uint64_t frames_seen_ = 0;
   // USER0-15 records of several bytes are read() chunks, stamped when the read returned.
   bool batched_serial_records_ = false;
 };

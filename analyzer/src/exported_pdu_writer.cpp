@@ -78,6 +78,7 @@ void ExportedPduWriter::write(double time, Direction direction,
   const std::int64_t micros =
       static_cast<std::int64_t>(seconds) * 1'000'000 + std::lround((time - seconds) * 1e6);
   file_.write(micros, std::span(record_).first(tags + length));
+  if (flush_each_record_) file_.flush();
   ++records_;
 }
 

@@ -23,6 +23,9 @@ class ExportedPduWriter {
   void write_frame(double time, Role role, std::span<const std::uint8_t> frame);
   // A noise run; its direction tag is left out when the direction is unknown.
   void write_noise(double time, Direction direction, std::span<const std::uint8_t> noise);
+  // Live capture: every record reaches the file as it is written, so that a reader (Wireshark
+  // on a fifo) sees frames at once and an abrupt end loses nothing.
+  void flush_each_record(bool on) { flush_each_record_ = on; }
   // Flushes and closes; false when writing failed.
   bool close();
   const std::string& error() const { return file_.error(); }
@@ -31,6 +34,7 @@ class ExportedPduWriter {
  private:
   PcapWriter file_;
   std::uint64_t records_ = 0;
+  bool flush_each_record_ = false;
   void write(double time, Direction direction, std::span<const std::uint8_t> bytes);
 
   std::array<std::uint8_t, 8192> record_{};  // tags + the largest frame or noise run, reused

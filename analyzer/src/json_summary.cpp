@@ -200,6 +200,7 @@ void write_json_summary(const AuditReport& report, OutputStream& out) {
   stations(o, report);
   details(o, report, t);
   buses(o, report);
+  append_live_sources_json(report.live, o);
   o += "}\n";
   out.done();
 }

@@ -3,12 +3,18 @@
 
 #include "audit_command.h"
 #include "audit_run.h"
+#include "extcap_command.h"
+#include "sniff_command.h"
 
 int main(int argc, char** argv) {
+  // Wireshark runs capture interfaces as `pvtap --extcap-interfaces`, `--capture ...`.
+  if (pvtap::analyzer::is_extcap_call(argc, argv)) return pvtap::analyzer::run_extcap(argc, argv);
   CLI::App app{"pvtap: see what crosses the wire between a data logger and its inverters", "pvtap"};
   app.require_subcommand(1);
   pvtap::analyzer::AuditOptions audit_options;
   CLI::App* audit = pvtap::analyzer::add_audit_command(app, audit_options);
+  pvtap::analyzer::SniffCommandLine sniff_command;
+  CLI::App* sniff = pvtap::analyzer::add_sniff_command(app, sniff_command);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -16,5 +22,6 @@ int main(int argc, char** argv) {
     return app.exit(e) == 0 ? pvtap::analyzer::kExitOk : pvtap::analyzer::kExitBadInput;
   }
   if (audit->parsed()) return pvtap::analyzer::run_audit(audit_options);
+  if (sniff->parsed()) return pvtap::analyzer::run_sniff(sniff_command);
   return pvtap::analyzer::kExitBadInput;
 }

@@ -33,6 +33,13 @@ void PcapWriter::write(std::int64_t micros, std::span<const std::uint8_t> record
   pcap_dump(reinterpret_cast<u_char*>(dumper_), &header, record.data());
 }
 
+bool PcapWriter::flush() {
+  if (dumper_ == nullptr) return true;
+  if (pcap_dump_flush(dumper_) == 0) return true;
+  error_ = "cannot write the file (disk full?)";
+  return false;
+}
+
 bool PcapWriter::close() {
   bool ok = true;
   if (dumper_ != nullptr) {

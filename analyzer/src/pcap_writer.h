@@ -22,6 +22,8 @@ class PcapWriter {
   bool open(const std::string& path, int link_type);
   // One record stamped `micros` microseconds after the Unix epoch; nothing when not open.
   void write(std::int64_t micros, std::span<const std::uint8_t> record);
+  // Pushes written records to the file (live capture: an abrupt end then loses nothing).
+  bool flush();
   // Flushes and closes; false when writing failed.
   bool close();
   bool is_open() const { return dumper_ != nullptr; }

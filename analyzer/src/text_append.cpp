@@ -1,11 +1,23 @@
 #include "text_append.h"
 
+#include <cstdarg>
+#include <cstdio>
+
 #include <array>
 #include <charconv>
 #include <cmath>
 #include <ctime>
 
 namespace pvtap::analyzer {
+
+std::string report_line(const char* format, ...) {
+  char buf[512];
+  va_list args;
+  va_start(args, format);
+  std::vsnprintf(buf, sizeof buf, format, args);
+  va_end(args);
+  return std::string(buf) + "\n";
+}
 namespace {
 
 constexpr char kHexDigits[] = "0123456789abcdef";

@@ -8,6 +8,10 @@
 
 namespace pvtap::analyzer {
 
+// One report line from a printf format, newline included (reports are written once, so
+// formatting speed does not matter there).
+std::string report_line(const char* format, ...) __attribute__((format(printf, 1, 2)));
+
 void append_uint(std::string& out, std::uint64_t value);
 void append_int(std::string& out, std::int64_t value);
 // Fixed-point with `decimals` digits after the point ("52.3"); always a valid JSON number.

@@ -1,5 +1,4 @@
 // The text report: what a field engineer reads after an audit.
-#include <cstdarg>
 #include <cstdio>
 #include <string>
 
@@ -11,17 +10,6 @@
 
 namespace pvtap::analyzer {
 namespace {
-
-// Line: a small printf-style builder for report lines (the report is written once).
-std::string line(const char* format, ...) __attribute__((format(printf, 1, 2)));
-std::string line(const char* format, ...) {
-  char buf[512];
-  va_list args;
-  va_start(args, format);
-  std::vsnprintf(buf, sizeof buf, format, args);
-  va_end(args);
-  return std::string(buf) + "\n";
-}
 
 unsigned long long u(std::uint64_t v) {
   return static_cast<unsigned long long>(v);
@@ -53,11 +41,11 @@ std::string function_text(Dialect d, std::uint8_t function) {
 
 void inputs(const AuditReport& r, std::string& o) {
   for (const InputReport& in : r.inputs) {
-    o += line("input: %s (%s, %llu records)%s", in.path.c_str(), in.link_type.c_str(),
-              u(in.records), in.truncated ? " TRUNCATED" : "");
+    o += report_line("input: %s (%s, %llu records)%s", in.path.c_str(), in.link_type.c_str(),
+                     u(in.records), in.truncated ? " TRUNCATED" : "");
     if (in.truncated) {
-      o += line("  reading stopped at byte %llu of %llu: %s", u(in.read_bytes), u(in.file_bytes),
-                in.error.c_str());
+      o += report_line("  reading stopped at byte %llu of %llu: %s", u(in.read_bytes),
+                       u(in.file_bytes), in.error.c_str());
     }
   }
 }
@@ -75,20 +63,20 @@ void span_of_time(const AuditReport& r, std::string& o) {
   std::string a, b;
   append_utc_date_time(a, first);
   append_utc_date_time(b, last);
-  o += line("time: %s .. %s UTC (%.1f s)", a.c_str(), b.c_str(), last - first);
+  o += report_line("time: %s .. %s UTC (%.1f s)", a.c_str(), b.c_str(), last - first);
 }
 
 void network(const AuditReport& r, std::string& o) {
   if (!r.network) return;
   const NetworkStats& n = r.flows;
-  o += line(
+  o += report_line(
       "gateway flows: %llu analyzed, %llu ignored (%llu bytes of other traffic); "
       "%llu bytes retransmitted, %llu segments out of order",
       u(n.flows_analyzed), u(n.flows_ignored), u(n.ignored_bytes), u(n.retransmitted_bytes),
       u(n.out_of_order_segments));
   const SkippedRecords& s = r.skipped;
   if (s.not_ip + s.other_ip + s.fragments + s.malformed > 0) {
-    o += line(
+    o += report_line(
         "packets skipped: %llu not IP, %llu neither TCP nor UDP, %llu IP fragments, "
         "%llu malformed",
         u(s.not_ip), u(s.other_ip), u(s.fragments), u(s.malformed));
@@ -97,28 +85,31 @@ void network(const AuditReport& r, std::string& o) {
 
 void totals(const AuditReport& r, std::string& o) {
   const BusReport t = r.totals();
-  o += line("bus bytes: %llu (%llu in frames, %llu noise in %llu runs; %llu lost in %llu gaps)",
-            u(t.bytes.bytes_in), u(t.bytes.frame_bytes), u(t.bytes.noise_bytes),
-            u(t.bytes.noise_runs), u(t.gaps.lost_bytes), u(t.gaps.gaps));
-  o += line("frames: %llu (%llu requests, %llu responses, %llu bad checks, %llu malformed)",
-            u(t.bytes.frames), u(t.requests), u(t.responses), u(t.bytes.bad_frames),
-            u(t.malformed_frames));
-  o += line("findings: %llu bad checks, %llu timeouts, %llu exceptions and error replies",
-            u(t.bytes.bad_frames), u(t.timeouts), u(t.exceptions));
-  o += line("  %-8s %10s %10s", "dialect", "requests", "responses");
+  o += report_line(
+      "bus bytes: %llu (%llu in frames, %llu noise in %llu runs; %llu lost in %llu gaps)",
+      u(t.bytes.bytes_in), u(t.bytes.frame_bytes), u(t.bytes.noise_bytes), u(t.bytes.noise_runs),
+      u(t.gaps.lost_bytes), u(t.gaps.gaps));
+  o += report_line("frames: %llu (%llu requests, %llu responses, %llu bad checks, %llu malformed)",
+                   u(t.bytes.frames), u(t.requests), u(t.responses), u(t.bytes.bad_frames),
+                   u(t.malformed_frames));
+  o += report_line("findings: %llu bad checks, %llu timeouts, %llu exceptions and error replies",
+                   u(t.bytes.bad_frames), u(t.timeouts), u(t.exceptions));
+  o += report_line("  %-8s %10s %10s", "dialect", "requests", "responses");
   for (std::size_t d = 0; d < t.by_dialect.size(); ++d) {
     const RoleCounts& c = t.by_dialect[d];
     if (c.requests + c.responses == 0) continue;
-    o += line("  %-8s %10llu %10llu", std::string(to_string(static_cast<Dialect>(d))).c_str(),
-              u(c.requests), u(c.responses));
+    o +=
+        report_line("  %-8s %10llu %10llu", std::string(to_string(static_cast<Dialect>(d))).c_str(),
+                    u(c.requests), u(c.responses));
   }
 }
 
 void station_table(const AuditReport& r, const BusReport& b, std::string& o) {
   if (b.stations.empty()) return;
-  o += line("stations:");
-  o += line("  %-8s %9s %9s %5s %8s %10s %11s %10s  %s", "station", "requests", "responses", "bad",
-            "timeouts", "exceptions", "unsolicited", "duplicates", "latency ms mean / p95 / max");
+  o += report_line("stations:");
+  o += report_line("  %-8s %9s %9s %5s %8s %10s %11s %10s  %s", "station", "requests", "responses",
+                   "bad", "timeouts", "exceptions", "unsolicited", "duplicates",
+                   "latency ms mean / p95 / max");
   for (const StationSummary& s : b.stations) {
     std::string latency = "-";
     if (s.latency.count > 0) {
@@ -127,9 +118,9 @@ void station_table(const AuditReport& r, const BusReport& b, std::string& o) {
                     ms(s.latency.max));
       latency = buf;
     }
-    o += line("  %-8u %9llu %9llu %5llu %8llu %10llu %11llu %10llu  %s", s.station, u(s.requests),
-              u(s.responses), u(s.bad_checks), u(s.timeouts), u(s.exceptions), u(s.unsolicited),
-              u(s.duplicates), latency.c_str());
+    o += report_line("  %-8u %9llu %9llu %5llu %8llu %10llu %11llu %10llu  %s", s.station,
+                     u(s.requests), u(s.responses), u(s.bad_checks), u(s.timeouts), u(s.exceptions),
+                     u(s.unsolicited), u(s.duplicates), latency.c_str());
   }
   (void)r;
 }
@@ -139,68 +130,70 @@ void frame_example(const AuditReport& r, const FrameExample& e, std::string& o) 
   append_spaced_hex(raw, e.bytes);
   std::string expected;
   append_spaced_hex(expected, check_wire_bytes(e.dialect, e.check.expected));
-  o +=
-      line("  %s  st %u  %s %s  %s: check should be %s; raw %s", when(r, e.time).c_str(), e.station,
-           std::string(to_string(e.dialect)).c_str(), std::string(to_string(e.role)).c_str(),
-           function_text(e.dialect, e.function).c_str(), expected.c_str(), raw.c_str());
+  o += report_line("  %s  st %u  %s %s  %s: check should be %s; raw %s", when(r, e.time).c_str(),
+                   e.station, std::string(to_string(e.dialect)).c_str(),
+                   std::string(to_string(e.role)).c_str(),
+                   function_text(e.dialect, e.function).c_str(), expected.c_str(), raw.c_str());
 }
 
 void findings(const AuditReport& r, const BusReport& b, std::string& o) {
-  o += line("bad checks: %llu", u(b.bytes.bad_frames));
+  o += report_line("bad checks: %llu", u(b.bytes.bad_frames));
   for (const FrameExample& e : b.bad_check_examples) frame_example(r, e, o);
-  o += line("timeouts: %llu (no reply %llu, next request first %llu)", u(b.timeouts),
-            u(b.timeouts_by_reason[0]), u(b.timeouts_by_reason[1]));
+  o += report_line("timeouts: %llu (no reply %llu, next request first %llu)", u(b.timeouts),
+                   u(b.timeouts_by_reason[0]), u(b.timeouts_by_reason[1]));
   for (const TimeoutExample& e : b.timeout_examples) {
-    o += line("  %s  st %u  %s  %s", when(r, e.request_time).c_str(), e.timeout.station,
-              std::string(to_string(e.timeout.dialect)).c_str(),
-              function_text(e.timeout.dialect, e.timeout.function).c_str());
+    o += report_line("  %s  st %u  %s  %s", when(r, e.request_time).c_str(), e.timeout.station,
+                     std::string(to_string(e.timeout.dialect)).c_str(),
+                     function_text(e.timeout.dialect, e.timeout.function).c_str());
   }
   if (b.unanswered_at_end + b.unanswered_after_loss > 0) {
-    o += line(
+    o += report_line(
         "not counted as timeouts: %llu still waiting when the input ended, %llu waiting "
         "while capture data was lost",
         u(b.unanswered_at_end), u(b.unanswered_after_loss));
   }
-  o += line(
+  o += report_line(
       "unsolicited replies: %llu (%llu late for a timed-out request); duplicate replies: "
       "%llu; byte count mismatches: %llu",
       u(b.unsolicited), u(b.late_replies), u(b.duplicates), u(b.count_mismatches));
-  o += line("exceptions and error replies: %llu", u(b.exceptions));
+  o += report_line("exceptions and error replies: %llu", u(b.exceptions));
   for (const ExceptionTally& e : b.exception_codes) {
     if (e.dialect == Dialect::Hybrid) {
-      o += line("  hybrid error reply (0xFF): %llu", u(e.count));
+      o += report_line("  hybrid error reply (0xFF): %llu", u(e.count));
     } else {
-      o += line("  %s exception 0x%02X (%s): %llu", std::string(to_string(e.dialect)).c_str(),
-                e.code, std::string(fc::exception_name(e.code)).c_str(), u(e.count));
+      o +=
+          report_line("  %s exception 0x%02X (%s): %llu", std::string(to_string(e.dialect)).c_str(),
+                      e.code, std::string(fc::exception_name(e.code)).c_str(), u(e.count));
     }
   }
-  o += line("noise: %llu bytes in %llu runs", u(b.bytes.noise_bytes), u(b.bytes.noise_runs));
-  o += line("data-loss gaps: %llu (%llu bytes lost%s)", u(b.gaps.gaps), u(b.gaps.lost_bytes),
-            b.gaps.gaps_of_unknown_size > 0 ? ", some gaps of unknown size" : "");
+  o += report_line("noise: %llu bytes in %llu runs", u(b.bytes.noise_bytes), u(b.bytes.noise_runs));
+  o += report_line("data-loss gaps: %llu (%llu bytes lost%s)", u(b.gaps.gaps), u(b.gaps.lost_bytes),
+                   b.gaps.gaps_of_unknown_size > 0 ? ", some gaps of unknown size" : "");
 }
 
 void latency(const AuditReport& r, const BusReport& b, std::string& o) {
   if (!r.settings.has_timestamps) {
-    o += line("latency: not measured (the input has no timestamps)");
+    o += report_line("latency: not measured (the input has no timestamps)");
     return;
   }
-  o += line("latency, request end to reply start (ms):");
-  o += line("  %-12s %s", "all", distribution_text(b.timing.latency).c_str());
+  o += report_line("latency, request end to reply start (ms):");
+  o += report_line("  %-12s %s", "all", distribution_text(b.timing.latency).c_str());
   for (const StationLatency& s : b.timing.latency_by_station) {
-    o += line("  station %-4u %s", s.station, distribution_text(s.latency).c_str());
+    o += report_line("  station %-4u %s", s.station, distribution_text(s.latency).c_str());
   }
 }
 
 void polling(const AuditReport& r, const BusReport& b, std::string& o) {
   if (!r.settings.has_timestamps || b.timing.poll_periods.empty()) return;
-  o += line("poll period and jitter per station and function:");
+  o += report_line("poll period and jitter per station and function:");
   for (const PollPeriod& p : b.timing.poll_periods) {
     if (p.period.intervals == 0) {
-      o += line("  %-7s st %-4u %-40s polled once", std::string(to_string(p.dialect)).c_str(),
-                p.station, function_text(p.dialect, p.function).c_str());
+      o +=
+          report_line("  %-7s st %-4u %-40s polled once", std::string(to_string(p.dialect)).c_str(),
+                      p.station, function_text(p.dialect, p.function).c_str());
       continue;
     }
-    o += line(
+    o += report_line(
         "  %-7s st %-4u %-40s %llu intervals  period %.1f ms  jitter %.1f ms  "
         "max deviation %.1f ms",
         std::string(to_string(p.dialect)).c_str(), p.station,
@@ -211,35 +204,35 @@ void polling(const AuditReport& r, const BusReport& b, std::string& o) {
 
 void bus_timing(const AuditReport& r, const BusReport& b, std::string& o) {
   const BusGapReport& g = b.timing.bus;
-  o += line("bus timing at %u baud (t1.5 = %.3f ms, t3.5 = %.3f ms):", r.settings.baud, ms(g.t15),
-            ms(g.t35));
+  o += report_line("bus timing at %u baud (t1.5 = %.3f ms, t3.5 = %.3f ms):", r.settings.baud,
+                   ms(g.t15), ms(g.t35));
   if (!g.measurable) {
-    o += line("  not judged: %s", g.not_measurable_reason.c_str());
+    o += report_line("  not judged: %s", g.not_measurable_reason.c_str());
     return;
   }
-  o += line("  silence between frames (ms): %s", distribution_text(g.gaps).c_str());
-  o += line("  RTU frames with a silence over t1.5 inside: %llu", u(g.inner_gap_t15.count));
-  o += line("  RTU frames starting less than t3.5 after the previous one: %llu",
-            u(g.spacing_t35.count));
+  o += report_line("  silence between frames (ms): %s", distribution_text(g.gaps).c_str());
+  o += report_line("  RTU frames with a silence over t1.5 inside: %llu", u(g.inner_gap_t15.count));
+  o += report_line("  RTU frames starting less than t3.5 after the previous one: %llu",
+                   u(g.spacing_t35.count));
 }
 
 void latest_values(const AuditReport& r, const BusReport& b, std::string& o) {
   bool any = false;
   for (const StationSummary& s : b.stations) any = any || !s.latest_values.empty();
   if (!any) return;
-  o += line("latest values (what each station last reported):");
+  o += report_line("latest values (what each station last reported):");
   for (const StationSummary& s : b.stations) {
     if (s.latest_values.empty()) continue;
     if (r.settings.has_timestamps) {
-      o += line("  station %u (as of %s)", s.station, when(r, s.last_report_time).c_str());
+      o += report_line("  station %u (as of %s)", s.station, when(r, s.last_report_time).c_str());
     } else {
-      o += line("  station %u", s.station);
+      o += report_line("  station %u", s.station);
     }
     for (const LatestValue& v : s.latest_values) {
       const std::string value = format_value(v.value);
-      o += line("    %-7s %-8s %-40s %s", std::string(to_string(v.dialect)).c_str(),
-                std::string(format_value_address(v.value, v.dialect).view()).c_str(),
-                std::string(v.value.name()).c_str(), value.c_str());
+      o += report_line("    %-7s %-8s %-40s %s", std::string(to_string(v.dialect)).c_str(),
+                       std::string(format_value_address(v.value, v.dialect).view()).c_str(),
+                       std::string(v.value.name()).c_str(), value.c_str());
     }
   }
 }
@@ -254,18 +247,19 @@ std::string station_key(const AuditReport& report, const BusFindings& bus, std::
 
 void write_text_report(const AuditReport& report, OutputStream& out) {
   std::string& o = out.buffer();
-  o += "\n== pvtap audit report ==\n";
+  o += report.live.active() ? "\n== pvtap sniff report ==\n" : "\n== pvtap audit report ==\n";
   inputs(report, o);
+  append_live_sources_text(report.live, o);
   span_of_time(report, o);
   network(report, o);
   if (report.written_records > 0) {
-    o += line("written: %llu frames as link type 252", u(report.written_records));
+    o += report_line("written: %llu frames as link type 252", u(report.written_records));
   }
   totals(report, o);
   for (const BusFindings& bus : report.buses) {
     o += '\n';
     if (report.buses.size() > 1 || !bus.name.empty()) {
-      o += line("-- bus %s --", bus.name.empty() ? "serial" : bus.name.c_str());
+      o += report_line("-- bus %s --", bus.name.empty() ? "serial" : bus.name.c_str());
     }
     station_table(report, bus.report, o);
     findings(report, bus.report, o);

@@ -1,0 +1,36 @@
+// The options `pvtap audit` and `pvtap sniff` share: protocol, register maps and output.
+#pragma once
+
+#include <cstdint>
+
+#include "audit_options.h"
+
+namespace CLI {
+class App;
+}
+
+namespace pvtap {
+class RegisterDecoder;
+}
+
+namespace pvtap::analyzer {
+
+// The range --baud accepts: any rate for audits; a serial tap takes what termios can set.
+struct BaudRange {
+  std::uint32_t min;
+  std::uint32_t max;
+};
+inline constexpr BaudRange kAnyBaud{300, 4000000};
+
+// --dialect, --baud, --timeout, --gsl-ids, --map.
+void add_protocol_options(CLI::App& command, AuditOptions& o, BaudRange baud_range);
+// --format, --summary-only, --write, --fail-on.
+void add_output_options(CLI::App& command, AuditOptions& o);
+
+// Turns the options as typed (dialect, format, ...) into their typed fields.
+void apply_choices(AuditOptions& o);
+
+// Loads the --map files into the decoder; false (after printing why) when one is bad.
+bool load_maps(const AuditOptions& o, RegisterDecoder& decoder);
+
+}  // namespace pvtap::analyzer
