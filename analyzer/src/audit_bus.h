@@ -17,6 +17,7 @@ class AuditRun::BusOutput : public BusSessionSink {
   }
   void on_frame(const SessionFrame& f) override { run_.on_frame(context_, f); }
   void on_timeout(const SessionTimeout& t) override {
+    if (t.kind == UnansweredKind::Timeout) ++run_.timeouts_seen_;
     if (run_.events_) run_.events_->timeout(context_, t);
   }
   void on_noise(const SessionNoise& n) override { run_.on_noise(context_, n); }

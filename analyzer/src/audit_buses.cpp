@@ -31,7 +31,11 @@ BusSessionOptions AuditRun::session_options(InputKind kind) const {
 AuditRun::Bus& AuditRun::bus_named(const std::string& name, InputKind kind) {
   const auto it = bus_by_name_.find(name);
   if (it != bus_by_name_.end()) return *it->second;
-  buses_.push_back(std::make_unique<Bus>(*this, name, session_options(kind), decoder_));
+  return add_bus(name, session_options(kind));
+}
+
+AuditRun::Bus& AuditRun::add_bus(const std::string& name, const BusSessionOptions& options) {
+  buses_.push_back(std::make_unique<Bus>(*this, name, options, decoder_));
   bus_by_name_[name] = buses_.back().get();
   return *buses_.back();
 }
@@ -46,7 +50,10 @@ BusSession& AuditRun::serial_bus(InputKind kind) {
 
 void AuditRun::on_frame(const EventContext& c, const SessionFrame& f) {
   ++frames_seen_;
-  if (f.latency) latency_.add(*f.latency);
+  if (f.latency) {
+    latency_.add(*f.latency);
+    last_latency_ = f.latency;
+  }
   if (writer_) writer_->write_frame(f.end_time, f.role, f.bytes);
   if (events_) events_->frame(c, f);
 }

@@ -19,6 +19,7 @@
 #include "progress_bar.h"
 #include "pvtap/bus_session.h"
 #include "pvtap/distribution_summary.h"
+#include "status_line.h"
 
 namespace pvtap::analyzer {
 
@@ -59,6 +60,18 @@ class AuditRun : public BusDirectory {
   bool read_devices();         // device_reading.cpp
   bool read_live_interface();  // interface_reading.cpp
   bool live_should_stop(double started) const;
+  // Serial taps (device_reading.cpp).
+  struct LiveTap;
+  using LiveTaps = std::vector<std::unique_ptr<LiveTap>>;
+  bool open_taps(LiveTaps& taps);
+  BusSessionOptions tap_session_options(LiveTap& tap) const;
+  void wait_for_taps(LiveTaps& taps, double wake_at);
+  void read_tap(LiveTap& tap, std::span<std::uint8_t> buffer);
+  void lose_tap(LiveTap& tap, double now);
+  void revive_taps(LiveTaps& taps, double now);
+  double next_wake(const LiveTaps& taps, double now, double started) const;
+  void after_wake(LiveTaps& taps, double now);
+  void show_status(double now);
   void on_record(InputKind kind, const CapturedPacket& packet);
   void on_network_packet(const CapturedPacket& packet);
   void on_exported_pdu(const CapturedPacket& packet);
@@ -67,6 +80,7 @@ class AuditRun : public BusDirectory {
 
   // Buses and events.
   Bus& bus_named(const std::string& name, InputKind kind);
+  Bus& add_bus(const std::string& name, const BusSessionOptions& options);
   BusSession& serial_bus(InputKind kind);
   BusSessionOptions session_options(InputKind kind) const;
   void on_frame(const EventContext& c, const SessionFrame& f);
@@ -95,7 +109,11 @@ class AuditRun : public BusDirectory {
   DistributionAccumulator latency_;
   bool network_ = false;
   LiveSources live_;
+  // For --count and the live status line.
   std::uint64_t frames_seen_ = 0;
+  std::uint64_t timeouts_seen_ = 0;
+  std::optional<double> last_latency_;
+  std::unique_ptr<StatusLine> status_;
   // USER0-15 records of several bytes are read() chunks, stamped when the read returned.
   bool batched_serial_records_ = false;
 };

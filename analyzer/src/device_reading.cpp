@@ -1,13 +1,203 @@
-// Placeholder until serial taps land.
+// AuditRun on serial taps (pvtap sniff --device): a poll loop over the taps that stamps each
+// read with the capture clock, feeds one bus session per tap, tells the sessions when the bus
+// has been silent, and survives adapters that go away and come back.
+#include <poll.h>
+
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
-#include "audit_run.h"
+#include "audit_bus.h"
+#include "device_tap.h"
+#include "pvtap/bus_timing.h"
+#include "stop_signal.h"
+#include "wall_clock.h"
 
 namespace pvtap::analyzer {
 
+struct AuditRun::LiveTap {
+  LiveTap(const std::string& path, std::uint32_t baud, SerialLine line)
+      : device(path, baud, line) {}
+  DeviceTap device;
+  BusSession* bus = nullptr;
+  std::string timestamp_note;  // outlives the session's view of it
+  double t35 = 0;
+  // The bus must be told of its silence t3.5 after the last byte (to decide a pending frame).
+  std::optional<double> silence_due;
+};
+
+namespace {
+
+constexpr std::size_t kReadBuffer = 64 * 1024;
+// Reads per tap per wake-up, so that one flooding tap cannot starve the others.
+constexpr int kReadsPerWake = 16;
+// The longest sleep: the matcher's timeouts and the status line are judged this often.
+constexpr double kTick = 0.05;
+// Line error counters are sampled this often, so that an unplug loses little of them.
+constexpr double kLineErrorSampleEvery = 1.0;
+
+timespec timespec_of(double seconds) {
+  seconds = std::max(seconds, 0.0);
+  timespec t{};
+  t.tv_sec = static_cast<time_t>(seconds);
+  t.tv_nsec = static_cast<long>((seconds - std::floor(seconds)) * 1e9);
+  return t;
+}
+
+}  // namespace
+
+BusSessionOptions AuditRun::tap_session_options(LiveTap& tap) const {
+  BusSessionOptions o = session_options(InputKind::Serial);
+  o.reassembler.bits_per_char = options_.live.line.bits_per_char();
+  const BusTiming timing(options_.baud, o.reassembler.bits_per_char);
+  tap.t35 = timing.t35;
+  const LatencyTimerState& timer = tap.device.latency_timer();
+  // A read returns what the adapter held back for up to its latency timer: longer than t1.5
+  // and the stamps cannot tell the bus's silences apart.
+  if (timer.ms && *timer.ms * 1e-3 > timing.t15) {
+    tap.timestamp_note = "the adapter's USB latency timer is " + std::to_string(*timer.ms) +
+                         " ms: reads come in batches too coarse to judge t1.5/t3.5";
+    o.reassembler.timestamps = TimestampTrust::Untrusted;
+    o.timestamp_note = tap.timestamp_note;
+  }
+  return o;
+}
+
+bool AuditRun::open_taps(LiveTaps& taps) {
+  const LiveOptions& live = options_.live;
+  for (const std::string& path : live.devices) {
+    taps.push_back(std::make_unique<LiveTap>(path, options_.baud, live.line));
+    LiveTap& tap = *taps.back();
+    if (!tap.device.open()) {
+      std::fprintf(stderr, "pvtap: cannot open %s: %s\n", path.c_str(), tap.device.error().c_str());
+      return false;
+    }
+    const std::string name = live.devices.size() > 1 ? path : "";
+    tap.bus = &add_bus(name, tap_session_options(tap)).session;
+    const LatencyTimerState& timer = tap.device.latency_timer();
+    if (timer.ms && !timer.note.empty()) {
+      std::fprintf(stderr, "pvtap: %s: USB latency timer %d ms (%s)\n", path.c_str(), *timer.ms,
+                   timer.note.c_str());
+    }
+  }
+  return true;
+}
+
 bool AuditRun::read_devices() {
-  std::fprintf(stderr, "pvtap: --device is not available yet\n");
-  return false;
+  LiveTaps taps;
+  if (!open_taps(taps)) return false;
+  status_ = std::make_unique<StatusLine>(options_.live.status_line);
+  std::vector<std::uint8_t> buffer(kReadBuffer);
+  const double started = wall_clock_seconds();
+  double now = started;
+  double next_sample = started + kLineErrorSampleEvery;
+  while (!live_should_stop(started)) {
+    wait_for_taps(taps, next_wake(taps, now, started));
+    for (auto& tap : taps) {
+      if (tap->device.fd() >= 0) read_tap(*tap, buffer);
+    }
+    now = wall_clock_seconds();
+    after_wake(taps, now);
+    if (now >= next_sample) {
+      for (auto& tap : taps) tap->device.sample_line_errors();
+      next_sample = now + kLineErrorSampleEvery;
+    }
+  }
+  status_->clear();
+  now = wall_clock_seconds();
+  for (auto& tap : taps) live_.devices.push_back(tap->device.report(now));
+  live_.seconds = now - started;
+  live_.stopped_by_signal =
+      stop_requested() && !(options_.live.count > 0 && frames_seen_ >= options_.live.count);
+  last_time_ = now;
+  return true;
+}
+
+double AuditRun::next_wake(const LiveTaps& taps, double now, double started) const {
+  double wake = now + kTick;
+  for (const auto& tap : taps) {
+    if (tap->silence_due) wake = std::min(wake, *tap->silence_due);
+    if (tap->device.gone()) wake = std::min(wake, tap->device.next_attempt());
+  }
+  if (options_.live.duration > 0) wake = std::min(wake, started + options_.live.duration);
+  return wake;
+}
+
+void AuditRun::wait_for_taps(LiveTaps& taps, double wake_at) {
+  std::vector<pollfd> fds;
+  for (const auto& tap : taps) {
+    if (tap->device.fd() >= 0) fds.push_back(pollfd{tap->device.fd(), POLLIN, 0});
+  }
+  const timespec timeout = timespec_of(wake_at - wall_clock_seconds());
+  // EINTR (a stop signal) just ends the wait; the loop then sees the request.
+  ::ppoll(fds.data(), fds.size(), &timeout, nullptr);
+}
+
+void AuditRun::read_tap(LiveTap& tap, std::span<std::uint8_t> buffer) {
+  for (int k = 0; k < kReadsPerWake; ++k) {
+    std::size_t got = 0;
+    const SerialPort::ReadResult result = tap.device.port().read(buffer, got);
+    // The capture clock right after the read: the time of the chunk's last byte.
+    const double time = wall_clock_seconds();
+    if (result == SerialPort::ReadResult::Empty) return;
+    if (result == SerialPort::ReadResult::Gone) {
+      lose_tap(tap, time);
+      return;
+    }
+    tap.device.count_read(got);
+    tap.bus->feed(BusChunk{buffer.first(got), time, Direction::Unknown});
+    tap.silence_due = time + tap.t35;
+  }
+}
+
+void AuditRun::lose_tap(LiveTap& tap, double now) {
+  tap.device.went_away(now);
+  tap.silence_due.reset();
+  tap.bus->data_lost(Direction::Unknown, now, std::nullopt);
+  status_->clear();
+  std::fprintf(stderr, "pvtap: %s: device gone (%s); reopening it as it comes back\n",
+               tap.device.path().c_str(), tap.device.error().c_str());
+}
+
+void AuditRun::revive_taps(LiveTaps& taps, double now) {
+  for (auto& tap : taps) {
+    if (!tap->device.gone() || now < tap->device.next_attempt()) continue;
+    const double since = tap->device.outage_started();
+    if (!tap->device.try_reopen(now)) continue;
+    status_->clear();
+    std::fprintf(stderr, "pvtap: %s: back after %.1f s\n", tap->device.path().c_str(), now - since);
+  }
+}
+
+void AuditRun::after_wake(LiveTaps& taps, double now) {
+  revive_taps(taps, now);
+  for (auto& tap : taps) {
+    if (tap->silence_due && now >= *tap->silence_due) tap->silence_due.reset();
+    tap->bus->idle(now);
+  }
+  if (!out_.buffer().empty()) {
+    status_->clear();
+    out_.flush();
+  }
+  if (status_->due(now)) show_status(now);
+}
+
+void AuditRun::show_status(double now) {
+  ReassemblerTotals sum;
+  for (const auto& bus : buses_) {
+    const ReassemblerTotals t = bus->session.totals();
+    sum.bytes_in += t.bytes_in;
+    sum.frames += t.frames;
+    sum.bad_frames += t.bad_frames;
+  }
+  char text[160];
+  std::snprintf(
+      text, sizeof text, "%llu bytes, %llu frames, %llu bad checks, %llu timeouts, last latency %s",
+      static_cast<unsigned long long>(sum.bytes_in), static_cast<unsigned long long>(sum.frames),
+      static_cast<unsigned long long>(sum.bad_frames),
+      static_cast<unsigned long long>(timeouts_seen_),
+      last_latency_ ? (std::to_string(std::lround(*last_latency_ * 1e3)) + " ms").c_str() : "-");
+  status_->show(now, text);
 }
 
 }  // namespace pvtap::analyzer

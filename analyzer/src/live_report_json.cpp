@@ -21,6 +21,16 @@ void text(std::string& o, std::string_view name, std::string_view value) {
   append_json_string(o, value);
 }
 
+// A note that is absent is null, so that `jq 'select(.x)'` finds only the real ones.
+void note(std::string& o, std::string_view name, std::string_view value) {
+  if (value.empty()) {
+    member(o, name);
+    o += "null";
+  } else {
+    text(o, name, value);
+  }
+}
+
 // "line_errors":{"framing":0,...}, or null with "line_errors_note" saying why.
 void line_errors(std::string& o, const DeviceReport& d) {
   member(o, "line_errors");
@@ -52,14 +62,14 @@ void device(std::string& o, const DeviceReport& d) {
   } else {
     o += "null";
   }
-  text(o, "latency_note", d.latency_note);
+  note(o, "latency_note", d.latency_note);
   line_errors(o, d);
   number(o, "outages", d.outages);
   member(o, "outage_seconds");
   append_fixed(o, d.outage_seconds, 3);
   member(o, "lost_at_end");
   o += d.lost_at_end ? "true" : "false";
-  text(o, "last_error", d.last_error);
+  note(o, "last_error", d.last_error);
   o += '}';
 }
 

@@ -41,7 +41,7 @@ struct BusSession::Impl : MatchSink {
         decoder(d),
         sink(s),
         matcher(*this, o.matcher),
-        timing(BusTiming(o.reassembler.baud)) {}
+        timing(BusTiming(o.reassembler.baud, o.reassembler.bits_per_char)) {}
 
   DirectionStream& stream(Direction d) {
     auto& slot = streams[index_of(d)];

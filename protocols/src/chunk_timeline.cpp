@@ -12,8 +12,8 @@ constexpr double kGapToleranceChars = 0.1;
 
 }  // namespace
 
-ChunkTimeline::ChunkTimeline(std::uint32_t baud, TimestampTrust trust)
-    : timing_(baud), mode_(trust), trusted_(trust != TimestampTrust::Untrusted) {
+ChunkTimeline::ChunkTimeline(const BusTiming& timing, TimestampTrust trust)
+    : timing_(timing), mode_(trust), trusted_(trust != TimestampTrust::Untrusted) {
   if (trust == TimestampTrust::Untrusted) reason_ = "timestamps declared too coarse by the source";
 }
 

@@ -12,7 +12,7 @@ namespace pvtap::detail {
 
 class ChunkTimeline {
  public:
-  ChunkTimeline(std::uint32_t baud, TimestampTrust trust);
+  ChunkTimeline(const BusTiming& timing, TimestampTrust trust);
 
   // Records a chunk of `size` bytes that ends at stream offset `end`.
   void add(std::uint64_t end, std::size_t size, double time, Direction direction);

@@ -20,7 +20,7 @@ constexpr std::size_t kCompactThreshold = 64 * 1024;
 
 struct StreamReassembler::Impl {
   Impl(ReassemblerOptions o, ReassemblerSink& s)
-      : options(o), sink(s), timeline(o.baud, o.timestamps) {}
+      : options(o), sink(s), timeline(BusTiming(o.baud, o.bits_per_char), o.timestamps) {}
 
   ReassemblerOptions options;
   ReassemblerSink& sink;

@@ -70,6 +70,8 @@ class ReassemblerSink {
 struct ReassemblerOptions {
   DialectSet dialects = DialectSet::all();
   std::uint32_t baud = 9600;
+  // Bits per character on the wire: 10 for 8N1, 11 with a parity bit or a second stop bit.
+  unsigned bits_per_char = 10;
   TimestampTrust timestamps = TimestampTrust::Auto;
 };
 

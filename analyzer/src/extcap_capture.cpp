@@ -1,0 +1,66 @@
+#include "extcap_capture.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <string>
+
+#include "audit_run.h"
+#include "extcap_options.h"
+#include "sniff_command.h"
+
+namespace pvtap::analyzer {
+namespace {
+
+char parity_letter(const std::string& parity) {
+  if (parity == "even") return 'E';
+  if (parity == "odd") return 'O';
+  return 'N';
+}
+
+// Why the call cannot start a capture; empty when it can.
+std::string call_problem(const ExtcapCall& call, const DiscoveredPort* port) {
+  if (call.interface.empty()) return "--capture needs --extcap-interface";
+  if (call.fifo.empty()) return "--capture needs --fifo";
+  if (port == nullptr) {
+    return "no serial port for interface " + call.interface +
+           " (unplugged? ports that are not found by themselves go in " + kExtraPortsVariable + ")";
+  }
+  // The bytes of a serial line are no packets a BPF program could select; taking a filter
+  // and passing everything would show the user traffic they meant to leave out.
+  if (!call.capture_filter.empty()) {
+    return kNoCaptureFilter;
+  }
+  const std::vector<std::string> problems = settings_problems(call.settings);
+  return problems.empty() ? std::string() : problems.front();
+}
+
+}  // namespace
+
+AuditOptions capture_options(const DiscoveredPort& port, const ExtcapSettings& settings,
+                             const std::string& fifo) {
+  AuditOptions o;
+  o.live.devices = {port.path};
+  o.live.line.parity = parity_letter(settings.parity);
+  o.live.line.stop_bits = settings.stop_bits == "2" ? 2 : 1;
+  o.baud = static_cast<std::uint32_t>(std::stoul(settings.baud));
+  o.dialect = settings.dialect;
+  o.write_path = fifo;
+  o.live.quiet = true;
+  o.summary_only = true;
+  return o;
+}
+
+int run_extcap_capture(const ExtcapCall& call, const std::vector<DiscoveredPort>& ports) {
+  const auto named = std::find_if(ports.begin(), ports.end(), [&call](const DiscoveredPort& port) {
+    return port.interface == call.interface;
+  });
+  const DiscoveredPort* port = named == ports.end() ? nullptr : &*named;
+  if (const std::string problem = call_problem(call, port); !problem.empty()) {
+    std::fprintf(stderr, "pvtap: %s\n", problem.c_str());
+    return kExitBadInput;
+  }
+  AuditOptions options = capture_options(*port, call.settings, call.fifo);
+  return run_live_capture(options);
+}
+
+}  // namespace pvtap::analyzer
