@@ -24,6 +24,9 @@ struct AuditRun::LiveTap {
   double t35 = 0;
   // The bus must be told of its silence t3.5 after the last byte (to decide a pending frame).
   std::optional<double> silence_due;
+  // The bus is known silent up to this moment: when the last read that found nothing began.
+  // Not "now": bytes may have arrived since, unread while pvtap was scheduled out.
+  double quiet_until = 0;
 };
 
 namespace {
@@ -136,10 +139,14 @@ void AuditRun::wait_for_taps(LiveTaps& taps, double wake_at) {
 void AuditRun::read_tap(LiveTap& tap, std::span<std::uint8_t> buffer) {
   for (int k = 0; k < kReadsPerWake; ++k) {
     std::size_t got = 0;
+    const double before = wall_clock_seconds();
     const SerialPort::ReadResult result = tap.device.port().read(buffer, got);
     // The capture clock right after the read: the time of the chunk's last byte.
     const double time = wall_clock_seconds();
-    if (result == SerialPort::ReadResult::Empty) return;
+    if (result == SerialPort::ReadResult::Empty) {
+      tap.quiet_until = before;
+      return;
+    }
     if (result == SerialPort::ReadResult::Gone) {
       lose_tap(tap, time);
       return;
@@ -164,6 +171,7 @@ void AuditRun::revive_taps(LiveTaps& taps, double now) {
     if (!tap->device.gone() || now < tap->device.next_attempt()) continue;
     const double since = tap->device.outage_started();
     if (!tap->device.try_reopen(now)) continue;
+    tap->quiet_until = now;
     status_->clear();
     std::fprintf(stderr, "pvtap: %s: back after %.1f s\n", tap->device.path().c_str(), now - since);
   }
@@ -172,8 +180,9 @@ void AuditRun::revive_taps(LiveTaps& taps, double now) {
 void AuditRun::after_wake(LiveTaps& taps, double now) {
   revive_taps(taps, now);
   for (auto& tap : taps) {
-    if (tap->silence_due && now >= *tap->silence_due) tap->silence_due.reset();
-    tap->bus->idle(now);
+    if (tap->silence_due && tap->quiet_until >= *tap->silence_due) tap->silence_due.reset();
+    // A tap that is gone has nothing unread: its timeouts run on the clock.
+    tap->bus->idle(tap->device.fd() >= 0 ? tap->quiet_until : now);
   }
   if (!out_.buffer().empty()) {
     status_->clear();

@@ -1,0 +1,432 @@
+#!/usr/bin/env python3
+"""End-to-end checks of `pvtap sniff --device` on real pseudo-terminals.
+
+The simulator (pvtap-sim) makes a bus and its ground truth; this script paces the bytes onto
+the master side of a pty at the bus's baud (pty_bus.py) while pvtap sniffs the slave side,
+then compares what pvtap reported with the truth.
+
+usage: check_sniff.py --pvtap PVTAP --sim PVTAP_SIM --scratch DIR CHECK
+checks: truth passive unplug two_buses stop_conditions status_line bad_devices
+"""
+import argparse
+import json
+import os
+import signal
+import subprocess
+import sys
+import threading
+import time
+
+import pty_bus
+
+BAUD = 9600
+# Longest wait for pvtap to open a device or to exit by itself; a guard against hangs, not
+# a timing requirement.
+GUARD_S = 20
+
+
+class Failures:
+    def __init__(self):
+        self.items = []
+
+    def check(self, ok, text):
+        if not ok:
+            self.items.append(text)
+        return ok
+
+    def exit_status(self, name):
+        if not self.items:
+            print(f"{name}: ok")
+            return 0
+        print(f"{name}: {len(self.items)} failure(s)")
+        for text in self.items[:20]:
+            print("  " + text)
+        return 1
+
+
+class Sniffer:
+    """One running `pvtap sniff`, its output in files under the scratch folder."""
+
+    def __init__(self, pvtap, scratch, name, args, stderr=None):
+        self.out_path = os.path.join(scratch, name + ".out")
+        self.err_path = os.path.join(scratch, name + ".err")
+        self._stderr_file = None
+        if stderr is None:
+            self._stderr_file = open(self.err_path, "w")
+            stderr = self._stderr_file
+        with open(self.out_path, "w") as out:
+            self.proc = subprocess.Popen([pvtap, "sniff", *args], stdout=out, stderr=stderr)
+
+    def fds_on(self, path):
+        """The descriptors pvtap holds on the device at `path` (after symlinks)."""
+        real = os.path.realpath(path)
+        fds = []
+        fd_dir = f"/proc/{self.proc.pid}/fd"
+        for fd in os.listdir(fd_dir):
+            try:
+                if os.readlink(os.path.join(fd_dir, fd)) == real:
+                    fds.append(int(fd))
+            except OSError:
+                continue
+        return fds
+
+    def wait_open(self, path):
+        deadline = time.monotonic() + GUARD_S
+        while time.monotonic() < deadline:
+            if self.proc.poll() is not None:
+                raise RuntimeError(f"pvtap sniff exited {self.proc.returncode}: {self.stderr()}")
+            if self.fds_on(path):
+                return
+            time.sleep(0.01)
+        raise RuntimeError(f"pvtap sniff did not open {path} in {GUARD_S} s")
+
+    def stop(self):
+        """SIGTERM, as a service manager or Wireshark stops a capture."""
+        self.proc.send_signal(signal.SIGTERM)
+        return self.wait()
+
+    def wait(self):
+        try:
+            self.proc.wait(GUARD_S)
+        except subprocess.TimeoutExpired:
+            self.proc.kill()
+            raise RuntimeError("pvtap sniff did not exit")
+        if self._stderr_file:
+            self._stderr_file.close()
+        return self.proc.returncode
+
+    def events(self):
+        with open(self.out_path, encoding="utf-8") as f:
+            return [json.loads(line) for line in f if line.strip()]
+
+    def stderr(self):
+        with open(self.err_path, encoding="utf-8", errors="replace") as f:
+            return f.read()
+
+
+def simulate(args, name, *sim_args):
+    return pty_bus.simulate(args.sim, args.scratch, name,
+                            ["--baud", str(BAUD), "--period", "1", *sim_args])
+
+
+def frames_of(events, bus=None):
+    return [e for e in events if e["type"] == "frame" and (bus is None or e.get("bus") == bus)]
+
+
+def frame_key(frame, raw_field):
+    return (frame["role"], frame["station"], frame["function"], frame["check"], frame[raw_field])
+
+
+def compare_frames(found, truth_frames, label, bad):
+    bad.check(len(found) == len(truth_frames),
+              f"{label}: pvtap reported {len(found)} frames, the bus carried {len(truth_frames)}")
+    for i, (f, t) in enumerate(zip(found, truth_frames)):
+        if not bad.check(frame_key(f, "raw") == frame_key(t, "hex"),
+                         f"{label} frame {i}: {frame_key(f, 'raw')} != {frame_key(t, 'hex')}"):
+            return
+
+
+def stop_offset(truth):
+    """When to stop sniffing, in seconds after the first event: after the last byte and after
+    every timeout the truth records, before any unanswered request's timeout."""
+    events, timeout = truth["events"], truth["timeout_s"]
+    first = events[0]["ts"]
+    ends = [e.get("end", e["ts"]) - first for e in events]
+    ends += [t["request_ts"] + timeout - first for t in truth["timeouts"]]
+    stop = max(ends) + 0.3
+    for request in truth["unanswered_at_end"]:
+        if request["request_ts"] + timeout - first < stop + 0.1:
+            raise RuntimeError("the truth's timing leaves no moment to stop; change the seed")
+    return stop
+
+
+def play_truth(pty, truth):
+    """Plays the truth's bytes now and returns when the sniffer may be stopped."""
+    start = time.monotonic()
+    pty_bus.play(pty.master, pty_bus.byte_schedule(truth["events"], BAUD), start)
+    time.sleep(max(0.0, start + stop_offset(truth) - time.monotonic()))
+
+
+def check_summary(summary, truth, bad):
+    for key in ("bytes", "frames", "requests", "responses", "bad_checks", "timeouts",
+                "noise_bytes"):
+        bad.check(summary.get(key) == truth["summary"][key],
+                  f"summary {key}: pvtap {summary.get(key)}, truth {truth['summary'][key]}")
+    bad.check(summary.get("unanswered_at_end") == len(truth["unanswered_at_end"]),
+              f"unanswered at end: {summary.get('unanswered_at_end')}")
+    # The byte invariant: every byte read is in a frame, noise, or counted lost.
+    bad.check(summary["bytes"] == summary["frame_bytes"] + summary["noise_bytes"],
+              f"bytes {summary['bytes']} != frame bytes {summary['frame_bytes']} + noise "
+              f"{summary['noise_bytes']}")
+
+
+def check_events(events, truth, bad, label="bus"):
+    compare_frames(frames_of(events), [e for e in truth["events"] if e["type"] == "frame"],
+                   label, bad)
+    noise = sum(e["bytes"] for e in events if e["type"] == "noise")
+    bad.check(noise == truth["summary"]["noise_bytes"], f"noise bytes {noise}")
+    timeouts = [(e["station"], e["function"]) for e in events if e["type"] == "timeout"]
+    expected = [(t["station"], t["function"]) for t in truth["timeouts"]]
+    bad.check(timeouts == expected, f"timeouts: pvtap {timeouts}, truth {expected}")
+
+
+def audit_frames(args, pcap):
+    run = subprocess.run([args.pvtap, "audit", "--format", "jsonl", pcap],
+                         capture_output=True, text=True, check=False)
+    if run.returncode != 0:
+        raise RuntimeError(f"pvtap audit {pcap} exited {run.returncode}: {run.stderr}")
+    return frames_of([json.loads(line) for line in run.stdout.splitlines()])
+
+
+def check_truth(args):
+    """All three dialects and every fault kind: the frames, noise, timeouts and totals of the
+    truth; the pcap written with --write, cut by SIGTERM, reads back to the same frames (their
+    times differ: a record carries the frame's last byte's time, the live line its first's)."""
+    bad = Failures()
+    truth = simulate(args, "mixed", "--dialect", "gsl,hybrid,ascii", "--inverters", "4",
+                     "--duration", "6", "--seed", "3", "--faults", "all")
+    pcap = os.path.join(args.scratch, "mixed.pcap")
+    pty = pty_bus.Pty()
+    sniffer = Sniffer(args.pvtap, args.scratch, "mixed",
+                      ["--device", pty.path, "--format", "jsonl", "--write", pcap,
+                       "--timeout", str(truth["timeout_s"])])
+    sniffer.wait_open(pty.path)
+    play_truth(pty, truth)
+    bad.check(sniffer.stop() == 0, f"exit status {sniffer.proc.returncode}: {sniffer.stderr()}")
+    pty.close()
+    events = sniffer.events()
+    check_events(events, truth, bad)
+    summary = events[-1]
+    if bad.check(summary["type"] == "summary", "the last line is not the summary"):
+        check_summary(summary, truth, bad)
+        bad.check(summary.get("stopped_by_signal") is True, "stopped_by_signal is not true")
+        device = summary["devices"][0]
+        bad.check(device["bytes"] == truth["summary"]["bytes"], f"device bytes {device['bytes']}")
+        bad.check(device["line"] == f"{BAUD} 8N1", f"device line {device['line']}")
+        bad.check(device["outages"] == 0, f"outages {device['outages']}")
+    read_back = audit_frames(args, pcap)
+    live = frames_of(events)
+    bad.check([frame_key(f, "raw") for f in read_back] == [frame_key(f, "raw") for f in live],
+              f"the written pcap holds {len(read_back)} frames that differ from the "
+              f"{len(live)} reported live")
+    return bad.exit_status("truth")
+
+
+def descriptor_flags(pid, fd):
+    with open(f"/proc/{pid}/fdinfo/{fd}", encoding="ascii") as f:
+        for line in f:
+            if line.startswith("flags:"):
+                return int(line.split()[1], 8)
+    raise RuntimeError("no flags in fdinfo")
+
+
+def check_passive(args):
+    """The device is opened read-only, non-blocking, not as controlling terminal, closed on
+    exec; and not one byte comes out of it while pvtap runs."""
+    bad = Failures()
+    truth = simulate(args, "passive", "--dialect", "gsl", "--inverters", "2", "--duration", "2",
+                     "--seed", "4")
+    pty = pty_bus.Pty()
+    sniffer = Sniffer(args.pvtap, args.scratch, "passive", ["--device", pty.path, "--format",
+                                                             "jsonl"])
+    sniffer.wait_open(pty.path)
+    play_truth(pty, truth)
+    fds = sniffer.fds_on(pty.path)
+    bad.check(len(fds) == 1, f"pvtap holds {len(fds)} descriptors on the device")
+    for fd in fds:
+        flags = descriptor_flags(sniffer.proc.pid, fd)
+        bad.check(flags & os.O_ACCMODE == os.O_RDONLY, f"fd {fd} flags {flags:o}: not O_RDONLY")
+        bad.check(flags & os.O_NONBLOCK, f"fd {fd} flags {flags:o}: not O_NONBLOCK")
+        bad.check(flags & 0o2000000, f"fd {fd} flags {flags:o}: not O_CLOEXEC")
+    bad.check(sniffer.stop() == 0, f"exit status {sniffer.proc.returncode}")
+    written = pty.drain_master()
+    bad.check(written == b"", f"the master side received {len(written)} bytes: {written[:32]!r}")
+    pty.close()
+    bad.check(len(frames_of(sniffer.events())) == truth["summary"]["frames"], "frames missing")
+    return bad.exit_status("passive")
+
+
+def check_unplug(args):
+    """The pty behind a by-id style link goes away and comes back as another pty: pvtap
+    reports the outage as a gap, reopens the link and goes on."""
+    bad = Failures()
+    before = simulate(args, "before", "--dialect", "hybrid", "--inverters", "2", "--duration",
+                      "2", "--seed", "5")
+    after = simulate(args, "after", "--dialect", "hybrid", "--inverters", "2", "--duration", "2",
+                     "--seed", "6")
+    link = os.path.join(args.scratch, "usb-FTDI_tap-if00-port0")
+    first = pty_bus.Pty()
+    replace_link(link, first.path)
+    sniffer = Sniffer(args.pvtap, args.scratch, "unplug", ["--device", link, "--format", "jsonl"])
+    sniffer.wait_open(link)
+    play_truth(first, before)
+    first.unplug()
+    time.sleep(0.5)
+    second = pty_bus.Pty()
+    replace_link(link, second.path)
+    sniffer.wait_open(link)
+    play_truth(second, after)
+    bad.check(sniffer.stop() == 0, f"exit status {sniffer.proc.returncode}")
+    second.close()
+    events = sniffer.events()
+    truth_frames = [e for t in (before, after) for e in t["events"] if e["type"] == "frame"]
+    compare_frames(frames_of(events), truth_frames, "unplug", bad)
+    gaps = [e for e in events if e["type"] == "gap"]
+    bad.check(len(gaps) == 1, f"{len(gaps)} gap events, expected the one outage")
+    device = events[-1]["devices"][0]
+    bad.check(device["outages"] == 1, f"outages {device['outages']}")
+    bad.check(device["outage_seconds"] > 0, "no outage time")
+    bad.check(device["lost_at_end"] is False, "reported lost at the end")
+    bad.check(events[-1]["gaps"] == 1, f"summary gaps {events[-1]['gaps']}")
+    text = sniffer.stderr()
+    bad.check("gone" in text and "back after" in text, f"stderr does not tell: {text!r}")
+    return bad.exit_status("unplug")
+
+
+def replace_link(link, target):
+    temporary = link + ".new"
+    if os.path.lexists(temporary):
+        os.unlink(temporary)
+    os.symlink(target, temporary)
+    os.replace(temporary, link)
+
+
+def check_two_buses(args):
+    """Two taps at once: each is its own bus, named by its path."""
+    bad = Failures()
+    truths = [simulate(args, "bus_a", "--dialect", "gsl", "--inverters", "2", "--duration", "3",
+                       "--seed", "7"),
+              simulate(args, "bus_b", "--dialect", "ascii", "--inverters", "3", "--duration",
+                       "3", "--seed", "8")]
+    ptys = [pty_bus.Pty(), pty_bus.Pty()]
+    sniffer = Sniffer(args.pvtap, args.scratch, "two_buses",
+                      ["--device", ptys[0].path, "--device", ptys[1].path, "--format", "jsonl"])
+    for pty in ptys:
+        sniffer.wait_open(pty.path)
+    players = [threading.Thread(target=play_truth, args=(pty, truth))
+               for pty, truth in zip(ptys, truths)]
+    for player in players:
+        player.start()
+    for player in players:
+        player.join()
+    bad.check(sniffer.stop() == 0, f"exit status {sniffer.proc.returncode}")
+    events = sniffer.events()
+    for pty, truth in zip(ptys, truths):
+        compare_frames(frames_of(events, pty.path),
+                       [e for e in truth["events"] if e["type"] == "frame"], pty.path, bad)
+        pty.close()
+    devices = [d["path"] for d in events[-1]["devices"]]
+    bad.check(devices == [p.path for p in ptys], f"devices in the summary: {devices}")
+    buses = [b["bus"] for b in events[-1]["buses"]]
+    bad.check(sorted(buses) == sorted(p.path for p in ptys), f"buses in the summary: {buses}")
+    return bad.exit_status("two_buses")
+
+
+def check_stop_conditions(args):
+    """--count stops after that many frames, --duration after that long; both exit 0 with
+    the summary, not by signal."""
+    bad = Failures()
+    truth = simulate(args, "count", "--dialect", "gsl", "--inverters", "2", "--duration", "2",
+                     "--seed", "9")
+    pty = pty_bus.Pty()
+    sniffer = Sniffer(args.pvtap, args.scratch, "count",
+                      ["--device", pty.path, "--format", "jsonl", "--count", "5"])
+    sniffer.wait_open(pty.path)
+    play_truth(pty, truth)
+    bad.check(sniffer.wait() == 0, f"--count: exit status {sniffer.proc.returncode}")
+    events = sniffer.events()
+    bad.check(len(frames_of(events)) == 5, f"--count 5 reported {len(frames_of(events))} frames")
+    bad.check(events[-1].get("stopped_by_signal") is False, "--count: stopped_by_signal")
+    sniffer = Sniffer(args.pvtap, args.scratch, "duration",
+                      ["--device", pty.path, "--format", "jsonl", "--duration", "0.5"])
+    bad.check(sniffer.wait() == 0, f"--duration: exit status {sniffer.proc.returncode}")
+    summary = sniffer.events()[-1]
+    bad.check(summary.get("live_seconds", 0) >= 0.5, f"--duration 0.5 ran {summary}")
+    bad.check(summary.get("stopped_by_signal") is False, "--duration: stopped_by_signal")
+    pty.close()
+    return bad.exit_status("stop_conditions")
+
+
+def check_status_line(args):
+    """Text output with stderr on a terminal redraws a status line there; with stderr not a
+    terminal there is none."""
+    bad = Failures()
+    truth = simulate(args, "status", "--dialect", "gsl", "--inverters", "2", "--duration", "2",
+                     "--seed", "10")
+    pty = pty_bus.Pty()
+    terminal = pty_bus.Pty()
+    with open(terminal.path, "w") as stderr:
+        sniffer = Sniffer(args.pvtap, args.scratch, "status", ["--device", pty.path],
+                          stderr=stderr)
+    sniffer.wait_open(pty.path)
+    play_truth(pty, truth)
+    bad.check(sniffer.stop() == 0, f"exit status {sniffer.proc.returncode}")
+    shown = terminal.drain_master().decode("utf-8", "replace")
+    frames = truth["summary"]["frames"]
+    # The line is redrawn as frames complete; the last drawing counts every frame.
+    bad.check(f"{frames} frames" in shown, f"no status line with {frames} frames: {shown!r}")
+    bad.check("bad checks" in shown and "timeouts" in shown and "last latency" in shown,
+              f"status line lacks a count: {shown!r}")
+    plain = Sniffer(args.pvtap, args.scratch, "status_plain",
+                    ["--device", pty.path, "--duration", "0.3"])
+    plain.wait()
+    bad.check("frames" not in plain.stderr(), f"status line without a terminal: "
+                                              f"{plain.stderr()!r}")
+    pty.close()
+    terminal.close()
+    return bad.exit_status("status_line")
+
+
+def check_bad_devices(args):
+    """Devices that cannot be sniffed: exit 2 with a message that names the problem."""
+    bad = Failures()
+    regular = os.path.join(args.scratch, "not-a-tty")
+    with open(regular, "w") as f:
+        f.write("x")
+    pty = pty_bus.Pty()
+    cases = [
+        (["--device", "/dev/ttyUSB-pvtap-missing"], ["/dev/ttyUSB-pvtap-missing",
+                                                     "No such file"]),
+        (["--device", regular], [regular]),
+        (["--device", pty.path, "--baud", "1200"], ["1200"]),
+        (["--device", pty.path, "--parity", "mark"], ["mark"]),
+        (["--device", pty.path, "--stop-bits", "3"], ["3"]),
+        (["--device", pty.path, "--port", "502"], ["--interface"]),
+        ([], ["--device"]),
+    ]
+    for extra, words in cases:
+        run = subprocess.run([args.pvtap, "sniff", "--duration", "0.2", *extra],
+                             capture_output=True, text=True, timeout=GUARD_S, check=False)
+        bad.check(run.returncode == 2, f"{extra}: exit status {run.returncode}")
+        bad.check(all(w in run.stderr for w in words),
+                  f"{extra}: the message {run.stderr.strip()!r} does not name {words}")
+        bad.check(run.stdout == "", f"{extra}: output on stdout: {run.stdout[:200]!r}")
+    pty.close()
+    return bad.exit_status("bad_devices")
+
+
+CHECKS = {
+    "truth": check_truth,
+    "passive": check_passive,
+    "unplug": check_unplug,
+    "two_buses": check_two_buses,
+    "stop_conditions": check_stop_conditions,
+    "status_line": check_status_line,
+    "bad_devices": check_bad_devices,
+}
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--pvtap", required=True)
+    parser.add_argument("--sim", required=True)
+    parser.add_argument("--scratch", required=True)
+    parser.add_argument("check", choices=sorted(CHECKS))
+    args = parser.parse_args()
+    args.scratch = os.path.join(args.scratch, args.check)
+    os.makedirs(args.scratch, exist_ok=True)
+    return CHECKS[args.check](args)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

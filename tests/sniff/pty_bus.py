@@ -1,0 +1,109 @@
+"""A simulated RS485 bus played onto the master side of real pseudo-terminals, for the
+`pvtap sniff` tests and benchmark. A pty ignores baud rate, so this writer paces the bytes
+itself: each byte is written when a UART at the bus's baud would have finished sending it.
+"""
+import json
+import os
+import subprocess
+import termios
+import time
+import tty
+
+
+def simulate(sim, scratch, name, args):
+    """Runs pvtap-sim with `args`, returns its ground truth (a dict)."""
+    truth_path = os.path.join(scratch, name + ".truth.json")
+    subprocess.run([sim, *args, "--truth", truth_path], check=True)
+    with open(truth_path, encoding="utf-8") as f:
+        return json.load(f)
+
+
+class Pty:
+    """One pseudo-terminal: the test writes to `master`, pvtap opens `path` (the slave)."""
+
+    def __init__(self):
+        self.master, self._slave = os.openpty()
+        self.path = os.ttyname(self._slave)
+        # Raw from the start, so that nothing written before pvtap sets its own termios is
+        # echoed or held for a line end.
+        tty.setraw(self._slave)
+        attrs = termios.tcgetattr(self._slave)
+        attrs[3] &= ~termios.ECHO
+        termios.tcsetattr(self._slave, termios.TCSANOW, attrs)
+        os.set_blocking(self.master, False)
+
+    def drain_master(self):
+        """Bytes that arrived on the master side: what someone wrote to the slave."""
+        got = b""
+        while True:
+            try:
+                chunk = os.read(self.master, 4096)
+            except (BlockingIOError, OSError):
+                return got
+            if not chunk:
+                return got
+            got += chunk
+
+    def unplug(self):
+        """Closes both sides: readers of the slave see a hang-up, as when an adapter is
+        pulled."""
+        os.close(self._slave)
+        os.close(self.master)
+
+    def close(self):
+        for fd in (self._slave, self.master):
+            try:
+                os.close(fd)
+            except OSError:
+                pass
+
+
+def byte_schedule(events, baud, bits_per_char=10):
+    """(due offset in seconds from the first event, byte) for every byte of the events."""
+    char_s = bits_per_char / baud
+    first = events[0]["ts"]
+    out = []
+    for event in events:
+        data = bytes.fromhex(event["hex"])
+        for i, b in enumerate(data):
+            out.append((event["ts"] - first + (i + 1) * char_s, b))
+    return out
+
+
+def keep_time():
+    """A UART is clocked by hardware; a writer that the scheduler delays inside a frame puts
+    a real silence on the bus, which splits the frame. As root, the writing thread takes a
+    real-time priority so that builds on the same machine cannot delay it."""
+    try:
+        os.sched_setscheduler(0, os.SCHED_FIFO, os.sched_param(10))
+    except (PermissionError, OSError):
+        pass
+
+
+def play(master, schedule, start, writes=None):
+    """Writes each byte at start + its due offset; bytes that are due together go in one
+    write, as a USB adapter batches them. Returns the most any write was late (seconds).
+    With a `writes` list, appends (bytes written so far, time.monotonic()) after each write."""
+    keep_time()
+    i = 0
+    worst = 0.0
+    while i < len(schedule):
+        due = start + schedule[i][0]
+        wait = due - time.monotonic()
+        if wait > 0:
+            time.sleep(wait)
+        now = time.monotonic()
+        worst = max(worst, now - due)
+        j = i
+        while j < len(schedule) and start + schedule[j][0] <= now:
+            j += 1
+        chunk = bytes(b for _, b in schedule[i:j])
+        while chunk:
+            try:
+                chunk = chunk[os.write(master, chunk):]
+            except BlockingIOError:
+                time.sleep(0.001)
+        i = j
+        if writes is not None:
+            writes.append((i, time.monotonic()))
+    return worst
