@@ -116,7 +116,8 @@ bool SerialPort::configure(std::uint32_t baud, SerialLine line) {
   }
   const tcflag_t wanted = character_format(line) & (CSIZE | PARENB | PARODD | CSTOPB);
   if ((set.c_cflag & (CSIZE | PARENB | PARODD | CSTOPB)) != wanted) {
-    error_ = "the driver refused the character format (data bits, parity, stop bits)";
+    error_ = std::string("the driver refused the character format 8") + line.parity +
+             std::to_string(line.stop_bits) + " (data bits, parity, stop bits)";
     return false;
   }
   return true;

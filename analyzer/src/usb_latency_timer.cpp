@@ -23,7 +23,7 @@ std::optional<int> read_ms(const std::string& path) {
 
 // Writes "1"; an empty string on success, else why not.
 std::string write_one_ms(const std::string& path) {
-  const int fd = ::open(path.c_str(), O_WRONLY | O_CLOEXEC);
+  const int fd = ::open(path.c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC);
   if (fd < 0) return std::strerror(errno);
   const bool ok = ::write(fd, "1", 1) == 1;
   const std::string why = ok ? "" : std::strerror(errno);
@@ -31,22 +31,23 @@ std::string write_one_ms(const std::string& path) {
   return why;
 }
 
-// "ttyUSB0" for "/dev/serial/by-id/usb-FTDI...-port0" (a symlink to ../../ttyUSB0).
-std::string tty_name(const std::string& device_path) {
+// "ttyUSB0" for "/dev/serial/by-id/usb-FTDI...-port0" (a symlink to ../../ttyUSB0); the
+// resolved path itself when it is not under `dev`.
+std::string tty_name(const std::string& device_path, const std::string& dev) {
   char resolved[PATH_MAX];
   if (::realpath(device_path.c_str(), resolved) == nullptr) return {};
   const std::string full = resolved;
-  const std::string::size_type dev = full.rfind("/dev/", 0);
-  return dev == 0 ? full.substr(5) : full;
+  const std::string prefix = dev + "/";
+  return full.rfind(prefix, 0) == 0 ? full.substr(prefix.size()) : full;
 }
 
 }  // namespace
 
-LatencyTimerState lower_latency_timer(const std::string& device_path) {
+LatencyTimerState lower_latency_timer(const std::string& device_path, const TtyPlaces& places) {
   LatencyTimerState state;
-  state.adapter = tty_name(device_path);
+  state.adapter = tty_name(device_path, places.dev);
   if (state.adapter.empty() || state.adapter.find('/') != std::string::npos) return state;
-  const std::string timer = "/sys/class/tty/" + state.adapter + "/device/latency_timer";
+  const std::string timer = places.sys_class_tty + "/" + state.adapter + "/device/latency_timer";
   state.ms = read_ms(timer);
   if (!state.ms || *state.ms <= 1) return state;
   const int before = *state.ms;

@@ -16,8 +16,14 @@ struct LatencyTimerState {
   std::string adapter;    // the tty the device path resolves to, e.g. "ttyUSB0"
 };
 
+// TtyPlaces: where device nodes and the kernel's tty attributes are; tests point elsewhere.
+struct TtyPlaces {
+  std::string dev = "/dev";
+  std::string sys_class_tty = "/sys/class/tty";
+};
+
 // Reads the latency timer of the adapter behind `device_path` (symlinks such as
 // /dev/serial/by-id/... are followed) and sets it to 1 ms when it is higher and writable.
-LatencyTimerState lower_latency_timer(const std::string& device_path);
+LatencyTimerState lower_latency_timer(const std::string& device_path, const TtyPlaces& places = {});
 
 }  // namespace pvtap::analyzer

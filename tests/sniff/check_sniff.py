@@ -204,6 +204,9 @@ def check_truth(args):
         bad.check(device["bytes"] == truth["summary"]["bytes"], f"device bytes {device['bytes']}")
         bad.check(device["line"] == f"{BAUD} 8N1", f"device line {device['line']}")
         bad.check(device["outages"] == 0, f"outages {device['outages']}")
+        # A pty has no line error counters: reported as unsupported, never as zeros.
+        bad.check(device["line_errors"] is None and "TIOCGICOUNT" in device["line_errors_note"],
+                  f"line errors {device['line_errors']}, note {device.get('line_errors_note')}")
     read_back = audit_frames(args, pcap)
     live = frames_of(events)
     bad.check([frame_key(f, "raw") for f in read_back] == [frame_key(f, "raw") for f in live],
