@@ -80,9 +80,9 @@ class Sniffer:
             time.sleep(0.01)
         raise RuntimeError(f"pvtap sniff did not open {path} in {GUARD_S} s")
 
-    def stop(self):
-        """SIGTERM, as a service manager or Wireshark stops a capture."""
-        self.proc.send_signal(signal.SIGTERM)
+    def stop(self, how=signal.SIGTERM):
+        """SIGTERM, as a service manager or Wireshark stops a capture (SIGINT: Ctrl-C)."""
+        self.proc.send_signal(how)
         return self.wait()
 
     def wait(self):
@@ -241,11 +241,13 @@ def check_passive(args):
         bad.check(flags & os.O_ACCMODE == os.O_RDONLY, f"fd {fd} flags {flags:o}: not O_RDONLY")
         bad.check(flags & os.O_NONBLOCK, f"fd {fd} flags {flags:o}: not O_NONBLOCK")
         bad.check(flags & 0o2000000, f"fd {fd} flags {flags:o}: not O_CLOEXEC")
-    bad.check(sniffer.stop() == 0, f"exit status {sniffer.proc.returncode}")
+    bad.check(sniffer.stop(signal.SIGINT) == 0, f"exit status {sniffer.proc.returncode}")
     written = pty.drain_master()
     bad.check(written == b"", f"the master side received {len(written)} bytes: {written[:32]!r}")
     pty.close()
-    bad.check(len(frames_of(sniffer.events())) == truth["summary"]["frames"], "frames missing")
+    events = sniffer.events()
+    bad.check(len(frames_of(events)) == truth["summary"]["frames"], "frames missing")
+    bad.check(events[-1].get("stopped_by_signal") is True, "Ctrl-C: no summary or not by signal")
     return bad.exit_status("passive")
 
 
