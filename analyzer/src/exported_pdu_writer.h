@@ -24,8 +24,12 @@ class ExportedPduWriter {
   // A noise run; its direction tag is left out when the direction is unknown.
   void write_noise(double time, Direction direction, std::span<const std::uint8_t> noise);
   // Live capture: every record reaches the file as it is written, so that a reader (Wireshark
-  // on a fifo) sees frames at once and an abrupt end loses nothing.
-  void flush_each_record(bool on) { flush_each_record_ = on; }
+  // on a fifo) sees frames at once and an abrupt end loses nothing. The file header goes out
+  // at once too: Wireshark waits for it before it counts down `-a duration` or shows anything.
+  void flush_each_record(bool on) {
+    flush_each_record_ = on;
+    if (on) file_.flush();
+  }
   // Flushes and closes; false when writing failed.
   bool close();
   const std::string& error() const { return file_.error(); }

@@ -1,15 +1,36 @@
 #include "extcap_capture.h"
 
 #include <algorithm>
+#include <csignal>
 #include <cstdio>
 #include <string>
 
 #include "audit_run.h"
 #include "extcap_options.h"
 #include "sniff_command.h"
+#include "stop_signal.h"
 
 namespace pvtap::analyzer {
 namespace {
+
+// Set when a write to the fifo found Wireshark's end closed.
+volatile std::sig_atomic_t fifo_broken = 0;
+
+extern "C" void on_broken_fifo(int) {
+  fifo_broken = 1;
+  request_stop();  // only sets a flag: safe in a signal handler
+}
+
+// Wireshark gone (crashed, or closed the fifo before its SIGTERM reached us): the next write
+// raises SIGPIPE, whose default action would kill pvtap in mid-record. Instead the capture
+// stops as on SIGTERM, and the reading loop sees the request at its next wake-up.
+void stop_on_broken_fifo() {
+  struct sigaction action {};
+  action.sa_handler = on_broken_fifo;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = 0;
+  sigaction(SIGPIPE, &action, nullptr);
+}
 
 char parity_letter(const std::string& parity) {
   if (parity == "even") return 'E';
@@ -60,7 +81,10 @@ int run_extcap_capture(const ExtcapCall& call, const std::vector<DiscoveredPort>
     return kExitBadInput;
   }
   AuditOptions options = capture_options(*port, call.settings, call.fifo);
-  return run_live_capture(options);
+  stop_on_broken_fifo();
+  const int status = run_live_capture(options);
+  // Nobody reads the fifo any more, so the records it lost are no failure of the capture.
+  return fifo_broken != 0 ? kExitOk : status;
 }
 
 }  // namespace pvtap::analyzer

@@ -21,8 +21,9 @@ inline constexpr const char* kNoCaptureFilter =
 AuditOptions capture_options(const DiscoveredPort& port, const ExtcapSettings& settings,
                              const std::string& fifo);
 
-// Runs the capture; returns the exit status (2, after a line on stderr that Wireshark shows,
-// when the call cannot be served).
+// Runs the capture until SIGTERM, or until Wireshark's end of the fifo is gone (no SIGPIPE
+// death: the capture stops and exits 0); returns the exit status (2, after a line on stderr
+// that Wireshark shows, when the call cannot be served).
 int run_extcap_capture(const ExtcapCall& call, const std::vector<DiscoveredPort>& ports);
 
 }  // namespace pvtap::analyzer

@@ -6,8 +6,8 @@
 namespace pvtap::analyzer {
 namespace {
 
-// Shown in Wireshark's About › Plugins; keep it in step with project() in CMakeLists.txt.
-constexpr const char* kExtcapVersion = "0.1.0";
+// Shown in Wireshark's About › Plugins: the version of project() in CMakeLists.txt.
+constexpr const char* kExtcapVersion = PVTAP_VERSION;
 
 // Sentence values cannot hold the delimiters; names of ports and settings never do, but a
 // path given through PVTAP_SERIAL_PORTS might.
