@@ -15,7 +15,8 @@ TEST(extcapSentences, InterfacesAnswerListsEachPortAsAnRs485Tap) {
       {"/dev/serial/by-id/usb-FTDI-port0", "ttyUSB0", "pvtap-usb-FTDI-port0"},
       {"/dev/pts/3", "pts/3", "pvtap-pts-3"}};
   EXPECT_EQ(interfaces_answer(ports),
-            "extcap {version=" PVTAP_VERSION "}\n"
+            "extcap {version=" PVTAP_VERSION
+            "}\n"
             "interface {value=pvtap-usb-FTDI-port0}{display=RS485 tap (ttyUSB0)}\n"
             "interface {value=pvtap-pts-3}{display=RS485 tap (pts/3)}\n");
 }
@@ -27,7 +28,8 @@ TEST(extcapSentences, InterfacesAnswerWithoutPortsStillNamesTheProgram) {
 TEST(extcapSentences, DelimitersInNamesCannotBreakASentence) {
   const std::vector<DiscoveredPort> ports = {{"/tmp/a}b", "/tmp/a}{b\n", "pvtap-tmp-a}b"}};
   EXPECT_EQ(interfaces_answer(ports),
-            "extcap {version=" PVTAP_VERSION "}\n"
+            "extcap {version=" PVTAP_VERSION
+            "}\n"
             "interface {value=pvtap-tmp-a_b}{display=RS485 tap (/tmp/a__b_)}\n");
 }
 
