@@ -33,6 +33,16 @@ def read_lines(stream, lines):
         lines.append((time.monotonic(), line))
 
 
+def peak_rss_kib(pid):
+    """pvtap's peak resident memory so far. (The rusage of a forked child also counts the
+    forking Python's memory from before the exec, which here holds the whole ground truth.)"""
+    with open(f"/proc/{pid}/status", encoding="ascii") as f:
+        for line in f:
+            if line.startswith("VmHWM:"):
+                return int(line.split()[1])
+    return 0
+
+
 def percentile(values, p):
     values = sorted(values)
     return values[min(len(values) - 1, int(p / 100.0 * len(values)))]
@@ -101,6 +111,7 @@ def main():
     late = pty_bus.play(pty.master, pty_bus.byte_schedule(events, args.baud), started, writes)
     time.sleep(1.5)
     wall = time.monotonic() - started
+    peak_kib = peak_rss_kib(proc.pid)
     proc.send_signal(signal.SIGTERM)
     _, status, usage = os.wait4(proc.pid, 0)
     proc.returncode = os.waitstatus_to_exitcode(status)
@@ -124,7 +135,8 @@ def main():
           f"{summary['lost_bytes']}, noise bytes {summary['noise_bytes']}, "
           f"frames identical to the bus: {same}, reads {summary['devices'][0]['reads']}")
     print(f"pvtap CPU: {cpu:.2f} s over {wall:.1f} s wall = {cpu / wall * 100:.2f} % of one "
-          f"core; peak RSS {usage.ru_maxrss / 1024:.1f} MiB")
+          f"core (user {usage.ru_utime:.2f} s, system {usage.ru_stime:.2f} s); peak RSS while "
+          f"capturing {peak_kib / 1024:.1f} MiB")
     print(f"latency, last byte written to jsonl line read (ms): p50 "
           f"{percentile(latency_ms, 50):.2f}, p99 {percentile(latency_ms, 99):.2f}, max "
           f"{max(latency_ms):.2f}")

@@ -154,6 +154,9 @@ void AuditRun::read_tap(LiveTap& tap, std::span<std::uint8_t> buffer) {
     tap.device.count_read(got);
     tap.bus->feed(BusChunk{buffer.first(got), time, Direction::Unknown});
     tap.silence_due = time + tap.t35;
+    // A read that did not fill the buffer emptied the driver's queue: no need for another
+    // read (a system call per wake-up) to learn that nothing else was waiting.
+    if (got < buffer.size()) return;
   }
 }
 
