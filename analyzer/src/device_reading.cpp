@@ -78,7 +78,9 @@ bool AuditRun::open_taps(LiveTaps& taps) {
     const std::string name = live.devices.size() > 1 ? path : "";
     tap.bus = &add_bus(name, tap_session_options(tap)).session;
     const LatencyTimerState& timer = tap.device.latency_timer();
-    if (timer.ms && !timer.note.empty()) {
+    // Only a timer left coarse is worth a line on stderr (Wireshark shows an extcap's stderr
+    // as an error); a lowered one is in the report.
+    if (timer.ms && *timer.ms > 1) {
       std::fprintf(stderr, "pvtap: %s: USB latency timer %d ms (%s)\n", path.c_str(), *timer.ms,
                    timer.note.c_str());
     }
