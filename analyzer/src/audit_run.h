@@ -59,6 +59,9 @@ class AuditRun : public BusDirectory {
   // source could not be opened at the start.
   bool read_devices();         // device_reading.cpp
   bool read_live_interface();  // interface_reading.cpp
+  // Network interface (interface_reading.cpp).
+  void after_live_wake(double now);
+  void end_live_capture(InterfaceReport report, double started);
   bool live_should_stop(double started) const;
   // Serial taps (device_reading.cpp).
   struct LiveTap;
