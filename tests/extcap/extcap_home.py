@@ -3,9 +3,10 @@ pvtap to find.
 
 tshark 4.0 looks for extcaps in one folder only, the global one, unless WIRESHARK_EXTCAP_DIR
 names another (honoured when tshark runs unprivileged, which TsharkHome arranges). pvtap goes
-there as a symlink to the built binary, as `cmake --install` puts it in the global folder.
+there as a copy of the built binary (`cmake --install` links it into the global folder).
 """
 import os
+import shutil
 import subprocess
 import sys
 
@@ -51,7 +52,9 @@ class ExtcapHome(tshark_runner.TsharkHome):
         super().__init__()
         self.extcap_dir = os.path.join(self.home, EXTCAP_SUBDIR)
         os.makedirs(self.extcap_dir)
-        os.symlink(pvtap_path(), os.path.join(self.extcap_dir, "pvtap"))
+        # A copy, not a link: the build tree may lie in a folder the unprivileged user
+        # cannot enter (a CI checkout under a 0700 temporary folder).
+        shutil.copy(pvtap_path(), os.path.join(self.extcap_dir, "pvtap"))
         self.serial_ports = list(serial_ports)
         self._hand_over()
 

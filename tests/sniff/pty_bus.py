@@ -1,6 +1,7 @@
 """A simulated RS485 bus played onto the master side of real pseudo-terminals, for the
 `pvtap sniff` tests and benchmark. A pty ignores baud rate, so this writer paces the bytes
-itself: each byte is written when a UART at the bus's baud would have finished sending it.
+itself: each burst of bytes (or each byte) is written when a UART at the bus's baud would
+have finished sending it.
 """
 import json
 import os
@@ -58,8 +59,15 @@ class Pty:
                 pass
 
 
-def byte_schedule(events, baud, bits_per_char=10):
-    """(due offset in seconds from the first event, byte) for every byte of the events."""
+def byte_schedule(events, baud, bits_per_char=10, bursts=True):
+    """(due offset in seconds from the first event, byte) for every byte of the events.
+
+    Byte by byte (bursts=False), each byte is due when a UART would have sent it. But a pty
+    hands written bytes to the reader through a kernel worker, which a loaded machine can
+    delay by a scheduler tick, longer than t3.5 at 9600 baud: a silence inside a frame that
+    was never on the bus. So by default each burst of bytes (a frame, or frames and noise
+    with no silence between them) is due at once, when its last byte would have been sent,
+    as a USB adapter delivers it; the silences between bursts stay as on the bus."""
     char_s = bits_per_char / baud
     first = events[0]["ts"]
     out = []
@@ -67,6 +75,15 @@ def byte_schedule(events, baud, bits_per_char=10):
         data = bytes.fromhex(event["hex"])
         for i, b in enumerate(data):
             out.append((event["ts"] - first + (i + 1) * char_s, b))
+    if not bursts:
+        return out
+    # From the end: a byte joins the burst of the next one unless a silence lies between.
+    burst_end = None
+    for k in range(len(out) - 1, -1, -1):
+        due, b = out[k]
+        if burst_end is None or out[k + 1][0] - due > 1.5 * char_s:
+            burst_end = due
+        out[k] = (burst_end, b)
     return out
 
 
