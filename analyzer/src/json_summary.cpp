@@ -8,17 +8,6 @@
 namespace pvtap::analyzer {
 namespace {
 
-void key(std::string& o, std::string_view name) {
-  o += ",\"";
-  o += name;
-  o += "\":";
-}
-
-void count(std::string& o, std::string_view name, std::uint64_t value) {
-  key(o, name);
-  append_uint(o, value);
-}
-
 void milliseconds(std::string& o, double seconds) {
   append_fixed(o, seconds * 1e3, 3);
 }
@@ -32,7 +21,7 @@ void distribution(std::string& o, const DistributionSummary& d) {
                                                    {"p50", d.p50}, {"p95", d.p95},
                                                    {"p99", d.p99}, {"max", d.max}};
   for (const auto& [name, value] : fields) {
-    key(o, name);
+    append_json_key(o, name);
     if (d.count == 0) {
       o += "null";
     } else {
@@ -45,15 +34,15 @@ void distribution(std::string& o, const DistributionSummary& d) {
 void station_object(std::string& o, const StationSummary& s) {
   o += "{\"requests\":";
   append_uint(o, s.requests);
-  count(o, "responses", s.responses);
-  count(o, "bad_checks", s.bad_checks);
-  count(o, "timeouts", s.timeouts);
-  count(o, "exceptions", s.exceptions);
-  count(o, "unsolicited", s.unsolicited);
-  count(o, "duplicates", s.duplicates);
-  key(o, "latency_ms");
+  append_json_count(o, "responses", s.responses);
+  append_json_count(o, "bad_checks", s.bad_checks);
+  append_json_count(o, "timeouts", s.timeouts);
+  append_json_count(o, "exceptions", s.exceptions);
+  append_json_count(o, "unsolicited", s.unsolicited);
+  append_json_count(o, "duplicates", s.duplicates);
+  append_json_key(o, "latency_ms");
   distribution(o, s.latency);
-  key(o, "values");
+  append_json_key(o, "values");
   o += '[';
   for (std::size_t i = 0; i < s.latest_values.size(); ++i) {
     if (i > 0) o += ',';
@@ -63,7 +52,7 @@ void station_object(std::string& o, const StationSummary& s) {
 }
 
 void stations(std::string& o, const AuditReport& report) {
-  key(o, "stations");
+  append_json_key(o, "stations");
   o += '{';
   bool first = true;
   for (const BusFindings& bus : report.buses) {
@@ -82,21 +71,21 @@ void timing(std::string& o, const BusReport& r, const AuditSettings& settings) {
   const BusGapReport& bus = r.timing.bus;
   o += "{\"judged\":";
   o += bus.measurable ? "true" : "false";
-  key(o, "reason");
+  append_json_key(o, "reason");
   if (bus.measurable) {
     o += "null";
   } else {
     append_json_string(o, bus.not_measurable_reason);
   }
-  count(o, "baud", settings.baud);
-  key(o, "t15_ms");
+  append_json_count(o, "baud", settings.baud);
+  append_json_key(o, "t15_ms");
   milliseconds(o, bus.t15);
-  key(o, "t35_ms");
+  append_json_key(o, "t35_ms");
   milliseconds(o, bus.t35);
-  key(o, "gap_ms");
+  append_json_key(o, "gap_ms");
   distribution(o, bus.gaps);
-  count(o, "t15_violations", bus.inner_gap_t15.count);
-  count(o, "t35_violations", bus.spacing_t35.count);
+  append_json_count(o, "t15_violations", bus.inner_gap_t15.count);
+  append_json_count(o, "t35_violations", bus.spacing_t35.count);
   o += '}';
 }
 
@@ -108,14 +97,14 @@ void polls(std::string& o, const BusReport& r) {
     o += "{\"dialect\":\"";
     o += to_string(p.dialect);
     o += '"';
-    count(o, "station", p.station);
-    count(o, "function", p.function);
-    count(o, "intervals", p.period.intervals);
-    key(o, "period_ms");
+    append_json_count(o, "station", p.station);
+    append_json_count(o, "function", p.function);
+    append_json_count(o, "intervals", p.period.intervals);
+    append_json_key(o, "period_ms");
     milliseconds(o, p.period.mean);
-    key(o, "jitter_ms");
+    append_json_key(o, "jitter_ms");
     milliseconds(o, p.period.stddev);
-    key(o, "max_deviation_ms");
+    append_json_key(o, "max_deviation_ms");
     milliseconds(o, p.period.max_deviation);
     o += '}';
   }
@@ -123,7 +112,7 @@ void polls(std::string& o, const BusReport& r) {
 }
 
 void buses(std::string& o, const AuditReport& report) {
-  key(o, "buses");
+  append_json_key(o, "buses");
   o += '[';
   for (std::size_t i = 0; i < report.buses.size(); ++i) {
     const BusFindings& bus = report.buses[i];
@@ -134,11 +123,11 @@ void buses(std::string& o, const AuditReport& report) {
     } else {
       append_json_string(o, bus.name);
     }
-    count(o, "bytes", bus.report.bytes.bytes_in);
-    count(o, "frames", bus.report.bytes.frames);
-    key(o, "timing");
+    append_json_count(o, "bytes", bus.report.bytes.bytes_in);
+    append_json_count(o, "frames", bus.report.bytes.frames);
+    append_json_key(o, "timing");
     timing(o, bus.report, report.settings);
-    key(o, "polls");
+    append_json_key(o, "polls");
     polls(o, bus.report);
     o += '}';
   }
@@ -146,18 +135,18 @@ void buses(std::string& o, const AuditReport& report) {
 }
 
 void details(std::string& o, const AuditReport& report, const BusReport& t) {
-  count(o, "frame_bytes", t.bytes.frame_bytes);
-  count(o, "noise_runs", t.bytes.noise_runs);
-  count(o, "lost_bytes", t.gaps.lost_bytes);
-  count(o, "gaps", t.gaps.gaps);
-  count(o, "malformed_frames", t.malformed_frames);
-  count(o, "unsolicited", t.unsolicited);
-  count(o, "late_replies", t.late_replies);
-  count(o, "duplicates", t.duplicates);
-  count(o, "byte_count_mismatches", t.count_mismatches);
-  count(o, "unanswered_at_end", t.unanswered_at_end);
-  count(o, "unanswered_after_loss", t.unanswered_after_loss);
-  key(o, "exception_codes");
+  append_json_count(o, "frame_bytes", t.bytes.frame_bytes);
+  append_json_count(o, "noise_runs", t.bytes.noise_runs);
+  append_json_count(o, "lost_bytes", t.gaps.lost_bytes);
+  append_json_count(o, "gaps", t.gaps.gaps);
+  append_json_count(o, "malformed_frames", t.malformed_frames);
+  append_json_count(o, "unsolicited", t.unsolicited);
+  append_json_count(o, "late_replies", t.late_replies);
+  append_json_count(o, "duplicates", t.duplicates);
+  append_json_count(o, "byte_count_mismatches", t.count_mismatches);
+  append_json_count(o, "unanswered_at_end", t.unanswered_at_end);
+  append_json_count(o, "unanswered_after_loss", t.unanswered_after_loss);
+  append_json_key(o, "exception_codes");
   o += '{';
   for (std::size_t i = 0; i < t.exception_codes.size(); ++i) {
     if (i > 0) o += ',';
@@ -170,13 +159,13 @@ void details(std::string& o, const AuditReport& report, const BusReport& t) {
   }
   o += '}';
   if (report.network) {
-    key(o, "network");
+    append_json_key(o, "network");
     o += "{\"flows_analyzed\":";
     append_uint(o, report.flows.flows_analyzed);
-    count(o, "flows_ignored", report.flows.flows_ignored);
-    count(o, "ignored_bytes", report.flows.ignored_bytes);
-    count(o, "retransmitted_bytes", report.flows.retransmitted_bytes);
-    count(o, "out_of_order_segments", report.flows.out_of_order_segments);
+    append_json_count(o, "flows_ignored", report.flows.flows_ignored);
+    append_json_count(o, "ignored_bytes", report.flows.ignored_bytes);
+    append_json_count(o, "retransmitted_bytes", report.flows.retransmitted_bytes);
+    append_json_count(o, "out_of_order_segments", report.flows.out_of_order_segments);
     o += '}';
   }
 }
@@ -187,15 +176,15 @@ void write_json_summary(const AuditReport& report, OutputStream& out) {
   const BusReport t = report.totals();
   std::string& o = out.buffer();
   o += "{\"type\":\"summary\"";
-  count(o, "bytes", t.bytes.bytes_in);
-  count(o, "frames", t.bytes.frames);
-  count(o, "requests", t.requests);
-  count(o, "responses", t.responses);
-  count(o, "bad_checks", t.bytes.bad_frames);
-  count(o, "timeouts", t.timeouts);
-  count(o, "noise_bytes", t.bytes.noise_bytes);
-  count(o, "exceptions", t.exceptions);
-  key(o, "latency_ms");
+  append_json_count(o, "bytes", t.bytes.bytes_in);
+  append_json_count(o, "frames", t.bytes.frames);
+  append_json_count(o, "requests", t.requests);
+  append_json_count(o, "responses", t.responses);
+  append_json_count(o, "bad_checks", t.bytes.bad_frames);
+  append_json_count(o, "timeouts", t.timeouts);
+  append_json_count(o, "noise_bytes", t.bytes.noise_bytes);
+  append_json_count(o, "exceptions", t.exceptions);
+  append_json_key(o, "latency_ms");
   distribution(o, report.latency);
   stations(o, report);
   details(o, report, t);

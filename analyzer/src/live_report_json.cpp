@@ -5,26 +5,15 @@
 namespace pvtap::analyzer {
 namespace {
 
-void member(std::string& o, std::string_view name) {
-  o += ",\"";
-  o += name;
-  o += "\":";
-}
-
-void number(std::string& o, std::string_view name, std::uint64_t value) {
-  member(o, name);
-  append_uint(o, value);
-}
-
 void text(std::string& o, std::string_view name, std::string_view value) {
-  member(o, name);
+  append_json_key(o, name);
   append_json_string(o, value);
 }
 
 // A note that is absent is null, so that `jq 'select(.x)'` finds only the real ones.
 void note(std::string& o, std::string_view name, std::string_view value) {
   if (value.empty()) {
-    member(o, name);
+    append_json_key(o, name);
     o += "null";
   } else {
     text(o, name, value);
@@ -33,7 +22,7 @@ void note(std::string& o, std::string_view name, std::string_view value) {
 
 // "line_errors":{"framing":0,...}, or null with "line_errors_note" saying why.
 void line_errors(std::string& o, const DeviceReport& d) {
-  member(o, "line_errors");
+  append_json_key(o, "line_errors");
   if (!d.line_errors) {
     o += "null";
     text(o, "line_errors_note", d.line_errors_note);
@@ -42,10 +31,10 @@ void line_errors(std::string& o, const DeviceReport& d) {
   const LineErrorCounts& e = *d.line_errors;
   o += "{\"framing\":";
   append_uint(o, e.framing);
-  number(o, "parity", e.parity);
-  number(o, "overrun", e.overrun);
-  number(o, "buffer_overrun", e.buffer_overrun);
-  number(o, "break", e.breaks);
+  append_json_count(o, "parity", e.parity);
+  append_json_count(o, "overrun", e.overrun);
+  append_json_count(o, "buffer_overrun", e.buffer_overrun);
+  append_json_count(o, "break", e.breaks);
   o += '}';
 }
 
@@ -54,9 +43,9 @@ void device(std::string& o, const DeviceReport& d) {
   append_json_string(o, d.path);
   text(o, "adapter", d.adapter);
   text(o, "line", d.line);
-  number(o, "reads", d.reads);
-  number(o, "bytes", d.bytes);
-  member(o, "latency_timer_ms");
+  append_json_count(o, "reads", d.reads);
+  append_json_count(o, "bytes", d.bytes);
+  append_json_key(o, "latency_timer_ms");
   if (d.latency_timer_ms) {
     append_int(o, *d.latency_timer_ms);
   } else {
@@ -64,17 +53,17 @@ void device(std::string& o, const DeviceReport& d) {
   }
   note(o, "latency_note", d.latency_note);
   line_errors(o, d);
-  number(o, "outages", d.outages);
-  member(o, "outage_seconds");
+  append_json_count(o, "outages", d.outages);
+  append_json_key(o, "outage_seconds");
   append_fixed(o, d.outage_seconds, 3);
-  member(o, "lost_at_end");
+  append_json_key(o, "lost_at_end");
   o += d.lost_at_end ? "true" : "false";
   note(o, "last_error", d.last_error);
   o += '}';
 }
 
 void optional_number(std::string& o, std::string_view name, std::optional<std::uint64_t> v) {
-  member(o, name);
+  append_json_key(o, name);
   if (v) {
     append_uint(o, *v);
   } else {
@@ -83,12 +72,12 @@ void optional_number(std::string& o, std::string_view name, std::optional<std::u
 }
 
 void interface(std::string& o, const InterfaceReport& i) {
-  member(o, "interface");
+  append_json_key(o, "interface");
   o += "{\"name\":";
   append_json_string(o, i.name);
   text(o, "filter", i.filter);
   text(o, "link_type", i.link_type);
-  number(o, "packets", i.packets);
+  append_json_count(o, "packets", i.packets);
   optional_number(o, "dropped", i.dropped);
   optional_number(o, "interface_dropped", i.interface_dropped);
   o += '}';
@@ -98,12 +87,12 @@ void interface(std::string& o, const InterfaceReport& i) {
 
 void append_live_sources_json(const LiveSources& live, std::string& o) {
   if (!live.active()) return;
-  member(o, "live_seconds");
+  append_json_key(o, "live_seconds");
   append_fixed(o, live.seconds, 3);
-  member(o, "stopped_by_signal");
+  append_json_key(o, "stopped_by_signal");
   o += live.stopped_by_signal ? "true" : "false";
   if (!live.devices.empty()) {
-    member(o, "devices");
+    append_json_key(o, "devices");
     o += '[';
     for (std::size_t k = 0; k < live.devices.size(); ++k) {
       if (k > 0) o += ',';

@@ -118,6 +118,17 @@ void append_hex_byte(std::string& out, std::uint8_t value) {
   out += kUpper[value & 0xF];
 }
 
+void append_json_key(std::string& out, std::string_view name) {
+  out += ",\"";
+  out += name;
+  out += "\":";
+}
+
+void append_json_count(std::string& out, std::string_view name, std::uint64_t value) {
+  append_json_key(out, name);
+  append_uint(out, value);
+}
+
 void append_json_string(std::string& out, std::string_view text) {
   out += '"';
   // Names and units rarely need escapes: copy runs of plain characters at once.

@@ -22,6 +22,10 @@ void append_hex(std::string& out, std::span<const std::uint8_t> bytes);
 void append_spaced_hex(std::string& out, std::span<const std::uint8_t> bytes);
 // A JSON string literal with quotes and escapes.
 void append_json_string(std::string& out, std::string_view text);
+// The next member's name of a JSON object already open: `,"name":`.
+void append_json_key(std::string& out, std::string_view name);
+// `,"name":123`.
+void append_json_count(std::string& out, std::string_view name, std::uint64_t value);
 // A CSV field, quoted when it holds a comma, quote or line break (RFC 4180).
 void append_csv_field(std::string& out, std::string_view text);
 // "0x1F".
