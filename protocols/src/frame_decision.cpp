@@ -79,8 +79,8 @@ class CandidateChecker {
 
 Decision decide_at(const DecisionInput& in) {
   const CandidateList cands = frame_candidates(in.bytes, hint_at(in, 0), in.dialects);
-  // Silence after the last byte rules out RTU frames that would need more bytes.
-  const bool more_possible = !in.final && !in.silence_after;
+  // A long silence after the last byte rules out frames that would need more bytes.
+  const bool more_possible = !in.final && !in.give_up;
   bool waiting = cands.need_header > 0 && more_possible;
   CandidateChecker checker(in.bytes);
   for (std::size_t i = 0; i < cands.size; ++i) {

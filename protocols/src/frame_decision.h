@@ -17,6 +17,7 @@ struct DecisionInput {
   DialectSet dialects;
   bool final = false;          // no further bytes will follow these
   bool silence_after = false;  // trusted silence of t3.5 after the last buffered byte
+  bool give_up = false;        // silent so long that no more bytes of a frame will come
   bool after_frame = false;    // the previous byte ended a frame (or input starts here)
 };
 

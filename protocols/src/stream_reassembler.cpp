@@ -31,6 +31,7 @@ struct StreamReassembler::Impl {
   std::size_t head = 0;             // first undecided byte
   std::size_t noise_begin = 0;      // pending noise run is [noise_begin, head)
   bool silence_after = false;
+  bool give_up = false;     // see ReassemblerOptions::give_up_after
   bool after_frame = true;  // input starts here: as good a frame boundary as a frame's end
 
   std::uint64_t offset_of(std::size_t index) const { return buffer_offset + index; }
@@ -88,6 +89,7 @@ struct StreamReassembler::Impl {
       in.dialects = options.dialects;
       in.final = final || in.bytes.size() > kMaxLookahead;
       in.silence_after = silence_after;
+      in.give_up = give_up;
       in.after_frame = after_frame;
       const detail::Decision d = detail::decide_at(in);
       if (d.kind == detail::Decision::Kind::Wait) break;
@@ -123,6 +125,7 @@ void StreamReassembler::feed(const BusChunk& chunk) {
   m.totals.bytes_in += chunk.bytes.size();
   // A silence before this chunk was already judged; decisions now see the new bytes.
   m.silence_after = false;
+  m.give_up = false;
   m.timeline.add(m.offset_of(m.buffer.size()), chunk.bytes.size(), chunk.time, chunk.direction);
   m.process(false);
 }
@@ -132,6 +135,7 @@ void StreamReassembler::idle(double now) {
   if (m.head == m.buffer.size() && m.noise_begin == m.head) return;
   if (!m.timeline.silent_since_last_byte(now)) return;
   m.silence_after = true;
+  m.give_up = m.timeline.silent_since_last_byte(now - m.options.give_up_after);
   m.process(false);
   // Noise ends where the silence begins: report it now rather than with the next frame.
   if (m.head == m.buffer.size()) m.flush_noise();

@@ -60,16 +60,55 @@ TEST(StreamReassembler, SilenceAfterABadFrameResolvesItWhileLive) {
   EXPECT_EQ(sink.events[0].bytes, kBadEcho);
 }
 
-TEST(StreamReassembler, SilenceReportsTrailingNoiseAtOnce) {
+TEST(StreamReassembler, TrailingNoiseIsReportedOnceFramesAreGivenUp) {
   const BusTiming timing(9600);
   test::CapturingSink sink;
   StreamReassembler r({}, sink);
-  const auto noise = hex_bytes("00 00 07");
+  const auto noise = hex_bytes("00 00 07");  // 07 could begin a request to station 7
   r.feed(BusChunk{noise, 5.0, Direction::Unknown});
   r.idle(5.0 + 2 * timing.t35);
+  EXPECT_EQ(r.pending_bytes(), 3u) << "a t3.5 silence does not give up a frame yet";
+  r.idle(5.0 + ReassemblerOptions{}.give_up_after + 2 * timing.t35);
   ASSERT_EQ(sink.events.size(), 1u);
   EXPECT_FALSE(sink.events[0].is_frame);
   EXPECT_EQ(sink.events[0].bytes, noise);
+}
+
+// A live clock reads bytes late when the OS is busy: a frame sent whole can arrive in two
+// reads with a silence longer than t3.5 between them. Its good check still makes it a frame.
+TEST(StreamReassembler, AGoodFrameWhoseTailComesLateIsStillAFrameWhileLive) {
+  const BusTiming timing(9600);
+  for (const auto& frame : {kAsciiRequest, kGoodRequest}) {
+    test::CapturingSink sink;
+    StreamReassembler r({}, sink);
+    const std::span<const std::uint8_t> bytes(frame);
+    r.feed(BusChunk{bytes.first(bytes.size() - 2), 10.0, Direction::Unknown});
+    r.idle(10.0 + 0.020);
+    EXPECT_TRUE(sink.events.empty());
+    r.feed(BusChunk{bytes.last(2), 10.0 + 0.020, Direction::Unknown});
+    ASSERT_EQ(sink.events.size(), 1u);
+    EXPECT_TRUE(sink.events[0].is_frame);
+    EXPECT_TRUE(sink.events[0].frame.check.ok);
+    EXPECT_EQ(sink.events[0].bytes, frame);
+    EXPECT_GT(sink.events[0].frame.max_inner_gap, timing.t35);
+  }
+}
+
+// The same frame whose tail never comes: given up as noise after give_up_after.
+TEST(StreamReassembler, AFrameWithoutItsTailIsGivenUpAfterALongSilence) {
+  const BusTiming timing(9600);
+  test::CapturingSink sink;
+  ReassemblerOptions options;
+  options.give_up_after = 0.1;
+  StreamReassembler r(options, sink);
+  const std::span<const std::uint8_t> bytes(kGoodRequest);
+  r.feed(BusChunk{bytes.first(6), 10.0, Direction::Unknown});
+  r.idle(10.0 + 0.05);
+  EXPECT_TRUE(sink.events.empty());
+  r.idle(10.0 + 0.1 + timing.t35);
+  ASSERT_EQ(sink.events.size(), 1u);
+  EXPECT_FALSE(sink.events[0].is_frame);
+  EXPECT_EQ(r.pending_bytes(), 0u);
 }
 
 TEST(StreamReassembler, DiscontinuityKeepsFramesFromSpanningLostData) {

@@ -73,6 +73,12 @@ struct ReassemblerOptions {
   // Bits per character on the wire: 10 for 8N1, 11 with a parity bit or a second stop bit.
   unsigned bits_per_char = 10;
   TimestampTrust timestamps = TimestampTrust::Auto;
+  // Live capture (idle()): how long the bus must stay silent before bytes that could still
+  // begin a frame are given up as noise. A t3.5 silence already ends a frame with a bad
+  // check; giving up a frame that is only missing its last bytes needs longer, because a
+  // live clock reads bytes late by the OS's scheduling (a kernel worker delayed by a tick
+  // leaves a silence inside a frame that was sent whole). Offline, the next bytes decide.
+  double give_up_after = 0.25;
 };
 
 // ReassemblerTotals: byte accounting; bytes_in == frame_bytes + noise_bytes + pending bytes.
