@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "event_writer.h"
@@ -19,6 +20,13 @@ struct SerialLine {
   // Bits on the wire per character: start, 8 data, parity, stop.
   unsigned bits_per_char() const {
     return 9u + (parity == 'N' ? 0u : 1u) + static_cast<unsigned>(stop_bits);
+  }
+  // The letter for a parity as the command line and Wireshark's dialog name it: "none",
+  // "even" or "odd".
+  static char parity_letter(std::string_view name) {
+    if (name == "even") return 'E';
+    if (name == "odd") return 'O';
+    return 'N';
   }
 };
 

@@ -9,9 +9,7 @@
 #include <cstdio>
 #include <cstring>
 
-#include "stop_signal.h"
 #include "summary_writers.h"
-#include "wall_clock.h"
 
 namespace pvtap::analyzer {
 namespace {
@@ -142,13 +140,6 @@ int AuditRun::run() {
     return kExitBadInput;
   }
   return options_.fail_on_errors && has_findings(report) ? kExitFindings : kExitOk;
-}
-
-bool AuditRun::live_should_stop(double started) const {
-  if (stop_requested()) return true;
-  const LiveOptions& live = options_.live;
-  if (live.count > 0 && frames_seen_ >= live.count) return true;
-  return live.duration > 0 && wall_clock_seconds() - started >= live.duration;
 }
 
 bool AuditRun::read_capture(const std::string& path, std::uint64_t done_before) {

@@ -59,10 +59,14 @@ class AuditRun : public BusDirectory {
   // source could not be opened at the start.
   bool read_devices();         // device_reading.cpp
   bool read_live_interface();  // interface_reading.cpp
+  // Shared by both (live_reading.cpp).
+  bool count_reached() const;  // --count frames seen
+  bool live_should_stop(double started) const;
+  void flush_live_output(double now);
+  void show_status(double now);
+  void end_live_capture(double started, double now);
   // Network interface (interface_reading.cpp).
   void after_live_wake(double now);
-  void end_live_capture(InterfaceReport report, double started);
-  bool live_should_stop(double started) const;
   // Serial taps (device_reading.cpp).
   struct LiveTap;
   using LiveTaps = std::vector<std::unique_ptr<LiveTap>>;
@@ -74,7 +78,6 @@ class AuditRun : public BusDirectory {
   void revive_taps(LiveTaps& taps, double now);
   double next_wake(const LiveTaps& taps, double now, double started) const;
   void after_wake(LiveTaps& taps, double now);
-  void show_status(double now);
   void on_record(InputKind kind, const CapturedPacket& packet);
   void on_network_packet(const CapturedPacket& packet);
   void on_exported_pdu(const CapturedPacket& packet);

@@ -35,6 +35,16 @@ std::string open_failure(const char* pcap_reason) {
 
 }  // namespace
 
+CapturedPacket packet_of(const pcap_pkthdr& header, const unsigned char* data, bool nanoseconds) {
+  CapturedPacket packet;
+  const double fraction = nanoseconds ? 1e-9 : 1e-6;
+  packet.time =
+      static_cast<double>(header.ts.tv_sec) + static_cast<double>(header.ts.tv_usec) * fraction;
+  packet.bytes = std::span<const std::uint8_t>(data, header.caplen);
+  packet.length_on_wire = header.len;
+  return packet;
+}
+
 CaptureFile::~CaptureFile() {
   if (pcap_ != nullptr) {
     pcap_close(pcap_);  // closes file_ too
@@ -79,11 +89,7 @@ CaptureFile::Next CaptureFile::next(CapturedPacket& packet) {
   const int rc = pcap_next_ex(pcap_, &header, &data);
   if (rc == 1) {
     ++packets_;
-    // With nanosecond precision libpcap puts nanoseconds in tv_usec.
-    packet.time =
-        static_cast<double>(header->ts.tv_sec) + static_cast<double>(header->ts.tv_usec) * 1e-9;
-    packet.bytes = std::span<const std::uint8_t>(data, header->caplen);
-    packet.length_on_wire = header->len;
+    packet = packet_of(*header, data, true);  // opened with nanosecond precision
     return Next::Packet;
   }
   if (rc == PCAP_ERROR_BREAK) return Next::End;
@@ -92,14 +98,7 @@ CaptureFile::Next CaptureFile::next(CapturedPacket& packet) {
 }
 
 std::string CaptureFile::link_type_name() const {
-  if (link_type_ >= DLT_USER0 && link_type_ <= DLT_USER15) {
-    return "USER" + std::to_string(link_type_ - DLT_USER0);
-  }
-  const char* name = pcap_datalink_val_to_name(link_type_);
-  const char* description = pcap_datalink_val_to_description(link_type_);
-  std::string out = name != nullptr ? name : "link type " + std::to_string(link_type_);
-  if (description != nullptr) out += std::string(" (") + description + ")";
-  return out;
+  return pvtap::analyzer::link_type_name(link_type_);
 }
 
 std::uint64_t CaptureFile::position() const {

@@ -7,6 +7,7 @@
 #include <string>
 
 typedef struct pcap pcap_t;
+struct pcap_pkthdr;
 
 namespace pvtap::analyzer {
 
@@ -16,6 +17,10 @@ struct CapturedPacket {
   std::span<const std::uint8_t> bytes;
   std::uint32_t length_on_wire = 0;
 };
+
+// The packet of a libpcap record; `nanoseconds` when the handle was opened with nanosecond
+// precision (libpcap then puts nanoseconds in tv_usec).
+CapturedPacket packet_of(const pcap_pkthdr& header, const unsigned char* data, bool nanoseconds);
 
 class CaptureFile {
  public:

@@ -4,13 +4,11 @@
 #include <poll.h>
 
 #include <algorithm>
-#include <cmath>
 #include <cstdio>
 
 #include "audit_bus.h"
 #include "device_tap.h"
 #include "pvtap/bus_timing.h"
-#include "stop_signal.h"
 #include "wall_clock.h"
 
 namespace pvtap::analyzer {
@@ -38,14 +36,6 @@ constexpr int kReadsPerWake = 16;
 constexpr double kTick = 0.05;
 // Line error counters are sampled this often, so that an unplug loses little of them.
 constexpr double kLineErrorSampleEvery = 1.0;
-
-timespec timespec_of(double seconds) {
-  seconds = std::max(seconds, 0.0);
-  timespec t{};
-  t.tv_sec = static_cast<time_t>(seconds);
-  t.tv_nsec = static_cast<long>((seconds - std::floor(seconds)) * 1e9);
-  return t;
-}
 
 }  // namespace
 
@@ -108,13 +98,9 @@ bool AuditRun::read_devices() {
       next_sample = now + kLineErrorSampleEvery;
     }
   }
-  status_->clear();
   now = wall_clock_seconds();
   for (auto& tap : taps) live_.devices.push_back(tap->device.report(now));
-  live_.seconds = now - started;
-  live_.stopped_by_signal =
-      stop_requested() && !(options_.live.count > 0 && frames_seen_ >= options_.live.count);
-  last_time_ = now;
+  end_live_capture(started, now);
   return true;
 }
 
@@ -133,7 +119,7 @@ void AuditRun::wait_for_taps(LiveTaps& taps, double wake_at) {
   for (const auto& tap : taps) {
     if (tap->device.fd() >= 0) fds.push_back(pollfd{tap->device.fd(), POLLIN, 0});
   }
-  const timespec timeout = timespec_of(wake_at - wall_clock_seconds());
+  const timespec timeout = timeout_until(wake_at);
   // EINTR (a stop signal) just ends the wait; the loop then sees the request.
   ::ppoll(fds.data(), fds.size(), &timeout, nullptr);
 }
@@ -189,29 +175,7 @@ void AuditRun::after_wake(LiveTaps& taps, double now) {
     // A tap that is gone has nothing unread: its timeouts run on the clock.
     tap->bus->idle(tap->device.fd() >= 0 ? tap->quiet_until : now);
   }
-  if (!out_.buffer().empty()) {
-    status_->clear();
-    out_.flush();
-  }
-  if (status_->due(now)) show_status(now);
-}
-
-void AuditRun::show_status(double now) {
-  ReassemblerTotals sum;
-  for (const auto& bus : buses_) {
-    const ReassemblerTotals t = bus->session.totals();
-    sum.bytes_in += t.bytes_in;
-    sum.frames += t.frames;
-    sum.bad_frames += t.bad_frames;
-  }
-  char text[160];
-  std::snprintf(
-      text, sizeof text, "%llu bytes, %llu frames, %llu bad checks, %llu timeouts, last latency %s",
-      static_cast<unsigned long long>(sum.bytes_in), static_cast<unsigned long long>(sum.frames),
-      static_cast<unsigned long long>(sum.bad_frames),
-      static_cast<unsigned long long>(timeouts_seen_),
-      last_latency_ ? (std::to_string(std::lround(*last_latency_ * 1e3)) + " ms").c_str() : "-");
-  status_->show(now, text);
+  flush_live_output(now);
 }
 
 }  // namespace pvtap::analyzer

@@ -32,12 +32,6 @@ void stop_on_broken_fifo() {
   sigaction(SIGPIPE, &action, nullptr);
 }
 
-char parity_letter(const std::string& parity) {
-  if (parity == "even") return 'E';
-  if (parity == "odd") return 'O';
-  return 'N';
-}
-
 // Why the call cannot start a capture; empty when it can.
 std::string call_problem(const ExtcapCall& call, const DiscoveredPort* port) {
   if (call.interface.empty()) return "--capture needs --extcap-interface";
@@ -61,7 +55,7 @@ AuditOptions capture_options(const DiscoveredPort& port, const ExtcapSettings& s
                              const std::string& fifo) {
   AuditOptions o;
   o.live.devices = {port.path};
-  o.live.line.parity = parity_letter(settings.parity);
+  o.live.line.parity = SerialLine::parity_letter(settings.parity);
   o.live.line.stop_bits = settings.stop_bits == "2" ? 2 : 1;
   o.baud = static_cast<std::uint32_t>(std::stoul(settings.baud));
   o.dialect = settings.dialect;

@@ -5,12 +5,10 @@
 #include <poll.h>
 
 #include <algorithm>
-#include <cmath>
 #include <cstdio>
 
 #include "audit_bus.h"
 #include "live_capture.h"
-#include "stop_signal.h"
 #include "wall_clock.h"
 
 namespace pvtap::analyzer {
@@ -24,10 +22,7 @@ constexpr int kDrainDispatches = 64;
 
 // Waits until a packet may be there, `wake_at` comes or a stop signal interrupts.
 void wait_for_packets(int fd, double wake_at) {
-  const double seconds = std::max(wake_at - wall_clock_seconds(), 0.0);
-  timespec timeout{};
-  timeout.tv_sec = static_cast<time_t>(seconds);
-  timeout.tv_nsec = static_cast<long>((seconds - std::floor(seconds)) * 1e9);
+  const timespec timeout = timeout_until(wake_at);
   pollfd waiting{fd, POLLIN, 0};
   // Without a selectable descriptor the tick alone paces the reads.
   ::ppoll(fd >= 0 ? &waiting : nullptr, fd >= 0 ? 1 : 0, &timeout, nullptr);
@@ -104,29 +99,15 @@ bool AuditRun::read_live_interface() {
     after_live_wake(taken < kPacketsPerWake ? now : last_time_);
   }
   // --count stops at a frame: what came after it stays out.
-  if (!(options_.live.count > 0 && frames_seen_ >= options_.live.count)) drain(capture, handler);
-  end_live_capture(interface_report(capture, name), started);
+  if (!count_reached()) drain(capture, handler);
+  live_.interface = interface_report(capture, name);
+  end_live_capture(started, wall_clock_seconds());
   return true;
 }
 
 void AuditRun::after_live_wake(double now) {
   for (auto& bus : buses_) bus->session.idle(now);
-  // Events go out as they happen, not when the buffer fills.
-  if (!out_.buffer().empty()) {
-    status_->clear();
-    out_.flush();
-  }
-  if (status_->due(now)) show_status(now);
-}
-
-void AuditRun::end_live_capture(InterfaceReport report, double started) {
-  status_->clear();
-  const double now = wall_clock_seconds();
-  live_.interface = std::move(report);
-  live_.seconds = now - started;
-  live_.stopped_by_signal =
-      stop_requested() && !(options_.live.count > 0 && frames_seen_ >= options_.live.count);
-  last_time_ = std::max(last_time_, now);
+  flush_live_output(now);
 }
 
 }  // namespace pvtap::analyzer

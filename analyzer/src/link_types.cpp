@@ -1,5 +1,7 @@
 #include "link_types.h"
 
+#include <pcap/pcap.h>
+
 namespace pvtap::analyzer {
 
 std::optional<InputKind> input_kind_of(int link_type) {
@@ -22,6 +24,17 @@ std::optional<InputKind> input_kind_of(int link_type) {
   }
   if (link_type >= dlt::kUser0 && link_type <= dlt::kUser15) return InputKind::Serial;
   return std::nullopt;
+}
+
+std::string link_type_name(int link_type) {
+  if (link_type >= DLT_USER0 && link_type <= DLT_USER15) {
+    return "USER" + std::to_string(link_type - DLT_USER0);
+  }
+  const char* name = pcap_datalink_val_to_name(link_type);
+  const char* description = pcap_datalink_val_to_description(link_type);
+  std::string out = name != nullptr ? name : "link type " + std::to_string(link_type);
+  if (description != nullptr) out += std::string(" (") + description + ")";
+  return out;
 }
 
 std::string supported_link_types_text() {

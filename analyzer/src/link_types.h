@@ -32,6 +32,9 @@ enum class InputKind {
 
 std::optional<InputKind> input_kind_of(int link_type);
 
+// libpcap's name for a link type, for reports: "EN10MB (Ethernet)", "USER0".
+std::string link_type_name(int link_type);
+
 // "Ethernet (1), Linux cooked SLL (113), ..." for error messages and --help.
 std::string supported_link_types_text();
 

@@ -186,21 +186,11 @@ void LiveCapture::on_packet(unsigned char* user, const pcap_pkthdr* header,
                             const unsigned char* data) {
   auto& self = *reinterpret_cast<LiveCapture*>(user);
   ++self.packets_;
-  CapturedPacket packet;
-  const double fraction = self.nanoseconds_ ? 1e-9 : 1e-6;
-  packet.time =
-      static_cast<double>(header->ts.tv_sec) + static_cast<double>(header->ts.tv_usec) * fraction;
-  packet.bytes = std::span<const std::uint8_t>(data, header->caplen);
-  packet.length_on_wire = header->len;
-  (*self.handler_)(packet);
+  (*self.handler_)(packet_of(*header, data, self.nanoseconds_));
 }
 
 std::string LiveCapture::link_type_name() const {
-  const char* name = pcap_datalink_val_to_name(link_type_);
-  const char* description = pcap_datalink_val_to_description(link_type_);
-  std::string out = name != nullptr ? name : "link type " + std::to_string(link_type_);
-  if (description != nullptr) out += std::string(" (") + description + ")";
-  return out;
+  return pvtap::analyzer::link_type_name(link_type_);
 }
 
 LiveDrops LiveCapture::drops() const {

@@ -61,7 +61,6 @@ SerialPort::~SerialPort() {
 
 bool SerialPort::open(const std::string& path, std::uint32_t baud, SerialLine line) {
   close();
-  path_ = path;
   if (!speed_of(baud)) {
     error_ = "unsupported speed " + std::to_string(baud) +
              " baud (a serial tap takes: " + supported_speeds_text() + ")";

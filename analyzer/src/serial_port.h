@@ -40,7 +40,6 @@ class SerialPort {
  private:
   bool configure(std::uint32_t baud, SerialLine line);
   int fd_ = -1;
-  std::string path_;
   std::string error_;
 };
 

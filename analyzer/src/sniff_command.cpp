@@ -107,7 +107,7 @@ CLI::App* add_sniff_command(CLI::App& app, SniffCommandLine& command) {
 
 int run_sniff(SniffCommandLine& command) {
   AuditOptions& o = command.options;
-  o.live.line.parity = command.parity == "even" ? 'E' : command.parity == "odd" ? 'O' : 'N';
+  o.live.line.parity = SerialLine::parity_letter(command.parity);
   o.live.status_line = ::isatty(STDERR_FILENO) == 1 && o.format_name == "text";
   return run_live_capture(o);
 }
