@@ -53,13 +53,19 @@ class TsharkHome:
         self._hand_over()
         return path
 
-    def run(self, args, check=True):
-        command = ["env", "-i", "HOME=" + self.home, "PATH=/usr/sbin:/usr/bin:/sbin:/bin",
-                   "LC_ALL=C.UTF-8", "tshark"] + list(args)
+    def environment(self):
+        """tshark's whole environment (it starts with none)."""
+        return ["HOME=" + self.home, "PATH=/usr/sbin:/usr/bin:/sbin:/bin", "LC_ALL=C.UTF-8"]
+
+    def command(self, args):
+        command = ["env", "-i"] + self.environment() + ["tshark"] + list(args)
         if os.geteuid() == 0:
             command = ["setpriv", "--reuid=%d" % NOBODY, "--regid=%d" % NOBODY,
                        "--clear-groups"] + command
-        result = subprocess.run(command, capture_output=True, text=True, timeout=120)
+        return command
+
+    def run(self, args, check=True):
+        result = subprocess.run(self.command(args), capture_output=True, text=True, timeout=120)
         if check and result.returncode != 0:
             raise AssertionError("tshark %s failed (%d):\n%s" % (" ".join(args), result.returncode,
                                                                  result.stderr))

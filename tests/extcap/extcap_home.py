@@ -60,23 +60,8 @@ class ExtcapHome(tshark_runner.TsharkHome):
 
     def environment(self):
         # tshark starts its extcaps with its own environment; that is how the ports reach pvtap.
-        return ["HOME=" + self.home, "PATH=/usr/sbin:/usr/bin:/sbin:/bin", "LC_ALL=C.UTF-8",
-                "WIRESHARK_EXTCAP_DIR=" + self.extcap_dir,
-                "PVTAP_SERIAL_PORTS=" + ":".join(self.serial_ports)]
-
-    def command(self, args):
-        command = ["env", "-i"] + self.environment() + ["tshark"] + list(args)
-        if os.geteuid() == 0:
-            command = ["setpriv", "--reuid=%d" % tshark_runner.NOBODY,
-                       "--regid=%d" % tshark_runner.NOBODY, "--clear-groups"] + command
-        return command
-
-    def run(self, args, check=True):
-        result = subprocess.run(self.command(args), capture_output=True, text=True, timeout=120)
-        if check and result.returncode != 0:
-            raise AssertionError("tshark %s failed (%d):\n%s" % (" ".join(args), result.returncode,
-                                                                 result.stderr))
-        return result
+        return super().environment() + ["WIRESHARK_EXTCAP_DIR=" + self.extcap_dir,
+                                        "PVTAP_SERIAL_PORTS=" + ":".join(self.serial_ports)]
 
     def start(self, args):
         """tshark in the background, its output in pipes."""
