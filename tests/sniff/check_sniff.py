@@ -6,7 +6,7 @@ the master side of a pty at the bus's baud (pty_bus.py) while pvtap sniffs the s
 then compares what pvtap reported with the truth.
 
 usage: check_sniff.py --pvtap PVTAP --sim PVTAP_SIM --scratch DIR CHECK
-checks: truth passive unplug two_buses stop_conditions status_line bad_devices
+checks: truth passive killed unplug two_buses stop_conditions status_line bad_devices
 """
 import argparse
 import json
@@ -215,6 +215,29 @@ def check_truth(args):
     return bad.exit_status("truth")
 
 
+def check_killed(args):
+    """An abrupt end (SIGKILL: no handler runs) loses nothing --write already had: the pcap
+    reads back whole, holding at least every frame pvtap had reported, in the same order."""
+    bad = Failures()
+    truth = simulate(args, "killed", "--dialect", "gsl,ascii", "--inverters", "2", "--duration",
+                     "2", "--seed", "11")
+    pcap = os.path.join(args.scratch, "killed.pcap")
+    pty = pty_bus.Pty()
+    sniffer = Sniffer(args.pvtap, args.scratch, "killed",
+                      ["--device", pty.path, "--format", "jsonl", "--write", pcap])
+    sniffer.wait_open(pty.path)
+    play_truth(pty, truth)
+    bad.check(sniffer.stop(signal.SIGKILL) == -signal.SIGKILL, "pvtap outlived SIGKILL")
+    pty.close()
+    reported = [frame_key(f, "raw") for f in frames_of(sniffer.events())]
+    read_back = [frame_key(f, "raw") for f in audit_frames(args, pcap)]
+    bad.check(len(reported) > 0, "pvtap reported no frame before it was killed")
+    bad.check(read_back[:len(reported)] == reported,
+              f"the pcap holds {len(read_back)} frames that do not start with the "
+              f"{len(reported)} reported")
+    return bad.exit_status("killed")
+
+
 def descriptor_flags(pid, fd):
     with open(f"/proc/{pid}/fdinfo/{fd}", encoding="ascii") as f:
         for line in f:
@@ -413,6 +436,7 @@ def check_bad_devices(args):
 CHECKS = {
     "truth": check_truth,
     "passive": check_passive,
+    "killed": check_killed,
     "unplug": check_unplug,
     "two_buses": check_two_buses,
     "stop_conditions": check_stop_conditions,
