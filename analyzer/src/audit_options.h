@@ -57,6 +57,9 @@ struct AuditOptions {
   DialectSet dialects = DialectSet::all();
   std::uint32_t baud = 9600;
   double timeout = 1.0;  // seconds
+  // A silence this long between two TCP/UDP segments of one direction proves a frame
+  // boundary (see ReassemblerOptions::boundary_gap); 0 never.
+  double gateway_gap_ms = 50;
   std::vector<std::uint16_t> ports;
   GslIdReading gsl_ids = GslIdReading::Decimal;
   std::vector<std::string> maps;

@@ -37,6 +37,14 @@ void add_protocol_options(CLI::App& audit, AuditOptions& o, BaudRange baud_range
       ->type_name("SECONDS")
       ->default_str("1");
   audit
+      .add_option("--gateway-gap", o.gateway_gap_ms,
+                  "milliseconds of silence between two TCP/UDP segments of one direction that "
+                  "prove a frame boundary: a gateway packs bytes for a shorter time than this, so "
+                  "a longer pause was silence on the bus (0: segment times prove nothing)")
+      ->check(CLI::Range(0.0, 60000.0).description(""))
+      ->type_name("MS")
+      ->default_str("50");
+  audit
       .add_option("--gsl-ids", o.gsl_id_reading,
                   "how GSL register IDs go on the wire: decimal (ID 1050 is 0x041A) or hex "
                   "(1050 is 0x1050)")

@@ -51,6 +51,8 @@ BusSessionOptions AuditRun::tap_session_options(LiveTap& tap) const {
     tap.timestamp_note = "the adapter's USB latency timer is " + std::to_string(*timer.ms) +
                          " ms: reads come in batches too coarse to judge t1.5/t3.5";
     o.reassembler.timestamps = TimestampTrust::Untrusted;
+    // Bytes come late by at most the timer: a longer silence than that plus t3.5 was real.
+    o.reassembler.boundary_gap = *timer.ms * 1e-3 + timing.t35;
     o.timestamp_note = tap.timestamp_note;
   }
   return o;

@@ -7,13 +7,14 @@ namespace {
 
 // Arrival-time noise allowed before calling a chunk "too early" for the baud rate.
 constexpr double kEarlyToleranceChars = 1.0;
-// A silence counts as t3.5 when it is within a tenth of a character of it.
-constexpr double kGapToleranceChars = 0.1;
 
 }  // namespace
 
-ChunkTimeline::ChunkTimeline(const BusTiming& timing, TimestampTrust trust)
-    : timing_(timing), mode_(trust), trusted_(trust != TimestampTrust::Untrusted) {
+ChunkTimeline::ChunkTimeline(const BusTiming& timing, TimestampTrust trust, double boundary_gap)
+    : timing_(timing),
+      mode_(trust),
+      boundary_gap_(boundary_gap),
+      trusted_(trust != TimestampTrust::Untrusted) {
   if (trust == TimestampTrust::Untrusted) reason_ = "timestamps declared too coarse by the source";
 }
 
@@ -72,7 +73,10 @@ double ChunkTimeline::gap_before(std::uint64_t offset) const {
 }
 
 double ChunkTimeline::max_gap_inside(std::uint64_t first, std::uint64_t last) const {
-  if (!trusted_) return 0.0;
+  return trusted_ ? widest_gap_inside(first, last) : 0.0;
+}
+
+double ChunkTimeline::widest_gap_inside(std::uint64_t first, std::uint64_t last) const {
   double widest = 0.0;
   auto it = std::upper_bound(marks_.begin(), marks_.end(), first,
                              [](std::uint64_t o, const Mark& m) { return o < m.end; });
@@ -80,20 +84,6 @@ double ChunkTimeline::max_gap_inside(std::uint64_t first, std::uint64_t last) co
     if (it->start > first) widest = std::max(widest, it->gap_before);
   }
   return widest;
-}
-
-bool ChunkTimeline::silence_before(std::uint64_t offset) const {
-  return trusted_ && gap_before(offset) + kGapToleranceChars * timing_.char_time >= timing_.t35;
-}
-
-bool ChunkTimeline::silence_inside(std::uint64_t first, std::uint64_t last) const {
-  return trusted_ &&
-         max_gap_inside(first, last) + kGapToleranceChars * timing_.char_time >= timing_.t35;
-}
-
-bool ChunkTimeline::silent_since_last_byte(double now) const {
-  return trusted_ && have_previous_ &&
-         now - previous_time_ + kGapToleranceChars * timing_.char_time >= timing_.t35;
 }
 
 }  // namespace pvtap::detail

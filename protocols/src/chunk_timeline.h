@@ -12,7 +12,8 @@ namespace pvtap::detail {
 
 class ChunkTimeline {
  public:
-  ChunkTimeline(const BusTiming& timing, TimestampTrust trust);
+  // `boundary_gap`: see ReassemblerOptions::boundary_gap (already resolved: >= 0).
+  ChunkTimeline(const BusTiming& timing, TimestampTrust trust, double boundary_gap = 0.0);
 
   // Records a chunk of `size` bytes that ends at stream offset `end`.
   void add(std::uint64_t end, std::size_t size, double time, Direction direction);
@@ -44,11 +45,16 @@ class ChunkTimeline {
   // Silence right before the byte at `offset` (0 inside a chunk; < 0 when unknown).
   double gap_before(std::uint64_t offset) const;
   double max_gap_inside(std::uint64_t first, std::uint64_t last) const;
-  // True when timing is trusted and a silence of at least t3.5 precedes `offset`.
-  bool silence_before(std::uint64_t offset) const;
-  // True when timing is trusted and a silence of at least t3.5 lies between first and last.
-  bool silence_inside(std::uint64_t first, std::uint64_t last) const;
-  bool silent_since_last_byte(double now) const;
+  // True when a silence that proves a frame boundary precedes `offset`: t3.5 with trusted
+  // timing, the boundary gap with batched timing.
+  bool silence_before(std::uint64_t offset) const { return proves_boundary(gap_before(offset)); }
+  // True when such a silence lies between first and last.
+  bool silence_inside(std::uint64_t first, std::uint64_t last) const {
+    return proves_boundary(widest_gap_inside(first, last));
+  }
+  bool silent_since_last_byte(double now) const {
+    return have_previous_ && proves_boundary(now - previous_time_);
+  }
 
   bool trusted() const { return trusted_; }
   std::string_view reason() const { return reason_; }
@@ -69,6 +75,13 @@ class ChunkTimeline {
     return search(offset);
   }
   const Mark* search(std::uint64_t offset) const;
+  double widest_gap_inside(std::uint64_t first, std::uint64_t last) const;
+  bool proves_boundary(double gap) const {
+    if (trusted_) return gap + kGapToleranceChars * timing_.char_time >= timing_.t35;
+    return boundary_gap_ > 0 && gap >= boundary_gap_;
+  }
+  // A silence counts as t3.5 when it is within a tenth of a character of it.
+  static constexpr double kGapToleranceChars = 0.1;
   double end_time_in(const Mark& m, std::uint64_t offset) const {
     const std::uint64_t last = m.end - 1;
     const double behind = static_cast<double>(last - (offset < last ? offset : last));
@@ -81,6 +94,7 @@ class ChunkTimeline {
 
   BusTiming timing_;
   TimestampTrust mode_;
+  double boundary_gap_;
   bool trusted_;
   std::string_view reason_;
   std::deque<Mark> marks_;

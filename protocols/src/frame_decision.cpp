@@ -1,11 +1,19 @@
 #include "frame_decision.h"
 
+#include <algorithm>
+
+#include "length_repair.h"
 #include "pvtap/checksums.h"
 
 namespace pvtap::detail {
 namespace {
 
 enum class Evidence : std::uint8_t { Yes, No, Wait };
+
+// A long silence after the last byte rules out frames that would need more bytes.
+bool more_possible(const DecisionInput& in) {
+  return !in.final && !in.give_up;
+}
 
 RoleHint hint_at(const DecisionInput& in, std::size_t index) {
   return role_hint(in.timeline->direction_at(in.offset + index));
@@ -34,18 +42,55 @@ Evidence end_evidence(const DecisionInput& in, std::size_t length) {
   }
   bool incomplete = false;
   if (good_frame_at(in, length, incomplete)) return Evidence::Yes;
-  return (incomplete && !in.final) ? Evidence::Wait : Evidence::No;
+  return (incomplete && more_possible(in)) ? Evidence::Wait : Evidence::No;
 }
 
-Evidence bad_frame_evidence(const DecisionInput& in, const FrameCandidate& c) {
+Evidence bad_frame_evidence(const DecisionInput& in, const FrameCandidate& c, bool pinned) {
   // ENQ/ACK ... EOT delimit an ASCII frame by themselves.
   if (c.dialect == Dialect::Ascii) return Evidence::Yes;
-  if (!in.after_frame && !in.timeline->silence_before(in.offset)) return Evidence::No;
+  if (!pinned) return Evidence::No;
   // RTU frames are sent without pauses: a t3.5 silence inside says this reading is wrong.
   if (in.timeline->silence_inside(in.offset, in.offset + c.length - 1)) return Evidence::No;
   const Evidence end = end_evidence(in, c.length);
   if (end != Evidence::Yes) return end;
   return good_frame_inside(in, c.length) ? Evidence::No : Evidence::Yes;
+}
+
+// PinnedEnd: where the first pinned end after a pinned start lies, if it is known yet.
+struct PinnedEnd {
+  Evidence found = Evidence::No;
+  std::size_t length = 0;
+};
+
+// The first place after the start where a proven silence, a good frame or the end of input
+// ends whatever began there (no further than the longest RTU frame).
+PinnedEnd first_pinned_end(const DecisionInput& in) {
+  const std::size_t limit = std::min(in.bytes.size(), kMaxRtuFrameLength);
+  for (std::size_t q = 1; q <= limit; ++q) {
+    if (in.timeline->silence_before(in.offset + q)) return {Evidence::Yes, q};
+    if (q == in.bytes.size()) {
+      if (in.final || in.silence_after) return {Evidence::Yes, q};
+      return {more_possible(in) ? Evidence::Wait : Evidence::No, 0};
+    }
+    bool incomplete = false;
+    if (good_frame_at(in, q, incomplete)) return {Evidence::Yes, q};
+    if (incomplete && more_possible(in)) return {Evidence::Wait, 0};
+  }
+  return {};
+}
+
+// A pinned start that no reading fits: a frame whose length field was damaged, if the CRC
+// says so.
+Decision repaired_at(const DecisionInput& in) {
+  const PinnedEnd end = first_pinned_end(in);
+  if (end.found == Evidence::Wait) return Decision{Decision::Kind::Wait, {}, {}};
+  if (end.found == Evidence::Yes) {
+    const auto frame = in.bytes.first(end.length);
+    if (const auto c = repaired_reading(frame, hint_at(in, 0), in.dialects)) {
+      return Decision{Decision::Kind::Frame, *c, verify_check(frame, c->dialect)};
+    }
+  }
+  return Decision{Decision::Kind::Noise, {}, {}};
 }
 
 // Checks the candidates one after the other. RTU readings at one position share their first
@@ -75,35 +120,64 @@ class CandidateChecker {
   std::size_t covered_ = 0;
 };
 
-}  // namespace
+// GoodScan: the first reading with a good check, or whether one may still come.
+struct GoodScan {
+  const FrameCandidate* frame = nullptr;
+  FrameCheck check;
+  bool waiting = false;
+};
 
-Decision decide_at(const DecisionInput& in) {
-  const CandidateList cands = frame_candidates(in.bytes, hint_at(in, 0), in.dialects);
-  // A long silence after the last byte rules out frames that would need more bytes.
-  const bool more_possible = !in.final && !in.give_up;
-  bool waiting = cands.need_header > 0 && more_possible;
-  CandidateChecker checker(in.bytes);
+GoodScan find_good(const DecisionInput& in, const CandidateList& cands, CandidateChecker& checker) {
+  GoodScan s;
+  s.waiting = cands.need_header > 0 && more_possible(in);
   for (std::size_t i = 0; i < cands.size; ++i) {
     const FrameCandidate& c = cands.items[i];
     if (c.length > in.bytes.size()) {
-      waiting = waiting || more_possible;
+      s.waiting = s.waiting || more_possible(in);
       continue;
     }
-    const FrameCheck check = checker.check(c);
-    if (check.ok) return Decision{Decision::Kind::Frame, c, check};
+    s.check = checker.check(c);
+    if (s.check.ok) {
+      s.frame = &c;
+      return s;
+    }
   }
-  if (waiting) return Decision{Decision::Kind::Wait, {}, {}};
-  // Only bad readings are left (the rare path): their checks are computed again.
+  return s;
+}
+
+Decision bad_or_noise(const DecisionInput& in, const CandidateList& cands, bool pinned) {
+  // No plausible reading has a good check (the rare path): checks are computed again.
   for (std::size_t i = 0; i < cands.size; ++i) {
     const FrameCandidate& c = cands.items[i];
     if (c.length > in.bytes.size()) continue;
-    const Evidence e = bad_frame_evidence(in, c);
+    const Evidence e = bad_frame_evidence(in, c, pinned);
     if (e == Evidence::Yes) {
       return Decision{Decision::Kind::Frame, c, verify_check(in.bytes.first(c.length), c.dialect)};
     }
     if (e == Evidence::Wait) return Decision{Decision::Kind::Wait, {}, {}};
   }
+  if (pinned && in.dialects.rtu()) return repaired_at(in);
   return Decision{Decision::Kind::Noise, {}, {}};
+}
+
+}  // namespace
+
+Decision decide_at(const DecisionInput& in) {
+  const RoleHint hint = hint_at(in, 0);
+  CandidateChecker checker(in.bytes);
+  // Plausible readings first: a good check on an implausible reading (8 bytes of a longer
+  // reply whose CRC matches by chance) must not beat the real frame.
+  const CandidateList plausible = frame_candidates(in.bytes, hint, in.dialects);
+  const GoodScan first = find_good(in, plausible, checker);
+  if (first.frame) return Decision{Decision::Kind::Frame, *first.frame, first.check};
+  if (first.waiting) return Decision{Decision::Kind::Wait, {}, {}};
+  const bool pinned = in.after_frame || in.timeline->silence_before(in.offset);
+  if (!pinned) return bad_or_noise(in, plausible, false);
+  // A pinned start: structure alone decides, whatever the fields say, but a reading with
+  // implausible fields needs both ends pinned even when its check is good (random bytes
+  // after a frame pass a CRC once in 65536 readings).
+  return bad_or_noise(in, frame_candidates(in.bytes, hint, in.dialects, Plausibility::Ignore),
+                      true);
 }
 
 }  // namespace pvtap::detail

@@ -29,11 +29,16 @@ struct Decision {
   FrameCheck check;
 };
 
-// A frame with a good check is taken at once. A frame with a bad check is taken only when
-// both its ends are pinned down: its start right after a frame, after a t3.5 silence or at
-// the start of input; its end by a good frame right after it, a t3.5 silence or the end of
-// input. Nor may a good frame or a t3.5 silence lie inside it. Otherwise the first byte is
-// noise: a reading that begins inside noise would turn noise into made-up frames.
+// Structure first, plausibility second. A frame with a good check is taken at once. A frame
+// with a bad check is taken only when both its ends are pinned down: its start right after a
+// frame, after a proven silence (t3.5, or a batching carrier's boundary gap) or at the start
+// of input; its end by a good frame right after it, a proven silence or the end of input. Nor
+// may a good frame or a proven silence lie inside it. At a pinned start, implausible fields
+// (a count of 0, a station out of range, ...) do not rule a reading out; inside noise they
+// do. When no reading fits a pinned start, the bytes up to the next pinned end are read as a
+// frame whose function code or byte count was damaged, if one byte set back makes its CRC
+// match. Otherwise the first byte is noise: a reading that begins inside noise would turn
+// noise into made-up frames.
 Decision decide_at(const DecisionInput& in);
 
 }  // namespace pvtap::detail

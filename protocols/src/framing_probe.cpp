@@ -6,7 +6,7 @@
 namespace pvtap {
 
 CandidateList frame_candidates(std::span<const std::uint8_t> bytes, RoleHint hint,
-                               DialectSet dialects) {
+                               DialectSet dialects, Plausibility plausibility) {
   CandidateList out;
   if (bytes.empty()) {
     out.need_header = 1;
@@ -15,7 +15,7 @@ CandidateList frame_candidates(std::span<const std::uint8_t> bytes, RoleHint hin
   if (dialects.contains(Dialect::Ascii) && detail::may_start_ascii(bytes[0])) {
     detail::add_ascii_candidates(bytes, hint, out);
   }
-  if (dialects.rtu()) detail::add_rtu_candidates(bytes, hint, dialects, out);
+  if (dialects.rtu()) detail::add_rtu_candidates(bytes, hint, dialects, plausibility, out);
   return out;
 }
 

@@ -9,9 +9,11 @@ constexpr std::size_t kFixedLength = 8;
 constexpr unsigned kMaxReadCount = 125;  // a reply must fit its data in one byte count
 
 // Collects readings; a reading whose length needs a byte not yet seen records that need.
+// `strict` rules out readings with implausible fields; the length rules hold either way.
 struct Reader {
   std::span<const std::uint8_t> b;
   Dialect dialect;
+  bool strict;
   CandidateList& out;
 
   bool has(std::size_t i) {
@@ -31,7 +33,7 @@ bool is_hybrid_read(std::uint8_t f) {
 
 void hybrid_request(Reader& r, std::uint8_t f) {
   if (f == fc::kHybridError) return;
-  if (is_hybrid_read(f) && r.has(5)) {
+  if (r.strict && is_hybrid_read(f) && r.has(5)) {
     const unsigned count = r.word(4);
     if (count == 0 || count > kMaxReadCount) return;
   }
@@ -41,12 +43,12 @@ void hybrid_request(Reader& r, std::uint8_t f) {
 // Every reply carries the 4-byte device number and then whole registers; write echoes,
 // restore confirmations and error replies always carry exactly two words after it.
 void hybrid_response(Reader& r, std::uint8_t f) {
-  if (r.b[0] == fc::kHybridBroadcast || !r.has(2)) return;
+  if (r.strict && r.b[0] == fc::kHybridBroadcast) return;
+  if (!r.has(2)) return;
   const std::size_t n = r.b[2];
-  if (n < 4 || n % 2 != 0) return;
   const bool fixed =
       f == fc::kHybridWriteParameter || f == fc::kHybridRestoreFactory || f == fc::kHybridError;
-  if (fixed && n != 8) return;
+  if (r.strict && (n < 4 || n % 2 != 0 || (fixed && n != 8))) return;
   r.add(5 + n, Role::Response);
 }
 
@@ -55,11 +57,11 @@ void gsl_request(Reader& r, std::uint8_t f) {
   if (f == fc::kGslWriteMultiple) {
     if (!r.has(6)) return;
     const unsigned count = r.word(4);
-    if (count == 0 || count > 123 || r.b[6] != 2 * count) return;
+    if (r.strict && (count == 0 || count > 123 || r.b[6] != 2 * count)) return;
     r.add(9 + std::size_t{r.b[6]}, Role::Request);
     return;
   }
-  if (f != fc::kGslWriteSingle && r.has(5)) {
+  if (r.strict && f != fc::kGslWriteSingle && r.has(5)) {
     const unsigned count = r.word(4);
     if (count == 0 || count > kMaxReadCount) return;
   }
@@ -71,15 +73,15 @@ constexpr std::uint8_t kMaxExceptionCode = 0x0B;
 
 void gsl_response(Reader& r, std::uint8_t f) {
   if (fc::is_gsl_exception(f)) {
-    if (r.has(2) && (r.b[2] == 0 || r.b[2] > kMaxExceptionCode)) return;
+    if (r.strict && r.has(2) && (r.b[2] == 0 || r.b[2] > kMaxExceptionCode)) return;
     r.add(5, Role::Response);
   } else if (f == fc::kGslReadHolding || f == fc::kGslReadInput) {
     if (!r.has(2)) return;
     const std::size_t n = r.b[2];
-    if (n == 0 || n % 2 != 0) return;
+    if (r.strict && (n == 0 || n % 2 != 0)) return;
     r.add(5 + n, Role::Response);
   } else if (f == fc::kGslWriteMultiple) {
-    if (r.has(5)) {
+    if (r.strict && r.has(5)) {
       const unsigned count = r.word(4);
       if (count == 0 || count > 123) return;
     }
@@ -92,16 +94,17 @@ void gsl_response(Reader& r, std::uint8_t f) {
 }  // namespace
 
 void add_rtu_candidates(std::span<const std::uint8_t> b, RoleHint hint, DialectSet dialects,
-                        CandidateList& out) {
+                        Plausibility plausibility, CandidateList& out) {
+  const bool strict = plausibility == Plausibility::Require;
   if (b.size() < 2) {
-    if (!b.empty() && b[0] == 0) return;
+    if (strict && !b.empty() && b[0] == 0) return;
     out.need_header = 2 - b.size();
     return;
   }
   const std::uint8_t f = b[1];
   const auto dialect = fc::rtu_dialect_of(f);
-  if (!dialect || !dialects.contains(*dialect) || b[0] == 0) return;
-  Reader r{b, *dialect, out};
+  if (!dialect || !dialects.contains(*dialect) || (strict && b[0] == 0)) return;
+  Reader r{b, *dialect, strict, out};
   const bool requests = hint != RoleHint::Response;
   const bool responses = hint != RoleHint::Request;
   if (*dialect == Dialect::Hybrid) {
@@ -109,7 +112,7 @@ void add_rtu_candidates(std::span<const std::uint8_t> b, RoleHint hint, DialectS
     if (responses) hybrid_response(r, f);
     return;
   }
-  if (b[0] > 247) return;
+  if (strict && b[0] > 247) return;
   if (requests) gsl_request(r, f);
   if (responses) gsl_response(r, f);
 }

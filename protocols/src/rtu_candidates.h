@@ -9,6 +9,6 @@ namespace pvtap::detail {
 
 // Adds every RTU reading (Hybrid and GSL, request and response) the header allows.
 void add_rtu_candidates(std::span<const std::uint8_t> bytes, RoleHint hint, DialectSet dialects,
-                        CandidateList& out);
+                        Plausibility plausibility, CandidateList& out);
 
 }  // namespace pvtap::detail

@@ -20,7 +20,14 @@ constexpr std::size_t kCompactThreshold = 64 * 1024;
 
 struct StreamReassembler::Impl {
   Impl(ReassemblerOptions o, ReassemblerSink& s)
-      : options(o), sink(s), timeline(BusTiming(o.baud, o.bits_per_char), o.timestamps) {}
+      : options(o),
+        sink(s),
+        timeline(BusTiming(o.baud, o.bits_per_char), o.timestamps, resolved_boundary_gap(o)) {}
+
+  static double resolved_boundary_gap(const ReassemblerOptions& o) {
+    if (o.boundary_gap >= 0) return o.boundary_gap;
+    return ReassemblerOptions::kUsbLatency + BusTiming(o.baud, o.bits_per_char).t35;
+  }
 
   ReassemblerOptions options;
   ReassemblerSink& sink;

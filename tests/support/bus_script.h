@@ -17,7 +17,22 @@ struct BusItem {
   std::vector<std::uint8_t> bytes;
   Frame frame;                      // for frames
   bool structure_survives = false;  // for corrupt frames: the header still gives its length
+  bool length_field_hit = false;    // for corrupt RTU frames: the function code or byte count
+  std::size_t damaged_at = 0;       // for corrupt frames: the byte that was changed
 };
+
+// Whether byte `at` of an RTU frame decides its length: the function code, or the byte count
+// of a reply (both dialects count at byte 2, GSL exceptions aside) or of a GSL 0x10 request.
+inline bool decides_rtu_length(const Frame& f, std::size_t at) {
+  if (f.dialect == Dialect::Ascii) return false;
+  if (at == 1) return true;
+  if (f.role == Role::Response) {
+    const bool exception = f.dialect == Dialect::Gsl && (f.function & 0x80) != 0;
+    const bool counted = f.dialect == Dialect::Hybrid || f.function == 0x03 || f.function == 0x04;
+    return at == 2 && counted && !exception;
+  }
+  return at == 6 && f.dialect == Dialect::Gsl && f.function == 0x10;
+}
 
 // CapturedEvents: what a reassembler reported, copied out of the callbacks.
 struct CapturedEvent {
@@ -72,9 +87,12 @@ inline std::vector<BusItem> make_script(RandomFrames& gen, const ScriptOptions& 
                               parse_frame(item.bytes, item.frame.dialect, item.frame.role);
       if (!still_good) {
         item.kind = BusItem::Kind::CorruptFrame;
+        item.length_field_hit = decides_rtu_length(item.frame, at);
+        item.damaged_at = at;
         const RoleHint hint =
             item.frame.role == Role::Request ? RoleHint::Request : RoleHint::Response;
-        const auto cands = frame_candidates(item.bytes, hint, o.dialects);
+        // At a pinned start only structure counts, not the plausibility of the fields.
+        const auto cands = frame_candidates(item.bytes, hint, o.dialects, Plausibility::Ignore);
         for (std::size_t c = 0; c < cands.size; ++c) {
           if (cands.items[c].length == item.bytes.size() &&
               cands.items[c].dialect == item.frame.dialect) {

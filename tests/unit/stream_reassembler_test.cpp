@@ -164,16 +164,31 @@ TEST(StreamReassembler, BatchedTimestampsAreDetectedAndExplained) {
   EXPECT_NE(r.timing_reason().find("batched"), std::string_view::npos);
 }
 
-TEST(StreamReassembler, UntrustedTimestampsNeverActAsEvidence) {
-  const BusTiming timing(9600);
+TEST(StreamReassembler, UntrustedTimestampsWithoutABoundaryGapNeverActAsEvidence) {
   test::CapturingSink sink;
   ReassemblerOptions options;
   options.timestamps = TimestampTrust::Untrusted;
+  options.boundary_gap = 0;
   StreamReassembler r(options, sink);
   r.feed(BusChunk{kBadEcho, 1.0, Direction::FromSlave});
   r.idle(2.0);
   EXPECT_TRUE(sink.events.empty());
   EXPECT_FALSE(r.timing_trusted());
+}
+
+TEST(StreamReassembler, UntrustedTimestampsProveABoundaryOnlyPastTheBoundaryGap) {
+  test::CapturingSink sink;
+  ReassemblerOptions options;
+  options.timestamps = TimestampTrust::Untrusted;
+  options.boundary_gap = 0.05;
+  StreamReassembler r(options, sink);
+  r.feed(BusChunk{kBadEcho, 1.0, Direction::FromSlave});
+  r.idle(1.04);
+  EXPECT_TRUE(sink.events.empty()) << "a silence shorter than the gap proves nothing";
+  r.idle(1.06);
+  ASSERT_EQ(sink.events.size(), 1u);
+  EXPECT_TRUE(sink.events[0].is_frame);
+  EXPECT_FALSE(sink.events[0].frame.check.ok);
 }
 
 TEST(StreamReassembler, LongGarbageIsReportedInBoundedRuns) {

@@ -31,11 +31,19 @@ struct CandidateList {
   }
 };
 
+// Plausibility: whether readings with implausible fields are listed.
+//   Require: a count of 0 or above 125, a station outside the dialect's range, an unknown
+//     exception code, ... rule the reading out (hunting for frames inside noise).
+//   Ignore: only structure counts (the function code and the length fields), for a position
+//     whose start is pinned, where a damaged field must not hide the frame.
+enum class Plausibility : std::uint8_t { Require = 0, Ignore = 1 };
+
 // Lists the frame readings that the header at the start of `bytes` allows: ASCII frames
 // delimited by ENQ/ACK..EOT, RTU lengths from the function-code rules of each dialect. A
 // reading whose length is known is listed even when `bytes` is shorter than it.
 CandidateList frame_candidates(std::span<const std::uint8_t> bytes, RoleHint hint,
-                               DialectSet dialects);
+                               DialectSet dialects,
+                               Plausibility plausibility = Plausibility::Require);
 
 // ProbeResult: the answer of probe_frame.
 struct ProbeResult {
@@ -60,5 +68,9 @@ ProbeResult probe_frame(std::span<const std::uint8_t> bytes, RoleHint hint = Rol
 
 // Largest frame any dialect allows (ASCII reply of 255 words), an upper bound on look-ahead.
 inline constexpr std::size_t kMaxFrameLength = 13 + 4 * 255;
+// Largest RTU frame: a reply of 255 data bytes.
+inline constexpr std::size_t kMaxRtuFrameLength = 5 + 255;
+// Smallest RTU frame: a GSL exception reply.
+inline constexpr std::size_t kMinRtuFrameLength = 5;
 
 }  // namespace pvtap

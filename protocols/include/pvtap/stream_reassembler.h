@@ -79,6 +79,14 @@ struct ReassemblerOptions {
   // live clock reads bytes late by the OS's scheduling (a kernel worker delayed by a tick
   // leaves a silence inside a frame that was sent whole). Offline, the next bytes decide.
   double give_up_after = 0.25;
+  // Batched timestamps (Untrusted, or Auto once it stopped trusting them) cannot judge t3.5,
+  // but a batching carrier stamps bytes late by at most its batching interval, so a silence
+  // longer than that was real and proves a frame boundary. The silence before a chunk is the
+  // time since the previous chunk less the wire time of the chunk's own bytes. Seconds; < 0
+  // takes a USB adapter's default latency timer plus t3.5 (kUsbLatency + t3.5); 0 never
+  // proves a boundary. Gateways: their packing interval (pvtap's --gateway-gap).
+  double boundary_gap = -1.0;
+  static constexpr double kUsbLatency = 0.016;
 };
 
 // ReassemblerTotals: byte accounting; bytes_in == frame_bytes + noise_bytes + pending bytes.

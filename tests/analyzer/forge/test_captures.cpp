@@ -221,19 +221,9 @@ void user0_and_raw(const std::string& dir) {
 
   Expected hybrid_only = plan.expected({}, DialectSet::only(Dialect::Hybrid));
   hybrid_only.values = {hybrid_only.values[3]};
-  // The core takes a frame with a bad check only when a good frame (or silence) pins its end;
-  // with only Hybrid recognized, the ASCII request after the corrupted reply is noise, so the
-  // reply is noise too and its request times out.
-  const std::size_t bad = plan.find(plan.find(0, Dialect::Hybrid, Role::Response, 6) + 1,
-                                    Dialect::Hybrid, Role::Response, 6);
-  hybrid_only.frames.erase(std::find_if(hybrid_only.frames.begin(), hybrid_only.frames.end(),
-                                        [](const ExpectedFrame& f) { return !f.check_ok; }));
-  auto& c = hybrid_only.counts;
-  c["frames"] -= 1;
-  c["responses"] -= 1;
-  c["bad_checks"] -= 1;
-  c["timeouts"] += 1;
-  c["noise_bytes"] += plan.items()[bad].bytes.size();
+  // With only Hybrid recognized, the ASCII request after the corrupted reply is noise; the
+  // silence before it (longer than the adapter's latency plus t3.5) still pins the reply's
+  // end, so the reply is a bad-check frame that answers its request, not a timeout.
   hybrid_only.args = {"--dialect", "hybrid"};
   save(dir, "user0.hybrid_only", hybrid_only);
 }
