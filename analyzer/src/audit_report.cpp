@@ -26,6 +26,8 @@ BusReport AuditReport::totals() const {
     t.timeouts += r.timeouts;
     t.timeouts_by_reason[0] += r.timeouts_by_reason[0];
     t.timeouts_by_reason[1] += r.timeouts_by_reason[1];
+    t.damaged_replies += r.damaged_replies;
+    t.unanswered_damaged_requests += r.unanswered_damaged_requests;
     t.unanswered_at_end += r.unanswered_at_end;
     t.unanswered_after_loss += r.unanswered_after_loss;
     t.transactions += r.transactions;

@@ -129,6 +129,8 @@ std::string_view unanswered_reason(const SessionTimeout& t) {
       return "input_ended";
     case UnansweredKind::AfterLoss:
       return "data_lost";
+    case UnansweredKind::DamagedRequest:
+      return "damaged_request";
     case UnansweredKind::Timeout:
       break;
   }

@@ -37,6 +37,8 @@ void station_object(std::string& o, const StationSummary& s) {
   append_json_count(o, "responses", s.responses);
   append_json_count(o, "bad_checks", s.bad_checks);
   append_json_count(o, "timeouts", s.timeouts);
+  append_json_count(o, "damaged_replies", s.damaged_replies);
+  append_json_count(o, "unanswered_damaged_requests", s.unanswered_damaged_requests);
   append_json_count(o, "exceptions", s.exceptions);
   append_json_count(o, "unsolicited", s.unsolicited);
   append_json_count(o, "duplicates", s.duplicates);
@@ -182,6 +184,8 @@ void write_json_summary(const AuditReport& report, OutputStream& out) {
   append_json_count(o, "responses", t.responses);
   append_json_count(o, "bad_checks", t.bytes.bad_frames);
   append_json_count(o, "timeouts", t.timeouts);
+  append_json_count(o, "damaged_replies", t.damaged_replies);
+  append_json_count(o, "unanswered_damaged_requests", t.unanswered_damaged_requests);
   append_json_count(o, "noise_bytes", t.bytes.noise_bytes);
   append_json_count(o, "exceptions", t.exceptions);
   append_json_key(o, "latency_ms");

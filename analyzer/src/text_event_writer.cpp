@@ -144,6 +144,9 @@ class TextEventWriter : public EventWriter {
       case UnansweredKind::AfterLoss:
         o += "no reply seen; capture data was lost meanwhile";
         return;
+      case UnansweredKind::DamagedRequest:
+        o += "the request had a bad check: the slave rightly ignored it";
+        return;
       case UnansweredKind::Timeout:
         break;
     }

@@ -94,6 +94,10 @@ void totals(const AuditReport& r, std::string& o) {
                    u(t.malformed_frames));
   o += report_line("findings: %llu bad checks, %llu timeouts, %llu exceptions and error replies",
                    u(t.bytes.bad_frames), u(t.timeouts), u(t.exceptions));
+  o += report_line(
+      "  of the bad checks: %llu damaged replies (the slave answered; the line damaged the "
+      "answer), %llu damaged requests left unanswered (the slave rightly ignored them)",
+      u(t.damaged_replies), u(t.unanswered_damaged_requests));
   o += report_line("  %-8s %10s %10s", "dialect", "requests", "responses");
   for (std::size_t d = 0; d < t.by_dialect.size(); ++d) {
     const RoleCounts& c = t.by_dialect[d];
@@ -139,13 +143,19 @@ void frame_example(const AuditReport& r, const FrameExample& e, std::string& o) 
 void findings(const AuditReport& r, const BusReport& b, std::string& o) {
   o += report_line("bad checks: %llu", u(b.bytes.bad_frames));
   for (const FrameExample& e : b.bad_check_examples) frame_example(r, e, o);
-  o += report_line("timeouts: %llu (no reply %llu, next request first %llu)", u(b.timeouts),
-                   u(b.timeouts_by_reason[0]), u(b.timeouts_by_reason[1]));
+  o += report_line(
+      "timeouts: %llu good requests the slave did not answer (no reply %llu, next request "
+      "first %llu)",
+      u(b.timeouts), u(b.timeouts_by_reason[0]), u(b.timeouts_by_reason[1]));
   for (const TimeoutExample& e : b.timeout_examples) {
     o += report_line("  %s  st %u  %s  %s", when(r, e.request_time).c_str(), e.timeout.station,
                      std::string(to_string(e.timeout.dialect)).c_str(),
                      function_text(e.timeout.dialect, e.timeout.function).c_str());
   }
+  o += report_line("damaged replies: %llu (they answered their request: not timeouts)",
+                   u(b.damaged_replies));
+  o += report_line("damaged requests left unanswered: %llu (the slave rightly ignored them)",
+                   u(b.unanswered_damaged_requests));
   if (b.unanswered_at_end + b.unanswered_after_loss > 0) {
     o += report_line(
         "not counted as timeouts: %llu still waiting when the input ended, %llu waiting "

@@ -51,9 +51,14 @@ struct BusSession::Impl : MatchSink {
 
   void on_frame(Direction direction, const FrameEvent& e);
   void handle_parsed(SessionFrame& out, const FrameEvent& e);
+  const detail::RequestRecord* answered_request(SessionFrame& out);
   void note_transaction(SessionFrame& out, const Frame& frame);
   void decode_values(SessionFrame& out, const Frame* request);
   void add_timing(const SessionFrame& out, double max_inner_gap);
+  // The station a latency belongs to: the request's, since a damaged reply's may be wrong.
+  std::uint8_t answering_station() const {
+    return current.transaction ? current.transaction->station : frame.station;
+  }
   TimestampQuality timestamp_quality() const;
   ReassemblerTotals totals() const;
   void time_seen(double t);
@@ -62,11 +67,11 @@ struct BusSession::Impl : MatchSink {
   // passed on at once, since they come before the frame that made them due.
   void on_transaction(const Transaction& t) override {
     current.transaction = t;
-    tally.add_transaction();
+    tally.add_transaction(t);
   }
   void on_timeout(const Timeout& t) override;
   void on_unsolicited(const UnsolicitedReply& u) override { current.unsolicited = u; }
-  void on_duplicate(const DuplicateReply&) override { current.duplicate = true; }
+  void on_duplicate(const DuplicateReply& d) override { current.duplicate = d; }
   void on_byte_count_mismatch(const ByteCountMismatch& m) override { current.mismatch = m; }
   void on_role_corrected(const RoleCorrection&) override { current.role_corrected = true; }
 
@@ -74,7 +79,7 @@ struct BusSession::Impl : MatchSink {
     std::optional<Transaction> transaction;
     std::optional<UnsolicitedReply> unsolicited;
     std::optional<ByteCountMismatch> mismatch;
-    bool duplicate = false;
+    std::optional<DuplicateReply> duplicate;
     bool role_corrected = false;
   };
 
@@ -122,6 +127,8 @@ void BusSession::Impl::on_timeout(const Timeout& t) {
     out.kind = UnansweredKind::InputEnded;
   } else if (t.request_id < loss_boundary_id) {
     out.kind = UnansweredKind::AfterLoss;
+  } else if (!t.request_check_ok) {
+    out.kind = UnansweredKind::DamagedRequest;
   }
   tally.add_timeout(out);
   sink.on_timeout(out);
@@ -166,7 +173,7 @@ void BusSession::Impl::handle_parsed(SessionFrame& out, const FrameEvent& e) {
   frame.role = role;
   out.role = role;
   out.role_corrected = current.role_corrected;
-  out.duplicate = current.duplicate;
+  out.duplicate = current.duplicate.has_value();
   out.count_mismatch = current.mismatch;
   if (current.unsolicited) {
     out.unsolicited = true;
@@ -182,19 +189,32 @@ void BusSession::Impl::handle_parsed(SessionFrame& out, const FrameEvent& e) {
   add_timing(out, e.max_inner_gap);
 }
 
-void BusSession::Impl::note_transaction(SessionFrame& out, const Frame& reply) {
-  const detail::RequestRecord* request = nullptr;
+const detail::RequestRecord* BusSession::Impl::answered_request(SessionFrame& out) {
   if (current.transaction) {
     const Transaction& t = *current.transaction;
     out.request_id = t.request_id;
     out.broadcast_answer = t.broadcast;
     if (options.has_timestamps) out.latency = t.latency;
     const std::size_t slot = t.broadcast ? detail::RequestBook::kBroadcastSlot : t.station;
-    request = requests.find(slot, t.request_id);
+    return requests.find(slot, t.request_id);
   }
+  // A duplicate carries the words of the request it answered before.
+  if (current.duplicate) {
+    const DuplicateReply& d = *current.duplicate;
+    return requests.find(detail::RequestBook::slot_of(d.dialect, d.station), d.original_request_id);
+  }
+  return nullptr;
+}
+
+void BusSession::Impl::note_transaction(SessionFrame& out, const Frame& reply) {
+  const detail::RequestRecord* request = answered_request(out);
   // A request with a bad check may carry a corrupted start address: do not place words by it.
-  const Frame* sound_request = request != nullptr && request->check_ok ? &request->frame : nullptr;
-  if (out.role == Role::Response && out.check.ok && out.reply_kind == ReplyKind::Normal) {
+  const bool sound = request != nullptr && request->check_ok;
+  if (sound) out.placed_by = request->id;
+  const Frame* sound_request = sound ? &request->frame : nullptr;
+  out.values_trusted = out.check.ok;
+  if (!out.values_trusted) return;
+  if (out.role == Role::Response && out.reply_kind == ReplyKind::Normal) {
     latest.store(reply, sound_request, out.start_time);
   }
   if (options.decode_values) decode_values(out, sound_request);
@@ -215,12 +235,12 @@ void BusSession::Impl::add_timing(const SessionFrame& out, double max_inner_gap)
   // With timestamps declared too coarse the bus gaps are never judged; requests alone give
   // the poll periods, and the gap statistics are spared the other frames.
   if (options.reassembler.timestamps == TimestampTrust::Untrusted && out.role != Role::Request) {
-    if (out.latency) timing.add_latency(frame.station, *out.latency);
+    if (out.latency) timing.add_latency(answering_station(), *out.latency);
     return;
   }
   timing.add_frame(FrameTiming{out.id, frame.dialect, out.role, frame.station, frame.function,
                                out.start_time, out.end_time, max_inner_gap});
-  if (out.latency) timing.add_latency(frame.station, *out.latency);
+  if (out.latency) timing.add_latency(answering_station(), *out.latency);
 }
 
 BusSession::BusSession(BusSessionOptions options, const RegisterDecoder& decoder,

@@ -90,8 +90,19 @@ void BusTally::add_frame(const SessionFrame& f) {
   if (f.check.ok && f.role == Role::Response) count_exception(f);
 }
 
+void BusTally::add_transaction(const Transaction& t) {
+  ++transactions_;
+  if (t.reply_check_ok) return;
+  ++counts_.damaged_replies;
+  ++station(t.station).summary.damaged_replies;
+}
+
 void BusTally::add_timeout(const SessionTimeout& t) {
   switch (t.kind) {
+    case UnansweredKind::DamagedRequest:
+      ++counts_.unanswered_damaged_requests;
+      ++station(t.timeout.station).summary.unanswered_damaged_requests;
+      break;
     case UnansweredKind::Timeout:
       ++counts_.timeouts;
       ++station(t.timeout.station).summary.timeouts;
@@ -129,6 +140,8 @@ void BusTally::fill(BusReport& r) const {
   r.malformed_frames = counts_.malformed_frames;
   r.timeouts = counts_.timeouts;
   r.timeouts_by_reason = counts_.timeouts_by_reason;
+  r.damaged_replies = counts_.damaged_replies;
+  r.unanswered_damaged_requests = counts_.unanswered_damaged_requests;
   r.unanswered_at_end = counts_.unanswered_at_end;
   r.unanswered_after_loss = counts_.unanswered_after_loss;
   r.transactions = transactions_;

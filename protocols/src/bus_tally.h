@@ -17,7 +17,7 @@ class BusTally {
   void add_frame(const SessionFrame& f);
   void add_timeout(const SessionTimeout& t);
   void add_gap(const SessionGap& g);
-  void add_transaction() { ++transactions_; }
+  void add_transaction(const Transaction& t);
 
   // Writes the counters and examples into `r` (totals, timing and values come from elsewhere).
   void fill(BusReport& r) const;

@@ -92,7 +92,27 @@ bool TransactionMatcher::try_answer(const ObservedFrame& in) {
     broadcast_answered_by_.set(station);
     return true;
   }
-  return false;
+  if (in.check_ok) return false;
+  Slot* only = only_pending();
+  const bool ascii = in.frame.dialect == Dialect::Ascii;
+  if (only == nullptr || is_broadcast(*only) ||
+      (only->request.frame.dialect == Dialect::Ascii) != ascii) {
+    return false;
+  }
+  complete(*only, in);
+  only->state = SlotState::Answered;
+  return true;
+}
+
+TransactionMatcher::Slot* TransactionMatcher::only_pending() {
+  Slot* found = nullptr;
+  for (std::size_t i = 0; i < kSlots; ++i) {
+    Slot& slot = slot_at(i);
+    if (slot.state != SlotState::Pending) continue;
+    if (found != nullptr) return nullptr;
+    found = &slot;
+  }
+  return found;
 }
 
 bool TransactionMatcher::try_duplicate(const ObservedFrame& in) {
@@ -134,8 +154,11 @@ void TransactionMatcher::report_unsolicited(const ObservedFrame& in) {
 void TransactionMatcher::complete(const Slot& slot, const ObservedFrame& reply) {
   const RequestRecord& request = slot.request;
   const FrameSummary& r = reply.frame;
+  // A damaged reply may carry a damaged station: the request says who answered it, but a
+  // broadcast is answered by each station under its own address.
+  const FrameSummary& who = is_broadcast(slot) ? r : request.frame;
   sink_.on_transaction(Transaction{request.id, reply.id, reply.start_time - request.end_time,
-                                   r.dialect, r.station, request.frame.function, r.function,
+                                   who.dialect, who.station, request.frame.function, r.function,
                                    reply_kind(r), is_broadcast(slot), request.check_ok,
                                    reply.check_ok});
   if (!reply.check_ok) return;
@@ -156,8 +179,8 @@ void TransactionMatcher::give_up(Slot& slot, TimeoutReason reason, double waited
   }
   slot.state = SlotState::TimedOut;
   const FrameSummary& f = slot.request.frame;
-  sink_.on_timeout(
-      Timeout{slot.request.id, f.dialect, f.station, f.function, reason, waited, next_request_id});
+  sink_.on_timeout(Timeout{slot.request.id, f.dialect, f.station, f.function, reason, waited,
+                           next_request_id, slot.request.check_ok});
 }
 
 void TransactionMatcher::expire_overdue() {

@@ -62,8 +62,10 @@ struct StationSummary {
   std::uint64_t requests = 0;
   std::uint64_t responses = 0;
   std::uint64_t bad_checks = 0;
-  std::uint64_t timeouts = 0;
-  std::uint64_t exceptions = 0;  // GSL exceptions and Hybrid error replies
+  std::uint64_t timeouts = 0;                     // good requests that got no reply
+  std::uint64_t damaged_replies = 0;              // replies with a bad check to its requests
+  std::uint64_t unanswered_damaged_requests = 0;  // its requests with a bad check, no reply
+  std::uint64_t exceptions = 0;                   // GSL exceptions and Hybrid error replies
   std::uint64_t unsolicited = 0;
   std::uint64_t duplicates = 0;
   std::uint64_t count_mismatches = 0;
@@ -90,9 +92,14 @@ struct BusReport {
   std::uint64_t requests = 0;
   std::uint64_t responses = 0;
   std::array<RoleCounts, 3> by_dialect{};
-  std::uint64_t malformed_frames = 0;                 // found by structure but not parseable
-  std::uint64_t timeouts = 0;                         // requests that got no reply
+  std::uint64_t malformed_frames = 0;  // found by structure but not parseable
+  // Requests with a good check that got no reply: the slave did not answer.
+  std::uint64_t timeouts = 0;
   std::array<std::uint64_t, 2> timeouts_by_reason{};  // NoReply, NextRequestFirst
+  // Replies with a bad check that answered a request: the line damaged the answer.
+  std::uint64_t damaged_replies = 0;
+  // Requests with a bad check that got no reply: the slave rightly ignored them.
+  std::uint64_t unanswered_damaged_requests = 0;
   std::uint64_t unanswered_at_end = 0;      // still within the timeout when the input ended
   std::uint64_t unanswered_after_loss = 0;  // the reply may be in lost capture data
   std::uint64_t transactions = 0;

@@ -55,6 +55,11 @@ struct SessionFrame {
   bool duplicate = false;
   bool role_corrected = false;
   std::optional<ByteCountMismatch> count_mismatch;
+  // The request whose start address places this reply's words (its own, or the one it
+  // duplicates), when that request's check was good. Values are decoded only from a frame
+  // with a good check, and never placed by a request with a bad one.
+  std::optional<std::uint64_t> placed_by;
+  bool values_trusted = false;  // a good check: its values may be decoded
   DecodeReport decode;
   std::span<const DecodedValue> values;  // empty unless options.decode_values
 };
@@ -64,6 +69,8 @@ enum class UnansweredKind : std::uint8_t {
   Timeout = 0,     // a finding: no reply within the timeout, or the next request came first
   InputEnded = 1,  // the input ended before its timeout ran out: not a finding
   AfterLoss = 2,   // capture data was lost while it waited: the reply may be in the gap
+  // The request had a bad check: the slave was right to ignore it (not the slave's finding).
+  DamagedRequest = 3,
 };
 
 // SessionTimeout: a request that got no reply.

@@ -46,6 +46,8 @@ struct Timeout {
   TimeoutReason reason = TimeoutReason::NoReply;
   double waited = 0;  // seconds from the request's end to the moment it was given up
   std::optional<std::uint64_t> next_request_id;  // set for NextRequestFirst
+  // False: the request itself had a bad check, so the slave was right to stay silent.
+  bool request_check_ok = true;
 };
 
 // UnsolicitedReply: a reply that no pending request of its station (or broadcast) expects.

@@ -39,7 +39,10 @@ struct ObservedFrame {
 // previous one (NextRequestFirst). A reply answers the pending request of its own station;
 // failing that, the pending Hybrid broadcast (0xFF). The broadcast stays open until its
 // timeout or the next broadcast, and every station that answers it in that window makes one
-// transaction; a broadcast that nobody answered times out with station 0xFF.
+// transaction; a broadcast that nobody answered times out with station 0xFF. A reply with a
+// bad check whose station or function does not fit (the damaged byte may be that one)
+// answers the one pending request when exactly one is pending: the slave answered and the
+// line damaged the answer, which is not a timeout.
 //
 // Events of one frame come in this order: timeouts that its start time made due, then the
 // role correction, then the transaction, duplicate or unsolicited reply, then a length
@@ -83,6 +86,7 @@ class TransactionMatcher {
   void on_request(const ObservedFrame& in);
   void on_reply(const ObservedFrame& in);
   bool try_answer(const ObservedFrame& in);
+  Slot* only_pending();
   bool try_duplicate(const ObservedFrame& in);
   void report_unsolicited(const ObservedFrame& in);
   void complete(const Slot& slot, const ObservedFrame& reply);
