@@ -95,10 +95,10 @@ void polls(std::string& o, const BusReport& r) {
     const PollPeriod& p = r.timing.poll_periods[i];
     if (i > 0) o += ',';
     o += "{\"dialect\":\"";
-    o += to_string(p.dialect);
+    o += to_string(p.block.dialect);
     o += '"';
-    append_json_count(o, "station", p.station);
-    append_json_count(o, "function", p.function);
+    append_json_count(o, "station", p.block.station);
+    append_json_count(o, "function", p.block.function);
     append_json_count(o, "intervals", p.period.intervals);
     append_json_key(o, "period_ms");
     milliseconds(o, p.period.mean);

@@ -188,17 +188,17 @@ void polling(const AuditReport& r, const BusReport& b, std::string& o) {
   o += report_line("poll period and jitter per station and function:");
   for (const PollPeriod& p : b.timing.poll_periods) {
     if (p.period.intervals == 0) {
-      o +=
-          report_line("  %-7s st %-4u %-40s polled once", std::string(to_string(p.dialect)).c_str(),
-                      p.station, function_text(p.dialect, p.function).c_str());
+      o += report_line("  %-7s st %-4u %-40s polled once",
+                       std::string(to_string(p.block.dialect)).c_str(), p.block.station,
+                       function_text(p.block.dialect, p.block.function).c_str());
       continue;
     }
     o += report_line(
         "  %-7s st %-4u %-40s %llu intervals  period %.1f ms  jitter %.1f ms  "
         "max deviation %.1f ms",
-        std::string(to_string(p.dialect)).c_str(), p.station,
-        function_text(p.dialect, p.function).c_str(), u(p.period.intervals), ms(p.period.mean),
-        ms(p.period.stddev), ms(p.period.max_deviation));
+        std::string(to_string(p.block.dialect)).c_str(), p.block.station,
+        function_text(p.block.dialect, p.block.function).c_str(), u(p.period.intervals),
+        ms(p.period.mean), ms(p.period.stddev), ms(p.period.max_deviation));
   }
 }
 
