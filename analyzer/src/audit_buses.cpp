@@ -74,6 +74,7 @@ AuditReport AuditRun::build_report() const {
   r.settings.baud = options_.baud;
   r.settings.timeout = options_.timeout;
   r.settings.has_timestamps = options_.raw_dumps.empty();
+  r.settings.gsl_ids = options_.gsl_ids;
   r.inputs = inputs_;
   for (const auto& bus : buses_) {
     r.buses.push_back(BusFindings{bus->output.name(), bus->session.report()});

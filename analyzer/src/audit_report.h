@@ -9,6 +9,7 @@
 #include "live_report.h"
 #include "pvtap/bus_report.h"
 #include "pvtap/distribution_summary.h"
+#include "pvtap/register_decoder.h"
 
 namespace pvtap::analyzer {
 
@@ -43,6 +44,7 @@ struct AuditSettings {
   std::uint32_t baud = 9600;
   double timeout = 1.0;
   bool has_timestamps = true;
+  GslIdReading gsl_ids = GslIdReading::Decimal;  // to write GSL addresses as the reference does
 };
 
 struct AuditReport {

@@ -1,5 +1,7 @@
 // The last jsonl line: the issue's summary fields first, then the details of each bus.
+#include <optional>
 #include <string>
+#include <string_view>
 
 #include "frame_findings.h"
 #include "summary_writers.h"
@@ -91,23 +93,42 @@ void timing(std::string& o, const BusReport& r, const AuditSettings& settings) {
   o += '}';
 }
 
+// A poll block's start or count: the wire number, or null where the request has none.
+void optional_count(std::string& o, std::string_view name, std::optional<std::uint16_t> value) {
+  if (value) {
+    append_json_count(o, name, *value);
+  } else {
+    append_json_key(o, name);
+    o += "null";
+  }
+}
+
+// A poll period figure in ms; null for a block requested once (no interval measured).
+void period_figure(std::string& o, std::string_view name, const PollPeriod& p, double seconds) {
+  append_json_key(o, name);
+  if (p.period.intervals == 0) {
+    o += "null";
+  } else {
+    milliseconds(o, seconds);
+  }
+}
+
 void polls(std::string& o, const BusReport& r) {
   o += '[';
   for (std::size_t i = 0; i < r.timing.poll_periods.size(); ++i) {
     const PollPeriod& p = r.timing.poll_periods[i];
     if (i > 0) o += ',';
-    o += "{\"dialect\":\"";
-    o += to_string(p.dialect);
-    o += '"';
-    append_json_count(o, "station", p.station);
-    append_json_count(o, "function", p.function);
+    o += "{\"station\":";
+    append_uint(o, p.block.station);
+    append_json_key(o, "dialect");
+    append_json_string(o, to_string(p.block.dialect));
+    append_json_count(o, "function", p.block.function);
+    optional_count(o, "start", p.block.start);
+    optional_count(o, "count", p.block.count);
     append_json_count(o, "intervals", p.period.intervals);
-    append_json_key(o, "period_ms");
-    milliseconds(o, p.period.mean);
-    append_json_key(o, "jitter_ms");
-    milliseconds(o, p.period.stddev);
-    append_json_key(o, "max_deviation_ms");
-    milliseconds(o, p.period.max_deviation);
+    period_figure(o, "period_ms", p, p.period.mean);
+    period_figure(o, "jitter_ms", p, p.period.stddev);
+    period_figure(o, "max_deviation_ms", p, p.period.max_deviation);
     o += '}';
   }
   o += ']';
@@ -131,6 +152,7 @@ void buses(std::string& o, const AuditReport& report) {
     timing(o, bus.report, report.settings);
     append_json_key(o, "polls");
     polls(o, bus.report);
+    append_json_count(o, "untracked_poll_requests", bus.report.timing.untracked_poll_requests);
     o += '}';
   }
   o += ']';

@@ -1,10 +1,14 @@
 // The text report: what a field engineer reads after an audit.
 #include <cstdio>
+#include <optional>
 #include <string>
 
 #include "frame_findings.h"
 #include "pvtap/function_codes.h"
+#include "pvtap/register_decoder.h"
 #include "pvtap/register_format.h"
+#include "pvtap/register_map.h"
+#include "pvtap/timing_statistics.h"
 #include "summary_writers.h"
 #include "text_append.h"
 
@@ -193,22 +197,45 @@ void latency(const AuditReport& r, const BusReport& b, std::string& o) {
   }
 }
 
+// A poll block's registers: "start 1050 count 7" with the start as the reference writes it
+// (GSL IDs by the --gsl-ids reading; a wire address with no such ID in hex); "-" for a field
+// the request does not have.
+std::string block_text(const AuditSettings& settings, const PollBlock& b) {
+  std::string start = "-";
+  if (b.start) {
+    const std::optional<std::uint16_t> written =
+        written_address_of(b.dialect, *b.start, settings.gsl_ids);
+    start = written ? format_register_address(b.dialect, *written).view()
+                    : format_register_address(Dialect::Hybrid, *b.start).view();
+  }
+  const std::string count = b.count ? std::to_string(*b.count) : "-";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "start %-6s count %-4s", start.c_str(), count.c_str());
+  return buf;
+}
+
 void polling(const AuditReport& r, const BusReport& b, std::string& o) {
   if (!r.settings.has_timestamps || b.timing.poll_periods.empty()) return;
-  o += report_line("poll period and jitter per station and function:");
+  o += report_line("poll period and jitter per poll block (station, function, registers):");
   for (const PollPeriod& p : b.timing.poll_periods) {
+    const PollBlock& k = p.block;
+    const std::string dialect(to_string(k.dialect));
+    const std::string function = function_text(k.dialect, k.function);
+    const std::string registers = block_text(r.settings, k);
     if (p.period.intervals == 0) {
-      o +=
-          report_line("  %-7s st %-4u %-40s polled once", std::string(to_string(p.dialect)).c_str(),
-                      p.station, function_text(p.dialect, p.function).c_str());
+      o += report_line("  %-7s st %-4u %-40s %s polled once", dialect.c_str(), k.station,
+                       function.c_str(), registers.c_str());
       continue;
     }
     o += report_line(
-        "  %-7s st %-4u %-40s %llu intervals  period %.1f ms  jitter %.1f ms  "
+        "  %-7s st %-4u %-40s %s %llu intervals  period %.1f ms  jitter %.1f ms  "
         "max deviation %.1f ms",
-        std::string(to_string(p.dialect)).c_str(), p.station,
-        function_text(p.dialect, p.function).c_str(), u(p.period.intervals), ms(p.period.mean),
-        ms(p.period.stddev), ms(p.period.max_deviation));
+        dialect.c_str(), k.station, function.c_str(), registers.c_str(), u(p.period.intervals),
+        ms(p.period.mean), ms(p.period.stddev), ms(p.period.max_deviation));
+  }
+  if (b.timing.untracked_poll_requests > 0) {
+    o += report_line("  %llu requests of further blocks not tracked (more than %zu blocks)",
+                     u(b.timing.untracked_poll_requests), TimingStatistics::kMaxPollBlocks);
   }
 }
 

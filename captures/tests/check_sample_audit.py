@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Runs `pvtap audit --format jsonl` on one sample capture and compares what it finds with
 the simulator's ground truth: frames (bytes, roles, check verdicts), timeouts, noise, register
-values and the summary's totals. Timestamps and latencies are compared only on the link type
-252 carrier, whose records keep the bus timing; the other carriers re-time the bytes.
+values, the poll blocks and the summary's totals. Timestamps, latencies and poll periods are
+compared only on the link type 252 carrier, whose records keep the bus timing; the other
+carriers re-time the bytes.
 
 usage: check_sample_audit.py PVTAP CAPTURE TRUTH
 """
@@ -76,6 +77,58 @@ def compare_values(i, found, truth, bad):
                     f"truth {v['value']}")
 
 
+READ_FUNCTIONS = {"gsl": (0x03, 0x04), "hybrid": (0x11, 0x12, 0x16, 0x17, 0x1F), "ascii": (0x52,)}
+
+
+def request_block(frame):
+    """(station, dialect, function, start, count) of a read request, from its bytes."""
+    raw = bytes.fromhex(frame["hex"])
+    if frame["dialect"] == "ascii":  # ENQ station(2) R start(4) count(2) checksum(4) EOT
+        text = raw[1:-1].decode("ascii")
+        start, count = int(text[3:7], 16), int(text[7:9], 16)
+    else:  # station, function, start, count, CRC
+        start, count = int.from_bytes(raw[2:4], "big"), int.from_bytes(raw[4:6], "big")
+    return (frame["station"], frame["dialect"], frame["function"], start, count)
+
+
+def interval_figures(times):
+    """period, jitter (population standard deviation) and max deviation of the intervals, ms"""
+    intervals = [(b - a) * 1e3 for a, b in zip(times, times[1:])]
+    if not intervals:
+        return 0, None, None, None
+    mean = sum(intervals) / len(intervals)
+    jitter = (sum((i - mean) ** 2 for i in intervals) / len(intervals)) ** 0.5
+    return len(intervals), mean, jitter, max(abs(i - mean) for i in intervals)
+
+
+def compare_polls(summary, truth_frames, timed, bad):
+    """One poll period per block the truth's good requests ask for (a damaged request is in
+    none); the figures themselves only where the capture keeps the bus timing."""
+    times = {}
+    for t in truth_frames:
+        if t["role"] != "request" or t["check"] != "ok":
+            continue
+        if t["function"] not in READ_FUNCTIONS[t["dialect"]]:
+            bad.add(f"polls: no block rule for {t['dialect']} function {t['function']}")
+            return
+        times.setdefault(request_block(t), []).append(t["ts"])
+    found = {}
+    for bus in summary.get("buses", []):
+        for p in bus["polls"]:
+            key = (p["station"], p["dialect"], p["function"], p["start"], p["count"])
+            found[key] = (p["intervals"], p["period_ms"], p["jitter_ms"], p["max_deviation_ms"])
+    if sorted(found) != sorted(times):
+        bad.add(f"poll blocks: audit {sorted(found)}, truth {sorted(times)}")
+        return
+    for key, ts in times.items():
+        want = interval_figures(ts)
+        if found[key][0] != want[0]:
+            bad.add(f"poll block {key}: {found[key][0]} intervals, truth {want[0]}")
+        elif timed and want[0] and any(abs(g - w) > 0.01 for g, w in zip(found[key][1:], want[1:])):
+            bad.add(f"poll block {key}: period, jitter, max deviation {found[key][1:]} ms, "
+                    f"truth {want[1:]}")
+
+
 def main():
     pvtap, capture, truth_path = sys.argv[1:4]
     with open(truth_path, encoding="utf-8") as f:
@@ -96,6 +149,7 @@ def main():
     if summary.get("unanswered_at_end") != len(truth["unanswered_at_end"]):
         bad.add(f"unanswered at end: audit {summary.get('unanswered_at_end')}, "
                 f"truth {len(truth['unanswered_at_end'])}")
+    compare_polls(summary, [e for e in truth["events"] if e["type"] == "frame"], timed, bad)
     for key in SUMMARY_KEYS:
         if summary.get(key) != truth["summary"][key]:
             bad.add(f"summary {key}: audit {summary.get(key)}, truth {truth['summary'][key]}")

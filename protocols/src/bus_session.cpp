@@ -239,7 +239,8 @@ void BusSession::Impl::add_timing(const SessionFrame& out, double max_inner_gap)
     return;
   }
   timing.add_frame(FrameTiming{out.id, frame.dialect, out.role, frame.station, frame.function,
-                               out.start_time, out.end_time, max_inner_gap});
+                               out.start_time, out.end_time, max_inner_gap, frame.start,
+                               frame.count, out.check.ok});
   if (out.latency) timing.add_latency(answering_station(), *out.latency);
 }
 

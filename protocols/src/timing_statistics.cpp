@@ -4,9 +4,21 @@ namespace pvtap {
 
 void TimingStatistics::add_frame(const FrameTiming& frame) {
   gaps_.add_frame(frame);
-  if (frame.role == Role::Request) {
-    polls_[PollKey{frame.dialect, frame.station, frame.function}].add_event(frame.start_time);
+  if (frame.role == Role::Request && frame.check_ok) add_poll(frame);
+}
+
+void TimingStatistics::add_poll(const FrameTiming& request) {
+  const PollBlock block{request.dialect, request.station, request.function, request.start,
+                        request.count};
+  auto it = polls_.find(block);
+  if (it == polls_.end()) {
+    if (polls_.size() >= kMaxPollBlocks) {
+      ++untracked_poll_requests_;
+      return;
+    }
+    it = polls_.emplace(block, IntervalSeries{}).first;
   }
+  it->second.add_event(request.start_time);
 }
 
 void TimingStatistics::add_latency(std::uint8_t station, double seconds) {
@@ -22,10 +34,10 @@ TimingReport TimingStatistics::report(const TimestampQuality& quality) const {
     r.latency_by_station.push_back(StationLatency{station, accumulator.summary()});
   }
   r.poll_periods.reserve(polls_.size());
-  for (const auto& [key, series] : polls_) {
-    const auto& [dialect, station, function] = key;
-    r.poll_periods.push_back(PollPeriod{dialect, station, function, series.summary()});
+  for (const auto& [block, series] : polls_) {
+    r.poll_periods.push_back(PollPeriod{block, series.summary()});
   }
+  r.untracked_poll_requests = untracked_poll_requests_;
   r.bus = gaps_.report(quality);
   return r;
 }

@@ -166,6 +166,48 @@ TEST_F(BusSessionTest, TimeoutsExceptionsAndTheEndOfInputAreJudgedApart) {
   EXPECT_EQ(recorder_.noise_bytes, 1u);
 }
 
+// A logger reading four blocks of one inverter every 5 s: one poll period per block, taken
+// from the requests' start and count, with a damaged request left out of every block.
+TEST_F(BusSessionTest, PollPeriodsArePerBlockOfRegisters) {
+  make();
+  const std::uint16_t blocks[][2] = {{0x03E8, 10}, {0x0406, 4}, {0x041A, 7}, {0x044C, 2}};
+  for (int round = 0; round < 6; ++round) {
+    for (int b = 0; b < 4; ++b) {
+      const double t = 50.0 + 5.0 * round + 0.25 * b;
+      Bytes request = encode_frame(gsl_read(2, blocks[b][0], blocks[b][1]));
+      if (round == 3 && b == 1) request[2] ^= 0x40;  // start address hit: bad CRC, no reply
+      feed(request, t);
+      if (round == 3 && b == 1) continue;
+      WordList words;
+      for (std::uint16_t w = 0; w < blocks[b][1]; ++w) words.push_back(w);
+      feed(encode_frame(gsl_reply(2, words)), t + 0.06);
+    }
+  }
+  session_->finish();
+  report_ = session_->report();
+
+  EXPECT_EQ(report_.bytes.bad_frames, 1u);
+  const std::vector<PollPeriod>& polls = report_.timing.poll_periods;
+  ASSERT_EQ(polls.size(), 4u);
+  for (std::size_t b = 0; b < 4; ++b) {
+    EXPECT_EQ(polls[b].block.station, 2);
+    EXPECT_EQ(polls[b].block.function, 0x03);
+    EXPECT_EQ(polls[b].block.start, blocks[b][0]);
+    EXPECT_EQ(polls[b].block.count, blocks[b][1]);
+    if (b == 1) {
+      EXPECT_EQ(polls[b].period.intervals, 4u);  // five good requests
+      EXPECT_NEAR(polls[b].period.mean, 6.25, 1e-6);
+      EXPECT_NEAR(polls[b].period.max, 10.0, 1e-6);
+      continue;
+    }
+    EXPECT_EQ(polls[b].period.intervals, 5u);
+    EXPECT_NEAR(polls[b].period.mean, 5.0, 1e-6);
+    EXPECT_LT(polls[b].period.stddev, 1e-6);
+    EXPECT_LT(polls[b].period.max_deviation, 1e-6);
+  }
+  EXPECT_EQ(report_.timing.untracked_poll_requests, 0u);
+}
+
 TEST_F(BusSessionTest, BadCheckRequestOfOneDirectionEndsWithTheTurn) {
   make();
   Bytes bad_request = encode_frame(gsl_read(1, 0x041A, 1));

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "pvtap/bus_timing.h"
@@ -152,16 +153,130 @@ TEST(TimingStatisticsTest, PollPeriodAndJitterOfAKnownSchedule) {
   const TimingReport r = stats.report(kFine);
   ASSERT_EQ(r.poll_periods.size(), 2u);
   const PollPeriod& p = r.poll_periods[0];
-  EXPECT_EQ(p.station, 1);
-  EXPECT_EQ(p.function, 0x03);
+  EXPECT_EQ(p.block.station, 1);
+  EXPECT_EQ(p.block.function, 0x03);
   EXPECT_EQ(p.period.intervals, 4u);
   EXPECT_NEAR(p.period.mean, 1.0, 1e-12);
   EXPECT_NEAR(p.period.min, 0.8, 1e-12);
   EXPECT_NEAR(p.period.max, 1.1, 1e-12);
   EXPECT_NEAR(p.period.stddev, std::sqrt((0.0 + 0.01 + 0.04 + 0.01) / 4), 1e-12);
   EXPECT_NEAR(p.period.max_deviation, 0.2, 1e-12);
-  EXPECT_EQ(r.poll_periods[1].function, 0x04);
+  EXPECT_EQ(r.poll_periods[1].block.function, 0x04);
   EXPECT_EQ(r.poll_periods[1].period.intervals, 4u);
+}
+
+FrameTiming block_read(std::uint64_t id, double start, std::uint16_t address, std::uint16_t count) {
+  FrameTiming f = rtu_frame(id, start, start + 0.008);
+  f.start = address;
+  f.count = count;
+  return f;
+}
+
+// The case: four FC 0x03 blocks of one station every 5 s. Keyed by station and
+// function alone, this was one "period" of 1.25 s with a jitter of seconds.
+TEST(TimingStatisticsTest, EachPollBlockHasItsOwnPeriod) {
+  TimingStatistics stats(BusTiming(9600));
+  const std::uint16_t blocks[][2] = {{1000, 10}, {1030, 4}, {1050, 46}, {1100, 8}};
+  std::uint64_t id = 0;
+  for (int round = 0; round < 12; ++round) {
+    for (int b = 0; b < 4; ++b) {
+      const double t = 100.0 + 5.0 * round + 0.3 * b + (round % 2 == 0 ? 0.0 : 0.002);
+      stats.add_frame(block_read(++id, t, blocks[b][0], blocks[b][1]));
+    }
+  }
+  const TimingReport r = stats.report(kFine);
+  ASSERT_EQ(r.poll_periods.size(), 4u);
+  for (std::size_t b = 0; b < 4; ++b) {
+    const PollPeriod& p = r.poll_periods[b];  // sorted by start address
+    EXPECT_EQ(p.block.dialect, Dialect::Gsl);
+    EXPECT_EQ(p.block.station, 1);
+    EXPECT_EQ(p.block.function, 0x03);
+    EXPECT_EQ(p.block.start, blocks[b][0]);
+    EXPECT_EQ(p.block.count, blocks[b][1]);
+    EXPECT_EQ(p.period.intervals, 11u);
+    // Intervals alternate 5.002 s and 4.998 s: 6 of one, 5 of the other.
+    EXPECT_NEAR(p.period.mean, 5.0 + 0.002 / 11, 1e-9);
+    EXPECT_LT(p.period.stddev, 0.0021);
+    EXPECT_GT(p.period.stddev, 0.0019);
+    EXPECT_NEAR(p.period.max_deviation, 0.002 + 0.002 / 11, 1e-9);
+  }
+  EXPECT_EQ(r.untracked_poll_requests, 0u);
+}
+
+// The same function and start with another count, or another start, is another block; a
+// request without start or count (a one-register write has no count, an unknown function
+// neither) keys with the field absent, apart from a request whose field is 0.
+TEST(TimingStatisticsTest, AbsentStartOrCountIsItsOwnKeyApartFromZero) {
+  TimingStatistics stats(BusTiming(9600));
+  std::uint64_t id = 0;
+  for (int i = 0; i < 3; ++i) {
+    const double t = 10.0 + 2.0 * i;
+    stats.add_frame(block_read(++id, t, 0, 0));
+    stats.add_frame(block_read(++id, t + 0.1, 0, 1));
+    FrameTiming write = rtu_frame(++id, t + 0.2, t + 0.208);
+    write.function = 0x06;
+    write.start = 0;  // a one-register write names its register and no count
+    stats.add_frame(write);
+    FrameTiming unknown = rtu_frame(++id, t + 0.3, t + 0.308);
+    unknown.function = 0x03;  // keyed as a frame of an unknown function: no start, no count
+    stats.add_frame(unknown);
+  }
+  const TimingReport r = stats.report(kFine);
+  ASSERT_EQ(r.poll_periods.size(), 4u);
+  // Sorted by function, then start, then count, an absent field first.
+  EXPECT_EQ(r.poll_periods[0].block.start, std::nullopt);
+  EXPECT_EQ(r.poll_periods[0].block.count, std::nullopt);
+  EXPECT_EQ(r.poll_periods[1].block.start, std::optional<std::uint16_t>(0));
+  EXPECT_EQ(r.poll_periods[1].block.count, std::optional<std::uint16_t>(0));
+  EXPECT_EQ(r.poll_periods[2].block.count, std::optional<std::uint16_t>(1));
+  EXPECT_EQ(r.poll_periods[3].block.function, 0x06);
+  EXPECT_EQ(r.poll_periods[3].block.start, std::optional<std::uint16_t>(0));
+  EXPECT_EQ(r.poll_periods[3].block.count, std::nullopt);
+  for (const PollPeriod& p : r.poll_periods) {
+    EXPECT_EQ(p.period.intervals, 2u);
+    EXPECT_NEAR(p.period.mean, 2.0, 1e-9);
+    EXPECT_NEAR(p.period.stddev, 0.0, 1e-9);
+  }
+}
+
+// A damaged request's fields cannot be trusted: it is in no block, not even its own.
+TEST(TimingStatisticsTest, BadCheckRequestIsInNoPollBlock) {
+  TimingStatistics stats(BusTiming(9600));
+  stats.add_frame(block_read(1, 10.0, 1000, 10));
+  FrameTiming damaged = block_read(2, 15.0, 1000, 10);
+  damaged.check_ok = false;
+  stats.add_frame(damaged);
+  FrameTiming damaged_elsewhere = block_read(3, 16.0, 9000, 10);
+  damaged_elsewhere.check_ok = false;
+  stats.add_frame(damaged_elsewhere);
+  stats.add_frame(block_read(4, 20.0, 1000, 10));
+  const TimingReport r = stats.report(kFine);
+  ASSERT_EQ(r.poll_periods.size(), 1u);
+  EXPECT_EQ(r.poll_periods[0].period.intervals, 1u);
+  EXPECT_NEAR(r.poll_periods[0].period.mean, 10.0, 1e-9);
+  EXPECT_EQ(r.poll_periods[0].period.stddev, 0.0);
+  EXPECT_EQ(r.poll_periods[0].period.max_deviation, 0.0);
+}
+
+// Memory is bounded by the number of blocks: past the cap, requests of new blocks are only
+// counted, while the blocks already tracked go on.
+TEST(TimingStatisticsTest, PollBlocksAreCappedAndTheRestCounted) {
+  TimingStatistics stats(BusTiming(9600));
+  const std::size_t cap = TimingStatistics::kMaxPollBlocks;
+  std::uint64_t id = 0;
+  double t = 0;
+  for (std::size_t i = 0; i < cap + 10; ++i) {
+    stats.add_frame(block_read(++id, t += 0.01, static_cast<std::uint16_t>(i), 1));
+  }
+  stats.add_frame(block_read(++id, t += 0.01, 0, 1));  // tracked: a second poll
+  stats.add_frame(block_read(++id, t += 0.01, 0, 2));  // new: not tracked
+  stats.add_frame(block_read(++id, t += 0.01, static_cast<std::uint16_t>(cap), 1));  // nor this
+  const TimingReport r = stats.report(kFine);
+  ASSERT_EQ(r.poll_periods.size(), cap);
+  EXPECT_EQ(r.untracked_poll_requests, 12u);
+  EXPECT_EQ(r.poll_periods[0].block.start, std::optional<std::uint16_t>(0));
+  EXPECT_EQ(r.poll_periods[0].period.intervals, 1u);
+  EXPECT_EQ(r.poll_periods.back().block.start, static_cast<std::uint16_t>(cap - 1));
 }
 
 TEST(TimingStatisticsTest, SteadyScheduleHasNoJitter) {

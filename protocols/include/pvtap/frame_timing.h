@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "pvtap/dialect.h"
@@ -18,6 +19,11 @@ struct FrameTiming {
   double start_time = 0;        // first byte began, seconds
   double end_time = 0;          // last byte ended, seconds
   double max_internal_gap = 0;  // largest silence between two bytes of the frame, seconds
+  // The frame's start and count fields where it has them (a request's poll block), and
+  // whether its check held.
+  std::optional<std::uint16_t> start;
+  std::optional<std::uint16_t> count;
+  bool check_ok = true;
 };
 
 // TimestampQuality: whether timestamps resolve character times, and if not, why
