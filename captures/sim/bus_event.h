@@ -32,12 +32,13 @@ struct BusEvent {
   std::uint8_t station = 0;
   std::uint8_t function = 0;
   bool check_ok = true;
-  std::string fault;   // empty when the event is clean
+  std::string fault;   // empty when the event is clean (noise: "noise", or the fault that
+                       // damaged an ASCII frame beyond delimiting)
   Micros latency = 0;  // replies: from the end of the request to the first byte
   std::vector<RegisterTruth> values;
 };
 
-// TimeoutTruth: a request that the master gave up on.
+// TimeoutTruth: a request that the master gave up on (station and function as its bytes say).
 struct TimeoutTruth {
   Micros request_start = 0;
   Micros request_end = 0;
@@ -55,7 +56,9 @@ struct FaultTruth {
 // BusTimeline: everything the simulated bus carried, in time order.
 struct BusTimeline {
   std::vector<BusEvent> events;
-  std::vector<TimeoutTruth> timeouts;
+  std::vector<TimeoutTruth> timeouts;  // good requests that got no reply a reader can see
+  // Requests with a bad check, rightly ignored by their slave: not timeouts.
+  std::vector<TimeoutTruth> unanswered_damaged_requests;
   std::vector<FaultTruth> faults;
   // Requests still waiting when the capture ends: no capture can show their timeout.
   std::vector<TimeoutTruth> unanswered_at_end;

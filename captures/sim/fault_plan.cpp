@@ -6,7 +6,8 @@ namespace pvtap::sim {
 namespace {
 
 constexpr std::array<std::string_view, kFaultKinds> kNames{
-    "corrupt", "missing", "slow", "noise", "error_reply", "count_mismatch", "duplicate"};
+    "corrupt",     "missing",        "slow",      "noise",
+    "error_reply", "count_mismatch", "duplicate", "corrupt_request"};
 
 std::optional<FaultKind> kind_named(std::string_view name) {
   for (unsigned i = 0; i < kFaultKinds; ++i)
@@ -39,7 +40,7 @@ std::optional<FaultPlan> parse_fault_plan(std::string_view text, std::string& er
     if (!kind || ec != std::errc{} || end != number.data() + number.size() || value > 100) {
       error = "bad fault '" + std::string(item) +
               "' (expected kind=percent; kinds: corrupt missing slow noise error_reply "
-              "count_mismatch duplicate)";
+              "count_mismatch duplicate corrupt_request)";
       return std::nullopt;
     }
     plan[*kind] = value;

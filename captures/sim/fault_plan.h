@@ -9,25 +9,26 @@
 namespace pvtap::sim {
 
 enum class FaultKind : unsigned {
-  Corrupt,        // one byte of a reply changed: bad check
-  Missing,        // no reply: the master times out
-  Slow,           // a reply that comes late, still inside the timeout
-  Noise,          // a burst of bytes of no frame after a reply
-  ErrorReply,     // GSL exception / Hybrid 0xFF error reply (ASCII: no reply, its error path)
-  CountMismatch,  // a reply with fewer registers than asked for
-  Duplicate,      // the same reply twice
+  Corrupt,         // one bit or byte of a reply changed, any byte: bad check (or ASCII noise)
+  Missing,         // no reply: the master times out
+  Slow,            // a reply that comes late, still inside the timeout
+  Noise,           // a burst of bytes of no frame after a reply
+  ErrorReply,      // GSL exception / Hybrid 0xFF error reply (ASCII: no reply, its error path)
+  CountMismatch,   // a reply with fewer registers than asked for
+  Duplicate,       // the same reply twice
+  CorruptRequest,  // one bit or byte of a request changed, any byte: the slave stays silent
 };
-inline constexpr std::size_t kFaultKinds = 7;
+inline constexpr std::size_t kFaultKinds = 8;
 
 std::string_view to_string(FaultKind kind);
 
 struct FaultPlan {
-  std::array<unsigned, kFaultKinds> percent{};  // chance per reply
+  std::array<unsigned, kFaultKinds> percent{};  // chance per poll
   unsigned& operator[](FaultKind k) { return percent[static_cast<unsigned>(k)]; }
   unsigned operator[](FaultKind k) const { return percent[static_cast<unsigned>(k)]; }
 };
 
-// "none", "all" (every kind at 4 %) or "corrupt=5,missing=3,...". nullopt with `error` set
+// "none", "all" (every kind at 4 %) or "corrupt=5,corrupt_request=3,...". nullopt with `error` set
 // when the text names an unknown kind or a bad number.
 std::optional<FaultPlan> parse_fault_plan(std::string_view text, std::string& error);
 

@@ -46,7 +46,10 @@ void write_values(std::ostream& o, const std::vector<RegisterTruth>& values) {
 void write_event(std::ostream& o, const BusEvent& e) {
   if (e.kind == BusEvent::Kind::Noise) {
     o << "{\"type\":\"noise\",\"ts\":" << seconds(e.start) << ",\"bytes\":" << e.bytes.size()
-      << ",\"hex\":\"" << hex(e.bytes) << "\"}";
+      << ",\"hex\":\"" << hex(e.bytes) << "\"";
+    // An ASCII frame damaged beyond delimiting: noise to a reader, named by its fault here.
+    if (e.fault != "noise") o << ",\"fault\":\"" << e.fault << "\"";
+    o << "}";
     return;
   }
   // ts is the first byte, as pvtap audit reports frames; end is the last byte.
@@ -64,7 +67,7 @@ void write_event(std::ostream& o, const BusEvent& e) {
 
 struct Totals {
   std::size_t bytes = 0, frames = 0, requests = 0, responses = 0, bad = 0, noise = 0,
-              exceptions = 0;
+              exceptions = 0, damaged_replies = 0;
 };
 
 Totals count(const BusTimeline& t) {
@@ -78,6 +81,7 @@ Totals count(const BusTimeline& t) {
     ++n.frames;
     ++(e.role == Role::Request ? n.requests : n.responses);
     if (!e.check_ok) ++n.bad;
+    if (!e.check_ok && e.role == Role::Response) ++n.damaged_replies;
     if (e.role == Role::Response && e.fault == "error_reply") ++n.exceptions;
   }
   return n;
@@ -95,6 +99,15 @@ void write_config(std::ostream& o, const SimConfig& c) {
   o << "}";
 }
 
+void write_requests(std::ostream& o, const char* name, const std::vector<TimeoutTruth>& list) {
+  o << "],\n\"" << name << "\":[";
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const TimeoutTruth& t = list[i];
+    o << (i ? ",\n" : "\n") << "{\"request_ts\":" << seconds(t.request_start)
+      << ",\"station\":" << int{t.station} << ",\"function\":" << int{t.function} << "}";
+  }
+}
+
 }  // namespace
 
 std::string write_ground_truth(const BusTimeline& timeline, const SimConfig& config,
@@ -107,28 +120,21 @@ std::string write_ground_truth(const BusTimeline& timeline, const SimConfig& con
     write_event(o, timeline.events[i]);
     o << (i + 1 < timeline.events.size() ? ",\n" : "\n");
   }
-  o << "],\n\"timeouts\":[";
-  for (std::size_t i = 0; i < timeline.timeouts.size(); ++i) {
-    const TimeoutTruth& t = timeline.timeouts[i];
-    o << (i ? ",\n" : "\n") << "{\"request_ts\":" << seconds(t.request_start)
-      << ",\"station\":" << int{t.station} << ",\"function\":" << int{t.function} << "}";
-  }
+  write_requests(o, "timeouts", timeline.timeouts);
+  write_requests(o, "unanswered_damaged_requests", timeline.unanswered_damaged_requests);
   o << "],\n\"faults\":[";
   for (std::size_t i = 0; i < timeline.faults.size(); ++i) {
     const FaultTruth& f = timeline.faults[i];
     o << (i ? ",\n" : "\n") << "{\"ts\":" << seconds(f.time) << ",\"station\":" << int{f.station}
       << ",\"kind\":\"" << f.kind << "\"}";
   }
-  o << "],\n\"unanswered_at_end\":[";
-  for (std::size_t i = 0; i < timeline.unanswered_at_end.size(); ++i) {
-    const TimeoutTruth& t = timeline.unanswered_at_end[i];
-    o << (i ? ",\n" : "\n") << "{\"request_ts\":" << seconds(t.request_start)
-      << ",\"station\":" << int{t.station} << ",\"function\":" << int{t.function} << "}";
-  }
+  write_requests(o, "unanswered_at_end", timeline.unanswered_at_end);
   const Totals n = count(timeline);
   o << "],\n\"summary\":{\"bytes\":" << n.bytes << ",\"frames\":" << n.frames
     << ",\"requests\":" << n.requests << ",\"responses\":" << n.responses
     << ",\"bad_checks\":" << n.bad << ",\"timeouts\":" << timeline.timeouts.size()
+    << ",\"damaged_replies\":" << n.damaged_replies
+    << ",\"unanswered_damaged_requests\":" << timeline.unanswered_damaged_requests.size()
     << ",\"noise_bytes\":" << n.noise << ",\"exceptions\":" << n.exceptions << "}}\n";
   std::ofstream file(path, std::ios::binary);
   file << o.str();
