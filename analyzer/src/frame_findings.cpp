@@ -101,10 +101,8 @@ bool has_extra_text(const RegisterDef& def) {
 
 void collect_issues(const SessionFrame& f, std::vector<std::string>& out) {
   out.clear();
-  if (f.frame == nullptr) {
-    out.push_back("malformed: " + std::string(f.parse_error));
-    return;
-  }
+  if (!f.parse_error.empty()) out.push_back("malformed: " + std::string(f.parse_error));
+  if (f.frame == nullptr) return;
   if (f.role_corrected) out.emplace_back("echo of a write, read as the reply");
   if (f.unsolicited) {
     if (f.late_by) {

@@ -12,7 +12,7 @@ import subprocess
 import sys
 
 SUMMARY_KEYS = ("bytes", "frames", "requests", "responses", "bad_checks", "timeouts",
-                "noise_bytes", "exceptions")
+                "damaged_replies", "unanswered_damaged_requests", "noise_bytes", "exceptions")
 
 
 def audit(pvtap, capture):
@@ -145,6 +145,11 @@ def main():
     timeouts = [(e["station"], e["function"]) for e in events if e["type"] == "timeout"]
     if timeouts != [(t["station"], t["function"]) for t in truth["timeouts"]]:
         bad.add(f"timeouts: audit {timeouts}, truth {truth['timeouts']}")
+    ignored = [(e["station"], e["function"]) for e in events
+               if e["type"] == "unanswered" and e.get("reason") == "damaged_request"]
+    if ignored != [(t["station"], t["function"]) for t in truth["unanswered_damaged_requests"]]:
+        bad.add(f"unanswered damaged requests: audit {ignored}, "
+                f"truth {truth['unanswered_damaged_requests']}")
     summary = events[-1] if events and events[-1]["type"] == "summary" else {}
     if summary.get("unanswered_at_end") != len(truth["unanswered_at_end"]):
         bad.add(f"unanswered at end: audit {summary.get('unanswered_at_end')}, "

@@ -52,10 +52,8 @@ void BusTally::add_frame(const SessionFrame& f) {
   if (!f.check.ok && wants_example(counts_.bad_check_examples)) {
     counts_.bad_check_examples.push_back(example_of(f));
   }
-  if (f.frame == nullptr) {
-    ++counts_.malformed_frames;
-    return;
-  }
+  if (!f.parse_error.empty()) ++counts_.malformed_frames;
+  if (f.frame == nullptr) return;
   StationSummary& s = station(f.frame->station).summary;
   const auto dialect = static_cast<std::size_t>(f.dialect);
   if (f.role == Role::Request) {

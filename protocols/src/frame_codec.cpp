@@ -11,6 +11,25 @@ ParseOutcome parse_frame(std::span<const std::uint8_t> bytes, Dialect dialect, R
   return detail::parse_rtu(bytes, dialect, role);
 }
 
+Frame frame_header(std::span<const std::uint8_t> bytes, Dialect dialect, Role role) {
+  Frame f;
+  f.dialect = dialect;
+  f.role = role;
+  if (dialect == Dialect::Ascii) {
+    // ENQ/ACK, station as two hex digits, the command character.
+    if (bytes.size() > 3) {
+      f.station = static_cast<std::uint8_t>(detail::read_hex(bytes.subspan(1, 2)).value_or(0));
+      f.function = bytes[3];
+    }
+    return f;
+  }
+  if (bytes.size() > 1) {
+    f.station = bytes[0];
+    f.function = bytes[1];
+  }
+  return f;
+}
+
 FrameCheck verify_check(std::span<const std::uint8_t> bytes, Dialect dialect) {
   if (dialect == Dialect::Ascii) return detail::verify_ascii_check(bytes);
   return detail::verify_rtu_check(bytes);

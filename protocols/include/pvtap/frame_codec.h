@@ -30,6 +30,11 @@ struct ParseOutcome {
 // The check is not judged here: a frame with a bad check still parses (see verify_check).
 ParseOutcome parse_frame(std::span<const std::uint8_t> bytes, Dialect dialect, Role role);
 
+// The station and function a frame carries by their position alone, for a damaged frame
+// that does not parse (its byte count lies): enough to match it and to report it. Fields an
+// ASCII frame writes as hex digits are 0 when a digit is not one.
+Frame frame_header(std::span<const std::uint8_t> bytes, Dialect dialect, Role role);
+
 // Verifies the checksum (ASCII) or CRC (RTU) of one complete frame.
 // An ASCII frame whose checksum field is not hex has found = 0 and ok = false.
 FrameCheck verify_check(std::span<const std::uint8_t> bytes, Dialect dialect);
