@@ -13,6 +13,7 @@ BusSessionOptions AuditRun::session_options(InputKind kind) const {
   if (kind == InputKind::Network) {
     o.reassembler.timestamps = TimestampTrust::Untrusted;
     o.reassembler.boundary_gap = options_.gateway_gap_ms / 1000.0;
+    o.reassembler.segment_ends_pin = true;
     o.timestamp_note =
         "the timestamps are those of the gateway's TCP/UDP segments, not of bus characters";
   }

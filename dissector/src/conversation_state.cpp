@@ -9,7 +9,7 @@ ConversationState& conversation_state(packet_info* pinfo, InverterProtocol& p) {
   auto* state = static_cast<ConversationState*>(conversation_get_proto_data(conversation, p.proto));
   if (state == nullptr) {
     state = new (wmem_alloc(wmem_file_scope(), sizeof(ConversationState))) ConversationState{};
-    state->matcher = new_bus_matcher(p.settings.reply_timeout_ms / 1000.0);
+    state->bus = new_bus_track(p.settings);
     conversation_add_proto_data(conversation, p.proto, state);
   }
   return *state;

@@ -4,7 +4,7 @@
 #include <epan/address.h>
 #include <epan/packet.h>
 
-#include "bus_matcher.h"
+#include "bus_track.h"
 #include "inverter_protocol.h"
 
 namespace pvtap::dissector {
@@ -14,7 +14,7 @@ struct ConversationState {
   address slave_address = ADDRESS_INIT_NONE;
   guint32 slave_port = 0;
   bool slave_known = false;
-  BusMatcher* matcher = nullptr;
+  BusTrack* bus = nullptr;
 };
 
 // The state of the packet's conversation for a protocol, made on first use.

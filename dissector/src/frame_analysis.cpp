@@ -58,23 +58,9 @@ void plan_device(const Frame& f, wmem_allocator_t* pool, FramePlan& plan) {
   plan.device_text = pool_text(pool, format_value(v));
 }
 
-void record_first_pass(const FrameInput& in, const Frame& f, const AnalysisContext& ctx) {
-  FrameRecord& r = *ctx.record;
-  r.dialect = f.dialect;
-  r.role = in.role;
-  r.station = f.station;
-  r.function = f.function;
-  r.check_ok = in.check.ok;
-  ctx.matcher->observe(r, summarize(f), in.role_known);
-  if (r.role == Role::Request) {
-    r.bytes = static_cast<const guint8*>(
-        wmem_memdup(wmem_file_scope(), in.bytes.data(), in.bytes.size()));
-    r.length = static_cast<guint16>(in.bytes.size());
-  }
-}
-
-std::optional<Frame> matched_request(const FrameRecord& r) {
-  const FrameRecord* q = r.request;
+// The request whose start places the reply's words, as the bus session chose it.
+std::optional<Frame> placing_request(const FrameRecord& r) {
+  const FrameRecord* q = r.placed_by;
   if (r.role != Role::Response || q == nullptr || q->bytes == nullptr) return std::nullopt;
   return parse_frame({q->bytes, q->length}, q->dialect, Role::Request).frame;
 }
@@ -137,34 +123,47 @@ std::string summary_text(const FramePlan& plan, const InverterProtocol& protocol
   return text;
 }
 
-void analyze(const FrameInput& in, const AnalysisContext& ctx, FramePlan& plan) {
-  plan.dialect = in.dialect;
-  plan.role = in.role;
-  plan.check = in.check;
+// A frame that does not parse still shows its check, which lies at its end.
+void plan_check_span(std::size_t length, Dialect d, FramePlan& plan) {
+  const std::size_t width = d == Dialect::Ascii ? 4 : 2;
+  const std::size_t trailer = d == Dialect::Ascii ? 1 : 0;  // EOT
+  if (length < width + trailer) return;
+  plan.layout.check = FieldSpan{static_cast<std::uint16_t>(length - width - trailer),
+                                static_cast<std::uint16_t>(width)};
+}
+
+void analyze(std::span<const std::uint8_t> bytes, const AnalysisContext& ctx, FramePlan& plan) {
+  const FrameRecord& r = *ctx.record;
+  plan.dialect = r.dialect;
+  plan.role = r.role;
+  plan.check = verify_check(bytes, r.dialect);
   plan.check_verified = ctx.protocol->settings.verify_check != FALSE;
-  ParseOutcome parsed = parse_frame(in.bytes, in.dialect, in.role);
+  ParseOutcome parsed = parse_frame(bytes, r.dialect, r.role);
   if (!parsed) {
+    plan_check_span(bytes.size(), r.dialect, plan);
     plan.parse_error = pool_text(ctx.pool, parsed.error);
     plan.summary = pool_text(ctx.pool, "malformed frame: " + std::string(parsed.error));
     return;
   }
   Frame& f = *parsed.frame;
-  plan_header(f, in.bytes.size(), ctx.pool, plan);
-  if (ctx.matcher != nullptr) record_first_pass(in, f, ctx);
-  if (ctx.record->matched) f.role = plan.role = ctx.record->role;
+  plan_header(f, bytes.size(), ctx.pool, plan);
   if (ctx.with_values) {
     plan_device(f, ctx.pool, plan);
-    const std::optional<Frame> request = matched_request(*ctx.record);
-    plan_values(f, request ? &*request : nullptr, ctx.pool, plan);
+    // Values only from a good check, placed only by a request with one (as pvtap audit).
+    if (r.values_trusted) {
+      const std::optional<Frame> request = placing_request(r);
+      plan_values(f, request ? &*request : nullptr, ctx.pool, plan);
+    }
   }
   plan.summary = pool_text(ctx.pool, summary_text(plan, *ctx.protocol));
 }
 
 }  // namespace
 
-void analyze_frame(const FrameInput& in, const AnalysisContext& ctx, FramePlan& plan) noexcept {
+void analyze_frame(std::span<const std::uint8_t> bytes, const AnalysisContext& ctx,
+                   FramePlan& plan) noexcept {
   try {
-    analyze(in, ctx, plan);
+    analyze(bytes, ctx, plan);
   } catch (...) {
     // Only allocation can fail in here; show the frame as undecoded rather than crash.
     plan.parsed = false;

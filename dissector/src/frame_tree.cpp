@@ -155,6 +155,16 @@ void add_check(const Builder& b, const FramePlan& plan) {
 
 const char* unanswered_reason(const FrameRecord& r) {
   if (!r.timed_out) return "no reply before the end of the capture";
+  switch (r.unanswered) {
+    case UnansweredKind::DamagedRequest:
+      return "the request has a bad check: the slave rightly ignored it";
+    case UnansweredKind::AfterLoss:
+      return "capture data was lost while it waited: the reply may be in the gap";
+    case UnansweredKind::InputEnded:
+      return "no reply before the end of the capture";
+    case UnansweredKind::Timeout:
+      break;
+  }
   switch (r.timeout_reason) {
     case TimeoutReason::NoReply:
       return "no reply within the reply timeout";
@@ -183,8 +193,16 @@ void add_request_links(const Builder& b, const FrameRecord& r) {
 void add_reply_links(const Builder& b, const FrameRecord& r) {
   if (r.request != nullptr) {
     b.generated_uint(b.hf().request_in, r.request->packet);
+    // The latency the bus session measured (as pvtap audit reports it); a duplicate has none.
     nstime_t delta;
-    nstime_delta(&delta, &r.time, &r.request->time);
+    if (r.has_latency) {
+      nstime_set_zero(&delta);
+      const double ns = r.latency * 1e9;
+      delta.secs = static_cast<time_t>(r.latency);
+      delta.nsecs = static_cast<int>(ns - static_cast<double>(delta.secs) * 1e9);
+    } else {
+      nstime_delta(&delta, &r.time, &r.request->time);
+    }
     proto_item* item =
         proto_tree_add_time(b.tree, b.hf().response_time, b.t.tvb, b.t.offset, 0, &delta);
     proto_item_set_generated(item);
@@ -236,6 +254,8 @@ void add_frame_tree(const TreeTarget& t, const FramePlan& plan, const FrameRecor
   if (!plan.parsed) {
     expert_add_info_format(t.pinfo, top, &b.ei().malformed, "Malformed frame: %s",
                            plan.parse_error);
+    add_check(b, plan);
+    add_matching(b, record);
     return;
   }
   add_header(b, plan);

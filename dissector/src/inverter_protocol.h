@@ -64,8 +64,10 @@ struct ProtocolSettings {
   gboolean verify_check = TRUE;
   gboolean desegment = TRUE;
   guint reply_timeout_ms = 1000;
-  gint gsl_ids = 0;    // GslIdReading, invrtu only
-  gint pair_rule = 0;  // 0 binary, 1 decimal; invrtu only
+  guint baud = 9600;          // of the bus behind the gateway: wire times of segments
+  guint gateway_gap_ms = 50;  // silence between segments that proves a frame boundary
+  gint gsl_ids = 0;           // GslIdReading, invrtu only
+  gint pair_rule = 0;         // 0 binary, 1 decimal; invrtu only
 };
 
 // InverterProtocol: one protocol (invascii or invrtu) and everything registered for it.

@@ -53,6 +53,16 @@ void register_preferences(InverterProtocol& p) {
                                  "How long a request waits for its reply before it counts as "
                                  "unanswered",
                                  10, &s.reply_timeout_ms);
+  prefs_register_uint_preference(module, "baud", "Bus baud rate",
+                                 "Baud rate of the RS485 bus behind the gateway: how long the "
+                                 "bytes of a segment took on the wire",
+                                 10, &s.baud);
+  prefs_register_uint_preference(
+      module, "gateway_gap", "Gateway gap (ms)",
+      "Silence between two segments of one direction that proves a frame boundary: a gateway "
+      "packs bytes for a shorter time than this, so a longer pause was silence on the bus "
+      "(0: segment times prove nothing). As pvtap audit's --gateway-gap.",
+      10, &s.gateway_gap_ms);
   if (p.dialects.rtu()) register_rtu_options(module, s);
 }
 

@@ -2,7 +2,7 @@
 
 #include <epan/packet.h>
 
-#include "bus_matcher.h"
+#include "bus_track.h"
 #include "common_fields.h"
 #include "inverter_protocol.h"
 #include "preferences.h"
@@ -35,7 +35,7 @@ void register_protocols() {
   register_register_fields(ascii_protocol().proto, Dialect::Ascii);
   register_record_dissector();
   apply_preferences();
-  register_cleanup_routine(release_bus_matchers);
+  register_cleanup_routine(release_bus_tracks);
 }
 
 void register_handoffs() {

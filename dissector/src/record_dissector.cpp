@@ -2,8 +2,10 @@
 
 #include <epan/packet.h>
 
+#include <algorithm>
+
 #include "conversation_state.h"
-#include "pvtap/segment_cut.h"
+#include "pvtap/framing_probe.h"
 #include "stream_dissection.h"
 
 namespace pvtap::dissector {
@@ -23,26 +25,29 @@ RoleHint hint_of(const packet_info* pinfo) {
   }
 }
 
-// A record holds the bytes of one bus; its first frame tells which framing it uses.
+// The layer a record shows as: the protocol of the frame it starts with (its pieces still go
+// to the protocols of their own dialects).
 InverterProtocol& protocol_of_record(tvbuff_t* tvb, packet_info* pinfo, RoleHint hint) {
-  const guint n = tvb_captured_length(tvb);
+  const guint n = std::min<guint>(tvb_captured_length(tvb), kMaxFrameLength);
   const auto* bytes = static_cast<const guint8*>(tvb_memdup(pinfo->pool, tvb, 0, n));
-  const CutOptions options{hint, DialectSet::all(), false};
-  for (guint offset = 0; offset < n;) {
-    const SegmentCut cut = cut_segment({bytes + offset, n - offset}, options);
-    if (cut.kind == SegmentCut::Kind::Frame) return protocol_of(cut.dialect);
-    if (cut.length == 0) break;
-    offset += static_cast<guint>(cut.length);
-  }
+  const ProbeResult probe = probe_frame({bytes, n}, hint);
+  if (probe.status == ProbeResult::Status::Complete) return protocol_of(probe.dialect);
   return rtu_protocol();
 }
 
-// Dissects a record with one protocol; `data` points to the direction the record carries.
+Direction direction_of(RoleHint hint) {
+  if (hint == RoleHint::Request) return Direction::ToSlave;
+  if (hint == RoleHint::Response) return Direction::FromSlave;
+  return Direction::Unknown;
+}
+
+// Dissects a record; `data` points to the direction the record carries. All records of a
+// capture are one bus (one matcher), whatever layer shows them.
 int dissect_record_as(InverterProtocol& p, tvbuff_t* tvb, packet_info* pinfo, proto_tree* tree,
                       void* data) {
   const RoleHint hint = data != nullptr ? *static_cast<const RoleHint*>(data) : RoleHint::Unknown;
-  ConversationState& state = conversation_state(pinfo, p);
-  const StreamContext ctx{&p, state.matcher, hint, false};
+  ConversationState& state = conversation_state(pinfo, rtu_protocol());
+  const StreamContext ctx{&p, state.bus, direction_of(hint), nullptr, false};
   return dissect_stream(tvb, pinfo, tree, ctx);
 }
 

@@ -1,22 +1,22 @@
 #include "stream_dissection.h"
 
+#include <epan/dissectors/packet-tcp.h>
 #include <epan/proto_data.h>
 
 #include <span>
 
 #include "frame_analysis.h"
 #include "frame_tree.h"
-#include "pvtap/segment_cut.h"
 #include "response_time_stats.h"
 
 namespace pvtap::dissector {
 namespace {
 
-// PacketCounters: how many frames and pieces of a protocol this packet showed so far; TCP
-// may call a dissector more than once per packet (a reassembled frame, then the rest).
+// PacketCounters: how many pieces of a protocol this packet showed so far, and how many times
+// the bound protocol was called for it (TCP may call more than once per packet).
 struct PacketCounters {
-  guint frames = 0;
   guint pieces = 0;
+  guint calls = 0;
 };
 
 constexpr guint32 kCountersKey = 0;
@@ -30,22 +30,47 @@ PacketCounters& counters_of(packet_info* pinfo, int proto) {
   return *c;
 }
 
-// The record of this packet's next frame. Records are keyed by the frame's position among the
-// packet's frames, which is the same on every pass. Only the first pass makes new ones.
-FrameRecord* record_for(packet_info* pinfo, int proto, bool& fresh) {
-  const guint32 key = counters_of(pinfo, proto).frames++;
-  fresh = false;
-  auto* r = static_cast<FrameRecord*>(p_get_proto_data(wmem_file_scope(), pinfo, proto, key));
-  if (r != nullptr) return r;
-  if (PINFO_FD_VISITED(pinfo)) {
-    return new (wmem_alloc(pinfo->pool, sizeof(FrameRecord))) FrameRecord{};
+// CallView: which stretch of the stream one call was handed, and how much of it it showed.
+// Made on the first pass and kept, so that every later pass shows the same pieces.
+struct CallView {
+  std::uint64_t from = 0;
+  std::uint64_t shown_to = 0;
+};
+
+// First pass: feeds the new bytes to the bus and notes what is decided. noexcept: the core may
+// allocate, and nothing may be thrown into Wireshark.
+CallView feed(std::span<const std::uint8_t> bytes, std::uint64_t from, double time,
+              const StreamContext& ctx) noexcept {
+  try {
+    SegmentedBus& bus = ctx.bus->bus();
+    bus.add(ctx.direction, from, bytes, time);
+    if (!ctx.desegment) bus.end_turn(ctx.direction);
+    const std::uint64_t decided = bus.decided_to(ctx.direction);
+    const std::uint64_t end = from + bytes.size();
+    return CallView{from, decided < from ? from : (decided < end ? decided : end)};
+  } catch (...) {
+    return CallView{from, from};  // out of memory: show these bytes as undecided
   }
-  r = new_frame_record();
-  r->packet = pinfo->num;
-  r->time = pinfo->abs_ts;
-  p_add_proto_data(wmem_file_scope(), pinfo, proto, key, r);
-  fresh = true;
-  return r;
+}
+
+std::uint64_t stream_start(tvbuff_t* tvb, const StreamContext& ctx, std::size_t captured) {
+  if (ctx.tcp == nullptr) return ctx.bus->next_datagram(ctx.direction, captured);
+  // The bytes TCP hands over end where the segment ends, reassembled or not.
+  const auto length = static_cast<guint32>(tvb_reported_length(tvb));
+  return ctx.bus->stream_offset(ctx.direction, ctx.tcp->nxtseq - length);
+}
+
+const CallView* view_of_call(tvbuff_t* tvb, packet_info* pinfo, const StreamContext& ctx,
+                             std::span<const std::uint8_t> bytes) {
+  const int proto = ctx.protocol->proto;
+  const guint32 key = 1 + counters_of(pinfo, proto).calls++;
+  auto* view = static_cast<CallView*>(p_get_proto_data(wmem_file_scope(), pinfo, proto, key));
+  if (view != nullptr || PINFO_FD_VISITED(pinfo)) return view;
+  const std::uint64_t from = stream_start(tvb, ctx, bytes.size());
+  view = new (wmem_alloc(wmem_file_scope(), sizeof(CallView)))
+      CallView(feed(bytes, from, nstime_to_sec(&pinfo->abs_ts), ctx));
+  p_add_proto_data(wmem_file_scope(), pinfo, proto, key, view);
+  return view;
 }
 
 void add_info(packet_info* pinfo, const InverterProtocol& p, const char* text) {
@@ -59,24 +84,19 @@ void add_info(packet_info* pinfo, const InverterProtocol& p, const char* text) {
   }
 }
 
-void ask_for_more(packet_info* pinfo, guint offset, const SegmentCut& cut, std::size_t have) {
-  pinfo->desegment_offset = static_cast<int>(offset);
-  pinfo->desegment_len =
-      cut.length > have ? static_cast<guint32>(cut.length - have) : DESEGMENT_ONE_MORE_SEGMENT;
-}
-
 void dissect_frame(const TreeTarget& target, std::span<const std::uint8_t> bytes,
-                   const SegmentCut& cut, const StreamContext& ctx) {
-  bool fresh = false;
-  FrameRecord* record = record_for(target.pinfo, ctx.protocol->proto, fresh);
-  const FrameInput in{bytes, cut.dialect, cut.role, cut.check, ctx.hint != RoleHint::Unknown};
-  const AnalysisContext actx{ctx.protocol, record, fresh ? ctx.matcher : nullptr,
-                             target.pinfo->pool, target.tree != nullptr};
+                   FrameRecord& record) {
+  // The first packet to show a frame is the one its links point to.
+  if (record.packet == 0) {
+    record.packet = target.pinfo->num;
+    record.time = target.pinfo->abs_ts;
+  }
+  const AnalysisContext actx{target.protocol, &record, target.pinfo->pool, target.tree != nullptr};
   FramePlan plan;
-  analyze_frame(in, actx, plan);
-  add_info(target.pinfo, *ctx.protocol, plan.summary);
-  queue_response_time(target.pinfo, *ctx.protocol, *record);
-  add_frame_tree(target, plan, *record);
+  analyze_frame(bytes, actx, plan);
+  add_info(target.pinfo, *target.protocol, plan.summary);
+  queue_response_time(target.pinfo, *target.protocol, record);
+  add_frame_tree(target, plan, record);
 }
 
 void dissect_noise(const TreeTarget& target, std::span<const std::uint8_t> bytes) {
@@ -91,33 +111,38 @@ void dissect_noise(const TreeTarget& target, std::span<const std::uint8_t> bytes
   add_noise_tree(target, unknown);
 }
 
+void dissect_piece(const BusPiece& piece, std::span<const std::uint8_t> bytes, guint offset,
+                   tvbuff_t* tvb, packet_info* pinfo, proto_tree* tree, const StreamContext& ctx) {
+  FrameRecord* record = piece.frame ? ctx.bus->record(piece.frame_id) : nullptr;
+  // A frame goes to the protocol of its dialect: one gateway may carry ASCII and RTU stations.
+  InverterProtocol* protocol = record != nullptr ? &protocol_of(record->dialect) : ctx.protocol;
+  const TreeTarget target{
+      tvb, pinfo, tree, static_cast<int>(offset), static_cast<int>(piece.length), protocol};
+  if (record != nullptr) {
+    dissect_frame(target, bytes, *record);
+  } else {
+    dissect_noise(target, bytes);
+  }
+}
+
 }  // namespace
 
 int dissect_stream(tvbuff_t* tvb, packet_info* pinfo, proto_tree* tree, const StreamContext& ctx) {
   const guint captured = tvb_captured_length(tvb);
   if (captured == 0) return 0;
-  const auto* bytes = static_cast<const guint8*>(tvb_memdup(pinfo->pool, tvb, 0, captured));
-  // Bytes cut off by the snapshot length cannot be completed by later segments.
-  const bool whole = tvb_reported_length(tvb) == captured;
-  const CutOptions options{ctx.hint, ctx.protocol->dialects, ctx.desegment && whole};
-  guint offset = 0;
-  while (offset < captured) {
-    const std::span<const std::uint8_t> rest(bytes + offset, captured - offset);
-    const SegmentCut cut = cut_segment(rest, options);
-    if (cut.kind == SegmentCut::Kind::NeedMore) {
-      ask_for_more(pinfo, offset, cut, rest.size());
-      break;
-    }
-    if (cut.length == 0 || cut.length > rest.size()) break;  // every piece takes a byte
-    const TreeTarget target{
-        tvb, pinfo, tree, static_cast<int>(offset), static_cast<int>(cut.length), ctx.protocol};
-    const auto piece = rest.first(cut.length);
-    if (cut.kind == SegmentCut::Kind::Frame) {
-      dissect_frame(target, piece, cut, ctx);
-    } else {
-      dissect_noise(target, piece);
-    }
-    offset += static_cast<guint>(cut.length);
+  const auto* data = static_cast<const guint8*>(tvb_memdup(pinfo->pool, tvb, 0, captured));
+  const std::span<const std::uint8_t> bytes(data, captured);
+  const CallView* view = view_of_call(tvb, pinfo, ctx, bytes);
+  if (view == nullptr) return static_cast<int>(captured);
+  for (const BusPiece& piece : ctx.bus->bus().pieces(ctx.direction, view->from, view->shown_to)) {
+    const std::uint64_t offset = piece.offset - view->from;
+    if (offset + piece.length > captured) break;
+    dissect_piece(piece, bytes.subspan(offset, piece.length), static_cast<guint>(offset), tvb,
+                  pinfo, tree, ctx);
+  }
+  if (ctx.desegment && view->shown_to < view->from + captured) {
+    pinfo->desegment_offset = static_cast<int>(view->shown_to - view->from);
+    pinfo->desegment_len = DESEGMENT_ONE_MORE_SEGMENT;
   }
   return static_cast<int>(captured);
 }

@@ -1,24 +1,27 @@
-// Cuts the bytes one transport delivered into frames and noise and dissects each piece.
+// Shows the frames and noise runs the core decided in the bytes one transport delivered.
 #pragma once
 
 #include <epan/packet.h>
 
-#include "bus_matcher.h"
+#include "bus_track.h"
 #include "inverter_protocol.h"
+
+struct tcpinfo;
 
 namespace pvtap::dissector {
 
 // StreamContext: what the transport knows about the bytes it hands over.
 struct StreamContext {
-  InverterProtocol* protocol = nullptr;
-  BusMatcher* matcher = nullptr;      // the bus these bytes belong to
-  RoleHint hint = RoleHint::Unknown;  // who sent them, when the transport knows
-  bool desegment = false;             // TCP: a frame cut by the segment end waits for more
+  InverterProtocol* protocol = nullptr;  // the protocol the conversation is bound to
+  BusTrack* bus = nullptr;               // the bus these bytes belong to
+  Direction direction = Direction::Unknown;
+  const tcpinfo* tcp = nullptr;  // TCP: the segment's sequence numbers; null for datagrams
+  bool desegment = false;        // TCP: undecided bytes wait for the next segment
 };
 
-// Dissects every frame and noise run of `tvb`; with desegment set, the bytes of a frame that
-// runs past the end are handed back to TCP to be completed by the next segments. Returns the
-// number of bytes taken (all of them).
+// Shows every piece of `tvb` the bus decided, each frame under the protocol of its dialect;
+// with desegment set, the undecided rest is handed back to TCP to come again with the next
+// segment. Returns the number of bytes taken (all of them).
 int dissect_stream(tvbuff_t* tvb, packet_info* pinfo, proto_tree* tree, const StreamContext& ctx);
 
 }  // namespace pvtap::dissector

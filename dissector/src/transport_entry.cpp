@@ -6,6 +6,8 @@
 #include <optional>
 #include <string>
 
+#include <epan/dissectors/packet-tcp.h>
+
 #include "conversation_state.h"
 #include "pvtap/framing_probe.h"
 #include "stream_dissection.h"
@@ -15,12 +17,26 @@ namespace {
 
 using ProtocolOf = InverterProtocol& (*)();
 
+Direction direction_of(RoleHint hint) {
+  switch (hint) {
+    case RoleHint::Request:
+      return Direction::ToSlave;
+    case RoleHint::Response:
+      return Direction::FromSlave;
+    default:
+      return Direction::Unknown;
+  }
+}
+
+// `tcp`: TCP's struct tcpinfo for TCP payloads, null for datagrams.
 int dissect_bound(InverterProtocol& p, tvbuff_t* tvb, packet_info* pinfo, proto_tree* tree,
-                  bool tcp) {
+                  const tcpinfo* tcp) {
   ConversationState& state = conversation_state(pinfo, p);
   set_slave_side_by_port(state, pinfo);
-  const StreamContext ctx{&p, state.matcher, role_hint(state, pinfo),
-                          tcp && p.settings.desegment && pinfo->can_desegment};
+  // Bytes cut off by the snapshot length cannot be completed by later segments.
+  const bool whole = tvb_reported_length(tvb) == tvb_captured_length(tvb);
+  const StreamContext ctx{&p, state.bus, direction_of(role_hint(state, pinfo)), tcp,
+                          tcp != nullptr && p.settings.desegment && pinfo->can_desegment && whole};
   return dissect_stream(tvb, pinfo, tree, ctx);
 }
 
@@ -37,35 +53,41 @@ std::optional<Role> leading_frame_role(tvbuff_t* tvb, packet_info* pinfo, Dialec
 }
 
 gboolean try_heuristic(InverterProtocol& p, tvbuff_t* tvb, packet_info* pinfo, proto_tree* tree,
-                       bool tcp) {
+                       const tcpinfo* tcp) {
   const std::optional<Role> role = leading_frame_role(tvb, pinfo, p.dialects);
   if (!role) return FALSE;
   conversation_t* conversation = find_or_create_conversation(pinfo);
-  conversation_set_dissector(conversation, tcp ? p.stream_handle : p.datagram_handle);
+  conversation_set_dissector(conversation, tcp != nullptr ? p.stream_handle : p.datagram_handle);
   ConversationState& state = conversation_state(pinfo, p);
   if (!state.slave_known) set_slave_side(state, pinfo, *role == Role::Response);
   dissect_bound(p, tvb, pinfo, tree, tcp);
   return TRUE;
 }
 
+// TCP hands its subdissectors the segment's struct tcpinfo as their data.
+const tcpinfo* tcp_info(void* data) {
+  return static_cast<const tcpinfo*>(data);
+}
+
 template <ProtocolOf P>
-int tcp_entry(tvbuff_t* tvb, packet_info* pinfo, proto_tree* tree, void*) {
-  return dissect_bound(P(), tvb, pinfo, tree, true);
+int tcp_entry(tvbuff_t* tvb, packet_info* pinfo, proto_tree* tree, void* data) {
+  return dissect_bound(P(), tvb, pinfo, tree, tcp_info(data));
 }
 
 template <ProtocolOf P>
 int datagram_entry(tvbuff_t* tvb, packet_info* pinfo, proto_tree* tree, void*) {
-  return dissect_bound(P(), tvb, pinfo, tree, false);
+  return dissect_bound(P(), tvb, pinfo, tree, nullptr);
 }
 
 template <ProtocolOf P>
-gboolean tcp_heuristic(tvbuff_t* tvb, packet_info* pinfo, proto_tree* tree, void*) {
-  return try_heuristic(P(), tvb, pinfo, tree, true);
+gboolean tcp_heuristic(tvbuff_t* tvb, packet_info* pinfo, proto_tree* tree, void* data) {
+  if (data == nullptr) return FALSE;
+  return try_heuristic(P(), tvb, pinfo, tree, tcp_info(data));
 }
 
 template <ProtocolOf P>
 gboolean udp_heuristic(tvbuff_t* tvb, packet_info* pinfo, proto_tree* tree, void*) {
-  return try_heuristic(P(), tvb, pinfo, tree, false);
+  return try_heuristic(P(), tvb, pinfo, tree, nullptr);
 }
 
 // Wireshark keeps the names it is given, so they are copied to storage never freed.

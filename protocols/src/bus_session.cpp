@@ -175,10 +175,14 @@ void BusSession::Impl::handle_parsed(SessionFrame& out, const FrameEvent& e) {
   out.role = role;
   out.role_corrected = current.role_corrected;
   out.duplicate = current.duplicate.has_value();
+  if (current.duplicate) out.duplicate_of = current.duplicate->original_request_id;
   out.count_mismatch = current.mismatch;
   if (current.unsolicited) {
     out.unsolicited = true;
-    if (current.unsolicited->late_for_request_id) out.late_by = current.unsolicited->since_request;
+    if (current.unsolicited->late_for_request_id) {
+      out.late_by = current.unsolicited->since_request;
+      out.late_for = current.unsolicited->late_for_request_id;
+    }
   }
   if (role == Role::Request) {
     requests.remember(out.id, frame, out.start_time, out.end_time, e.check.ok);

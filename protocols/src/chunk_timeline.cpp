@@ -10,10 +10,12 @@ constexpr double kEarlyToleranceChars = 1.0;
 
 }  // namespace
 
-ChunkTimeline::ChunkTimeline(const BusTiming& timing, TimestampTrust trust, double boundary_gap)
+ChunkTimeline::ChunkTimeline(const BusTiming& timing, TimestampTrust trust, double boundary_gap,
+                             bool segment_ends_pin)
     : timing_(timing),
       mode_(trust),
       boundary_gap_(boundary_gap),
+      segment_ends_pin_(segment_ends_pin),
       trusted_(trust != TimestampTrust::Untrusted) {
   if (trust == TimestampTrust::Untrusted) reason_ = "timestamps declared too coarse by the source";
 }

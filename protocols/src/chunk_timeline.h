@@ -12,8 +12,9 @@ namespace pvtap::detail {
 
 class ChunkTimeline {
  public:
-  // `boundary_gap`: see ReassemblerOptions::boundary_gap (already resolved: >= 0).
-  ChunkTimeline(const BusTiming& timing, TimestampTrust trust, double boundary_gap = 0.0);
+  // `boundary_gap`, `segment_ends_pin`: see ReassemblerOptions (the gap already resolved).
+  ChunkTimeline(const BusTiming& timing, TimestampTrust trust, double boundary_gap = 0.0,
+                bool segment_ends_pin = false);
 
   // Records a chunk of `size` bytes that ends at stream offset `end`.
   void add(std::uint64_t end, std::size_t size, double time, Direction direction);
@@ -51,6 +52,12 @@ class ChunkTimeline {
   // True when such a silence lies between first and last.
   bool silence_inside(std::uint64_t first, std::uint64_t last) const {
     return proves_boundary(widest_gap_inside(first, last));
+  }
+  // True when a chunk ends right before `offset` and chunk ends pin frames (gateways).
+  bool segment_ends_at(std::uint64_t offset) const {
+    if (!segment_ends_pin_ || offset == 0) return false;
+    const Mark* m = find(offset - 1);
+    return m != nullptr && m->end == offset;
   }
   bool silent_since_last_byte(double now) const {
     return have_previous_ && proves_boundary(now - previous_time_);
@@ -95,6 +102,7 @@ class ChunkTimeline {
   BusTiming timing_;
   TimestampTrust mode_;
   double boundary_gap_;
+  bool segment_ends_pin_;
   bool trusted_;
   std::string_view reason_;
   std::deque<Mark> marks_;

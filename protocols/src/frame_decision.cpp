@@ -1,6 +1,7 @@
 #include "frame_decision.h"
 
 #include <algorithm>
+#include <optional>
 
 #include "length_repair.h"
 #include "pvtap/checksums.h"
@@ -26,6 +27,18 @@ bool good_frame_at(const DecisionInput& in, std::size_t index, bool& incomplete)
   return p.status == ProbeResult::Status::Complete && p.check.ok;
 }
 
+// A complete ASCII frame at `index`: ENQ/ACK ... EOT delimit it whatever its check says.
+bool delimited_frame_at(const DecisionInput& in, std::size_t index) {
+  if (!in.dialects.contains(Dialect::Ascii)) return false;
+  const auto rest = in.bytes.subspan(index);
+  const CandidateList cands = frame_candidates(rest, hint_at(in, index), in.dialects);
+  for (std::size_t i = 0; i < cands.size; ++i) {
+    const FrameCandidate& c = cands.items[i];
+    if (c.dialect == Dialect::Ascii && c.length <= rest.size()) return true;
+  }
+  return false;
+}
+
 // A good frame that starts inside the candidate means the candidate is the misreading.
 bool good_frame_inside(const DecisionInput& in, std::size_t length) {
   bool incomplete = false;
@@ -37,6 +50,7 @@ bool good_frame_inside(const DecisionInput& in, std::size_t length) {
 
 Evidence end_evidence(const DecisionInput& in, std::size_t length) {
   if (in.timeline->silence_before(in.offset + length)) return Evidence::Yes;
+  if (in.timeline->segment_ends_at(in.offset + length)) return Evidence::Yes;
   if (length == in.bytes.size()) {
     return (in.final || in.silence_after) ? Evidence::Yes : Evidence::Wait;
   }
@@ -56,41 +70,35 @@ Evidence bad_frame_evidence(const DecisionInput& in, const FrameCandidate& c, bo
   return good_frame_inside(in, c.length) ? Evidence::No : Evidence::Yes;
 }
 
-// PinnedEnd: where the first pinned end after a pinned start lies, if it is known yet.
-struct PinnedEnd {
-  Evidence found = Evidence::No;
-  std::size_t length = 0;
-};
-
-// The first place after the start where a proven silence, a good frame or the end of input
-// ends whatever began there (no further than the longest RTU frame).
-PinnedEnd first_pinned_end(const DecisionInput& in) {
+// A pinned start that no reading fits: a frame whose length field was damaged, if the CRC
+// says so. Its end is the first proven silence, good frame or end of input after it; a
+// segment end on the way (gateways) is tried too, since the frame may end there.
+Decision repaired_at(const DecisionInput& in) {
+  const auto repaired = [&](std::size_t length) -> std::optional<Decision> {
+    const auto frame = in.bytes.first(length);
+    const auto c = repaired_reading(frame, hint_at(in, 0), in.dialects);
+    if (!c) return std::nullopt;
+    return Decision{Decision::Kind::Frame, *c, verify_check(frame, c->dialect)};
+  };
+  const Decision noise{Decision::Kind::Noise, {}, {}};
+  const Decision wait{Decision::Kind::Wait, {}, {}};
   const std::size_t limit = std::min(in.bytes.size(), kMaxRtuFrameLength);
   for (std::size_t q = 1; q <= limit; ++q) {
-    if (in.timeline->silence_before(in.offset + q)) return {Evidence::Yes, q};
+    if (in.timeline->silence_before(in.offset + q)) return repaired(q).value_or(noise);
+    if (in.timeline->segment_ends_at(in.offset + q)) {
+      if (auto d = repaired(q)) return *d;
+    }
     if (q == in.bytes.size()) {
-      if (in.final || in.silence_after) return {Evidence::Yes, q};
-      return {more_possible(in) ? Evidence::Wait : Evidence::No, 0};
+      if (in.final || in.silence_after) return repaired(q).value_or(noise);
+      return more_possible(in) ? wait : noise;
     }
     bool incomplete = false;
-    if (good_frame_at(in, q, incomplete)) return {Evidence::Yes, q};
-    if (incomplete && more_possible(in)) return {Evidence::Wait, 0};
-  }
-  return {};
-}
-
-// A pinned start that no reading fits: a frame whose length field was damaged, if the CRC
-// says so.
-Decision repaired_at(const DecisionInput& in) {
-  const PinnedEnd end = first_pinned_end(in);
-  if (end.found == Evidence::Wait) return Decision{Decision::Kind::Wait, {}, {}};
-  if (end.found == Evidence::Yes) {
-    const auto frame = in.bytes.first(end.length);
-    if (const auto c = repaired_reading(frame, hint_at(in, 0), in.dialects)) {
-      return Decision{Decision::Kind::Frame, *c, verify_check(frame, c->dialect)};
+    if (good_frame_at(in, q, incomplete) || delimited_frame_at(in, q)) {
+      return repaired(q).value_or(noise);
     }
+    if (incomplete && more_possible(in)) return wait;
   }
-  return Decision{Decision::Kind::Noise, {}, {}};
+  return noise;
 }
 
 // Checks the candidates one after the other. RTU readings at one position share their first

@@ -22,7 +22,8 @@ struct StreamReassembler::Impl {
   Impl(ReassemblerOptions o, ReassemblerSink& s)
       : options(o),
         sink(s),
-        timeline(BusTiming(o.baud, o.bits_per_char), o.timestamps, resolved_boundary_gap(o)) {}
+        timeline(BusTiming(o.baud, o.bits_per_char), o.timestamps, resolved_boundary_gap(o),
+                 o.segment_ends_pin) {}
 
   static double resolved_boundary_gap(const ReassemblerOptions& o) {
     if (o.boundary_gap >= 0) return o.boundary_gap;

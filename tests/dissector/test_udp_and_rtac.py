@@ -28,8 +28,9 @@ class DatagramTransports(PluginTestCase, unittest.TestCase):
                                             "invrtu.station"])
         self.assertEqual(rows[0][1], ["0"])
         self.assertEqual(rows[1][1:4], [["1"], ["60.1"], ["1"]])
-        # The UDP flow is bound to invascii: an RTU frame in it is not claimed by invrtu.
-        self.assertEqual(rows[2][4], [])
+        # The UDP flow is bound to invascii, but one gateway may carry ASCII and RTU stations:
+        # the RTU frame in it is shown by invrtu.
+        self.assertEqual(rows[2][4], ["1"])
 
     def test_rtac_serial_payload_by_decode_as(self):
         pcap = Pcap(LINKTYPE_RTAC_SERIAL)

@@ -52,7 +52,9 @@ struct SessionFrame {
   bool broadcast_answer = false;
   bool unsolicited = false;
   std::optional<double> late_by;  // unsolicited, but fits a timed-out request this much later
+  std::optional<std::uint64_t> late_for;  // ... that request
   bool duplicate = false;
+  std::optional<std::uint64_t> duplicate_of;  // the request a duplicate answered before
   bool role_corrected = false;
   std::optional<ByteCountMismatch> count_mismatch;
   // The request whose start address places this reply's words (its own, or the one it

@@ -87,6 +87,11 @@ struct ReassemblerOptions {
   // proves a boundary. Gateways: their packing interval (pvtap's --gateway-gap).
   double boundary_gap = -1.0;
   static constexpr double kUsbLatency = 0.016;
+  // A gateway sends a segment when the serial line went quiet (or its buffer filled): a
+  // frame with a bad check whose pinned start and structure make it end exactly where a
+  // segment ends is taken to end there. Never used to cut a frame that runs on: a reading
+  // longer than the segment still waits for the next one.
+  bool segment_ends_pin = false;
 };
 
 // ReassemblerTotals: byte accounting; bytes_in == frame_bytes + noise_bytes + pending bytes.
