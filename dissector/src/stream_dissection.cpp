@@ -30,24 +30,14 @@ PacketCounters& counters_of(packet_info* pinfo, int proto) {
   return *c;
 }
 
-// CallView: which stretch of the stream one call was handed, and how much of it it showed.
-// Made on the first pass and kept, so that every later pass shows the same pieces.
-struct CallView {
-  std::uint64_t from = 0;
-  std::uint64_t shown_to = 0;
-};
+using CallView = SegmentedBus::CallSpan;
 
 // First pass: feeds the new bytes to the bus and notes what is decided. noexcept: the core may
 // allocate, and nothing may be thrown into Wireshark.
 CallView feed(std::span<const std::uint8_t> bytes, std::uint64_t from, double time,
               const StreamContext& ctx) noexcept {
   try {
-    SegmentedBus& bus = ctx.bus->bus();
-    bus.add(ctx.direction, from, bytes, time);
-    if (!ctx.desegment) bus.end_turn(ctx.direction);
-    const std::uint64_t decided = bus.decided_to(ctx.direction);
-    const std::uint64_t end = from + bytes.size();
-    return CallView{from, decided < from ? from : (decided < end ? decided : end)};
+    return ctx.bus->bus().show(ctx.direction, from, bytes, time, ctx.desegment);
   } catch (...) {
     return CallView{from, from};  // out of memory: show these bytes as undecided
   }

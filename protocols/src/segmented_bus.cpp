@@ -84,6 +84,15 @@ void SegmentedBus::add(Direction d, std::uint64_t offset, std::span<const std::u
   m.session.feed(BusChunk{fresh, time, d});
 }
 
+SegmentedBus::CallSpan SegmentedBus::show(Direction d, std::uint64_t from,
+                                           std::span<const std::uint8_t> bytes, double time,
+                                           bool can_wait) {
+  add(d, from, bytes, time);
+  if (!can_wait) end_turn(d);
+  const std::uint64_t end = from + bytes.size();
+  return CallSpan{from, std::clamp(decided_to(d), from, end)};
+}
+
 void SegmentedBus::end_turn(Direction d) {
   impl_->session.end_turn(d);
 }
@@ -98,7 +107,7 @@ std::span<const BusPiece> SegmentedBus::pieces(Direction d, std::uint64_t from,
   const auto by_offset = [](const BusPiece& p, std::uint64_t o) { return p.offset < o; };
   const auto first = std::lower_bound(all.begin(), all.end(), from, by_offset);
   const auto last = std::lower_bound(first, all.end(), to, by_offset);
-  return {&*first, static_cast<std::size_t>(last - first)};
+  return {all.data() + (first - all.begin()), static_cast<std::size_t>(last - first)};
 }
 
 const BusSession& SegmentedBus::session() const {

@@ -43,12 +43,23 @@ class SegmentedBus {
   // held back): its bytes are decided now.
   void end_turn(Direction d);
 
+  // CallSpan: the stretch of the stream one call was handed, and how far it can be shown.
+  struct CallSpan {
+    std::uint64_t from = 0;
+    std::uint64_t shown_to = 0;  // pieces in [from, shown_to) are decided; the rest waits
+  };
+  // A dissector's call: adds `bytes` (stream position `from` on), decides all of them when
+  // they cannot wait for more (`can_wait` false: a datagram, a record), and says how much of
+  // them is decided.
+  CallSpan show(Direction d, std::uint64_t from, std::span<const std::uint8_t> bytes, double time,
+                bool can_wait);
+
   // Stream position up to which the pieces of `d` are decided.
   std::uint64_t decided_to(Direction d) const;
   // The pieces of `d` that start in [from, to), in stream order.
   std::span<const BusPiece> pieces(Direction d, std::uint64_t from, std::uint64_t to) const;
 
-  // The frame with this id, and the bytes fed so far.
+  // The session, for its report.
   const BusSession& session() const;
 
  private:
