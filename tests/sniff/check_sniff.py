@@ -215,6 +215,56 @@ def check_truth(args):
     return bad.exit_status("truth")
 
 
+def with_crc(body):
+    crc = 0xFFFF
+    for b in body:
+        crc ^= b
+        for _ in range(8):
+            crc = (crc >> 1) ^ 0xA001 if crc & 1 else crc >> 1
+    return body + bytes([crc & 0xFF, crc >> 8])
+
+
+def check_damaged(args):
+    """Damaged frames on a live tap, 30 ms silences around every frame: a GSL read request
+    whose count a bit flip changed (02 03 04 06 40 04 with its original CRC) is one frame with
+    a bad CRC, not noise, and the slave's silence after it is no timeout; a good request
+    answered by a damaged reply is answered (a damaged reply with a latency), not a timeout."""
+    bad = Failures()
+    request = with_crc(bytes.fromhex("02 03 04 06 00 04"))
+    reply = with_crc(bytes.fromhex("02 03 08 09 10 00 7B 00 00 11 94"))
+    damaged_request = bytes.fromhex("02 03 04 06 40 04") + request[-2:]
+    damaged_reply = bytearray(reply)
+    damaged_reply[5] ^= 0x01
+    plan = [(request, 0.03), (reply, 0.03), (damaged_request, 1.2), (request, 0.03),
+            (bytes(damaged_reply), 0.03), (request, 0.03), (reply, 0.3)]
+    events, t = [], 0.0
+    for data, silence in plan:
+        events.append({"ts": t, "hex": data.hex()})
+        t += len(data) * 10 / BAUD + silence
+    pty = pty_bus.Pty()
+    sniffer = Sniffer(args.pvtap, args.scratch, "damaged",
+                      ["--device", pty.path, "--format", "jsonl", "--timeout", "1"])
+    sniffer.wait_open(pty.path)
+    start = time.monotonic()
+    pty_bus.play(pty.master, pty_bus.byte_schedule(events, BAUD), start)
+    time.sleep(max(0.0, start + t + 0.3 - time.monotonic()))
+    bad.check(sniffer.stop() == 0, f"exit status {sniffer.proc.returncode}: {sniffer.stderr()}")
+    pty.close()
+    out = sniffer.events()
+    frames = frames_of(out)
+    got = [(f["raw"], f["check"]) for f in frames]
+    want = [(data.hex(), "ok" if data in (request, reply) else "bad") for data, _ in plan]
+    bad.check(got == want, f"frames: pvtap {got}, the bus carried {want}")
+    bad.check(not [e for e in out if e["type"] == "noise"], "noise reported")
+    summary = out[-1]
+    for key, value in (("timeouts", 0), ("damaged_replies", 1), ("unanswered_damaged_requests", 1),
+                       ("bad_checks", 2), ("noise_bytes", 0)):
+        bad.check(summary.get(key) == value, f"summary {key}: {summary.get(key)}, want {value}")
+    if len(frames) == len(plan):
+        bad.check(frames[4].get("latency_ms", 0) > 0, f"the damaged reply has no latency")
+    return bad.exit_status("damaged")
+
+
 def check_killed(args):
     """An abrupt end (SIGKILL: no handler runs) loses nothing --write already had: the pcap
     reads back whole, holding at least every frame pvtap had reported, in the same order."""
@@ -438,6 +488,7 @@ CHECKS = {
     "passive": check_passive,
     "killed": check_killed,
     "unplug": check_unplug,
+    "damaged": check_damaged,
     "two_buses": check_two_buses,
     "stop_conditions": check_stop_conditions,
     "status_line": check_status_line,
