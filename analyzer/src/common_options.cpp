@@ -81,8 +81,10 @@ void add_output_options(CLI::App& audit, AuditOptions& o) {
 bool load_maps(const AuditOptions& o, RegisterDecoder& decoder) {
   for (const std::string& path : o.maps) {
     const RegisterMapResult loaded = load_register_map_file(path);
+    // Several files stack in the order given, as the plugin stacks its folder's files.
     const RegisterMapResult resolved =
-        loaded ? resolve_user_register_map(*loaded.map) : RegisterMapResult{};
+        loaded ? stack_register_map(decoder.map(loaded.map->dialect()), *loaded.map)
+               : RegisterMapResult{};
     const RegisterMapResult& failed = loaded ? resolved : loaded;
     if (!loaded || !resolved) {
       std::fprintf(stderr, "pvtap: %s: bad register map\n%s", path.c_str(),

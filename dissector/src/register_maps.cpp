@@ -45,20 +45,15 @@ void report_unloaded(const fs::path& file, const std::string& why) {
                  file.c_str(), why.c_str());
 }
 
-// A replace map stands alone; an extend map is laid over what is in effect so far, so that
-// several files may extend one dialect.
+// Files stack in name order (stack_register_map, as pvtap's --map files do in their order).
 void apply_user_map(const fs::path& file, const RegisterMap& user) {
   RegisterMap& current = slot_of(user.dialect());
-  if (user.mode() == MapMode::Replace) {
-    current = user;
+  RegisterMapResult stacked = stack_register_map(current, user);
+  if (!stacked) {
+    report_unloaded(file, stacked.error_text());
     return;
   }
-  RegisterMapResult merged = merge_register_maps(current, user);
-  if (!merged) {
-    report_unloaded(file, merged.error_text());
-    return;
-  }
-  current = *merged.map;
+  current = *stacked.map;
 }
 
 void load_user_map(const fs::path& file) {

@@ -65,4 +65,9 @@ RegisterMapResult resolve_user_register_map(const RegisterMap& user) {
   return merge_register_maps(builtin_register_map(user.dialect()), user);
 }
 
+RegisterMapResult stack_register_map(const RegisterMap& in_effect, const RegisterMap& user) {
+  if (user.mode() == MapMode::Replace) return RegisterMapResult{user, {}};
+  return merge_register_maps(in_effect, user);
+}
+
 }  // namespace pvtap

@@ -460,6 +460,42 @@ TEST(RegisterMap, UserMapOverridesAndExtendsTheBuiltinMap) {
   EXPECT_EQ(map.find_key("fault_code_1")->bit_name(6), "output short circuit");
 }
 
+// Two extend files for one dialect stack in order, in pvtap as in the plugin; a replace file
+// after them stands alone.
+TEST(RegisterMap, ExtendMapsStackInTheOrderGiven) {
+  RegisterMapResult first = load_register_map(kUserExtension, "site.toml");
+  RegisterMapResult second = load_register_map(R"toml(dialect = "hybrid"
+mode = "extend"
+[[register]]
+address = 0x1051
+key = "site_reserve"
+name = "site reserve"
+unit = "W"
+)toml",
+                                               "reserve.toml");
+  ASSERT_TRUE(first) << first.error_text();
+  ASSERT_TRUE(second) << second.error_text();
+  RegisterMapResult one = stack_register_map(builtin_register_map(Dialect::Hybrid), *first.map);
+  ASSERT_TRUE(one) << one.error_text();
+  RegisterMapResult both = stack_register_map(*one.map, *second.map);
+  ASSERT_TRUE(both) << both.error_text();
+  EXPECT_EQ(both.map->locate(0x1050)->def->key, "site_limit") << "the first file's entry stays";
+  EXPECT_EQ(both.map->locate(0x1051)->def->key, "site_reserve");
+  EXPECT_DOUBLE_EQ(both.map->find_key("battery_voltage")->scale, 0.01);
+  RegisterMapResult replace = load_register_map(R"toml(dialect = "hybrid"
+mode = "replace"
+[[register]]
+address = 0x1000
+key = "only"
+name = "only register"
+)toml",
+                                                "replace.toml");
+  ASSERT_TRUE(replace) << replace.error_text();
+  RegisterMapResult alone = stack_register_map(*both.map, *replace.map);
+  ASSERT_TRUE(alone) << alone.error_text();
+  EXPECT_EQ(alone.map->size(), 1u);
+}
+
 TEST(RegisterMap, UserKeyMovesTheBuiltinEntry) {
   RegisterMapResult user = load_register_map(R"toml(dialect = "gsl"
 mode = "extend"

@@ -163,4 +163,10 @@ RegisterMapResult merge_register_maps(const RegisterMap& base, const RegisterMap
 // dialect (mode extend).
 RegisterMapResult resolve_user_register_map(const RegisterMap& user);
 
+// How user maps stack, the same in pvtap and the Wireshark plugin: files are taken in order
+// (the plugin: by file name; pvtap: --map as given); a replace map stands alone, an extend map
+// is laid over the map in effect so far (its dialect's built-in one, or what the files before
+// it made), so several files may extend one dialect.
+RegisterMapResult stack_register_map(const RegisterMap& in_effect, const RegisterMap& user);
+
 }  // namespace pvtap
