@@ -3,7 +3,9 @@
 #pragma once
 
 #include <cstddef>
+#include <array>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -29,7 +31,10 @@ class FlowProbe {
     std::vector<std::uint8_t> bytes;
   };
 
-  explicit FlowProbe(DialectSet dialects) : dialects_(dialects) {}
+  explicit FlowProbe(DialectSet dialects);
+  ~FlowProbe();
+  FlowProbe(const FlowProbe&) = delete;
+  FlowProbe& operator=(const FlowProbe&) = delete;
 
   Verdict add_data(Direction d, std::span<const std::uint8_t> bytes, double time);
   void add_gap(Direction d, std::uint64_t lost, double time);
@@ -41,19 +46,19 @@ class FlowProbe {
   void clear();
 
  private:
-  struct Scan {
-    std::vector<std::uint8_t> bytes;
-    std::size_t next = 0;         // first position not yet decided
-    std::size_t scanned_to = 0;   // buffer size at the last scan
-    std::size_t counted_end = 0;  // end of the last good frame counted
+  // GoodFrames: counts the frames with a good check the core's framing decision finds.
+  struct GoodFrames : ReassemblerSink {
+    void on_frame(const FrameEvent& e) override { count += e.check.ok ? 1u : 0u; }
+    void on_noise(const NoiseEvent&) override {}
+    unsigned count = 0;
   };
-  void scan(Direction d, bool final);
+  StreamReassembler& stream(Direction d);
 
   DialectSet dialects_;
   std::vector<Item> items_;
-  Scan scans_[3];
+  GoodFrames good_;
+  std::array<std::unique_ptr<StreamReassembler>, 3> streams_;
   std::uint64_t bytes_ = 0;
-  unsigned good_frames_ = 0;
 };
 
 }  // namespace pvtap::analyzer
