@@ -27,16 +27,30 @@ bool good_frame_at(const DecisionInput& in, std::size_t index, bool& incomplete)
   return p.status == ProbeResult::Status::Complete && p.check.ok;
 }
 
-// A complete ASCII frame at `index`: ENQ/ACK ... EOT delimit it whatever its check says.
-bool delimited_frame_at(const DecisionInput& in, std::size_t index) {
-  if (!in.dialects.contains(Dialect::Ascii)) return false;
+// What may start at `index`, from one reading of its header: a frame with a good check, one
+// that needs more bytes, or a complete ASCII frame (ENQ/ACK ... EOT delimit it whatever its
+// check says).
+struct StartAt {
+  bool good = false;
+  bool incomplete = false;
+  bool delimited = false;
+};
+
+StartAt start_at(const DecisionInput& in, std::size_t index) {
   const auto rest = in.bytes.subspan(index);
   const CandidateList cands = frame_candidates(rest, hint_at(in, index), in.dialects);
+  StartAt s;
+  s.incomplete = cands.need_header > 0;
   for (std::size_t i = 0; i < cands.size; ++i) {
     const FrameCandidate& c = cands.items[i];
-    if (c.dialect == Dialect::Ascii && c.length <= rest.size()) return true;
+    if (c.length > rest.size()) {
+      s.incomplete = true;
+      continue;
+    }
+    if (c.dialect == Dialect::Ascii) s.delimited = true;
+    if (!s.good && verify_check(rest.first(c.length), c.dialect).ok) s.good = true;
   }
-  return false;
+  return s;
 }
 
 // A good frame that starts inside the candidate means the candidate is the misreading.
@@ -72,33 +86,35 @@ Evidence bad_frame_evidence(const DecisionInput& in, const FrameCandidate& c, bo
 
 // A pinned start that no reading fits: a frame whose length field was damaged, if the CRC
 // says so. Its end is the first proven silence, good frame or end of input after it; a
-// segment end on the way (gateways) is tried too, since the frame may end there.
+// segment end on the way (gateways) is tried too, since the frame may end there. When no
+// repair fits, the whole span up to that end is noise: nothing inside it is pinned, and the
+// scan found no frame starting inside it, so each of its bytes would be noise on its own.
 Decision repaired_at(const DecisionInput& in) {
+  std::size_t scanned = 1;
   const auto repaired = [&](std::size_t length) -> std::optional<Decision> {
+    scanned = length;
     const auto frame = in.bytes.first(length);
     const auto c = repaired_reading(frame, hint_at(in, 0), in.dialects);
     if (!c) return std::nullopt;
     return Decision{Decision::Kind::Frame, *c, verify_check(frame, c->dialect)};
   };
-  const Decision noise{Decision::Kind::Noise, {}, {}};
+  const auto noise = [&] { return Decision{Decision::Kind::Noise, {}, {}, scanned}; };
   const Decision wait{Decision::Kind::Wait, {}, {}};
   const std::size_t limit = std::min(in.bytes.size(), kMaxRtuFrameLength);
   for (std::size_t q = 1; q <= limit; ++q) {
-    if (in.timeline->silence_before(in.offset + q)) return repaired(q).value_or(noise);
+    if (in.timeline->silence_before(in.offset + q)) return repaired(q).value_or(noise());
     if (in.timeline->segment_ends_at(in.offset + q)) {
       if (auto d = repaired(q)) return *d;
     }
     if (q == in.bytes.size()) {
-      if (in.final || in.silence_after) return repaired(q).value_or(noise);
-      return more_possible(in) ? wait : noise;
+      if (in.final || in.silence_after) return repaired(q).value_or(noise());
+      return more_possible(in) ? wait : Decision{Decision::Kind::Noise, {}, {}};
     }
-    bool incomplete = false;
-    if (good_frame_at(in, q, incomplete) || delimited_frame_at(in, q)) {
-      return repaired(q).value_or(noise);
-    }
-    if (incomplete && more_possible(in)) return wait;
+    const StartAt next = start_at(in, q);
+    if (next.good || next.delimited) return repaired(q).value_or(noise());
+    if (next.incomplete && more_possible(in)) return wait;
   }
-  return noise;
+  return Decision{Decision::Kind::Noise, {}, {}};
 }
 
 // Checks the candidates one after the other. RTU readings at one position share their first

@@ -27,6 +27,8 @@ struct Decision {
   Kind kind = Kind::Noise;
   FrameCandidate frame;
   FrameCheck check;
+  // Noise: how many bytes from the position on are noise for certain (at least 1).
+  std::size_t noise_length = 1;
 };
 
 // Structure first, plausibility second. A frame with a good check is taken at once. A frame

@@ -54,8 +54,10 @@ std::optional<FrameCandidate> try_value(Buffer& buf, std::span<const std::uint8_
   if (at >= frame.size() || frame[at] == value) return std::nullopt;
   const std::span<const std::uint8_t> trial(buf.data(), frame.size());
   buf[at] = value;
-  std::optional<FrameCandidate> found;
-  if (crc_matches(trial)) found = spanning_reading(trial, hint, dialects);
+  // The length rules are cheap and rule most values out; the CRC is checked only for those
+  // that give the span's length.
+  std::optional<FrameCandidate> found = spanning_reading(trial, hint, dialects);
+  if (found && !crc_matches(trial)) found.reset();
   buf[at] = frame[at];
   return found;
 }

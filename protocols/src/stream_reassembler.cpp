@@ -1,5 +1,6 @@
 #include "pvtap/stream_reassembler.h"
 
+#include <algorithm>
 #include <vector>
 
 #include "chunk_timeline.h"
@@ -105,7 +106,8 @@ struct StreamReassembler::Impl {
       if (after_frame) {
         emit_frame(d);
       } else {
-        ++head;
+        // Noise runs stay within kMaxNoiseRun even when a decision names several bytes.
+        head += std::min(d.noise_length, kMaxNoiseRun - (head - noise_begin));
         if (head - noise_begin >= kMaxNoiseRun) flush_noise();
       }
     }
