@@ -3,9 +3,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "bus_script.h"
 #include "hex_bytes.h"
 #include "pvtap/bus_timing.h"
+#include "pvtap/checksums.h"
 
 namespace pvtap {
 namespace {
@@ -189,6 +192,46 @@ TEST(StreamReassembler, UntrustedTimestampsProveABoundaryOnlyPastTheBoundaryGap)
   ASSERT_EQ(sink.events.size(), 1u);
   EXPECT_TRUE(sink.events[0].is_frame);
   EXPECT_FALSE(sink.events[0].frame.check.ok);
+}
+
+// A gateway sends a long reply in segments as its packing timer fires: at 9600 baud each
+// 16-byte segment is 16.7 ms of wire time, so the time between segments is their own wire
+// time (plus the gateway's delay), never a silence past the 50 ms gateway gap. Nothing may
+// cut the reply, good or damaged; the silences between replies still pin a damaged one.
+TEST(StreamReassembler, ALongReplyInGatewaySegmentsIsNeverCutByTheGapRule) {
+  const BusTiming timing(9600);
+  std::vector<std::uint8_t> body{0x01, 0x03, 196};
+  for (unsigned i = 0; i < 196; ++i) body.push_back(static_cast<std::uint8_t>(i * 37 + 11));
+  const std::uint16_t crc = Crc16Modbus::compute(body);
+  auto good = body;
+  good.push_back(static_cast<std::uint8_t>(crc & 0xFF));
+  good.push_back(static_cast<std::uint8_t>(crc >> 8));
+  auto damaged = good;
+  damaged[120] ^= 0x10;
+  ASSERT_EQ(good.size(), 201u);
+  test::CapturingSink sink;
+  ReassemblerOptions options;
+  options.timestamps = TimestampTrust::Untrusted;
+  options.boundary_gap = 0.05;
+  StreamReassembler r(options, sink);
+  double t = 100.0;
+  for (const auto* reply : {&good, &damaged, &good}) {
+    const std::span<const std::uint8_t> bytes(*reply);
+    for (std::size_t at = 0; at < bytes.size(); at += 16) {
+      const auto piece = bytes.subspan(at, std::min<std::size_t>(16, bytes.size() - at));
+      // Stamped when its last byte was on the wire, plus up to 15 ms of packing delay.
+      t += static_cast<double>(piece.size()) * timing.char_time;
+      r.feed(BusChunk{piece, t + static_cast<double>(at % 3) * 0.005, Direction::FromSlave});
+    }
+    t += 1.0;  // the next poll
+  }
+  r.finish();
+  ASSERT_EQ(sink.events.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_TRUE(sink.events[i].is_frame) << i;
+    EXPECT_EQ(sink.events[i].bytes.size(), 201u) << i;
+    EXPECT_EQ(sink.events[i].frame.check.ok, i != 1) << i;
+  }
 }
 
 TEST(StreamReassembler, LongGarbageIsReportedInBoundedRuns) {
