@@ -104,6 +104,9 @@ void collect_issues(const SessionFrame& f, std::vector<std::string>& out) {
   if (!f.parse_error.empty()) out.push_back("malformed: " + std::string(f.parse_error));
   if (f.frame == nullptr) return;
   if (f.role_corrected) out.emplace_back("echo of a write, read as the reply");
+  if (!f.check.ok && f.role == Role::Response && f.request_id) {
+    out.emplace_back("damaged reply: the slave answered, the line damaged the answer");
+  }
   if (f.unsolicited) {
     if (f.late_by) {
       std::string text = "late reply: ";
