@@ -9,7 +9,7 @@ FlowProbe::~FlowProbe() = default;
 // Each direction is read by the same framing decision as the bus it may become, with no
 // timing evidence: whether frames are there does not depend on segment times.
 StreamReassembler& FlowProbe::stream(Direction d) {
-  auto& slot = streams_[static_cast<std::size_t>(d)];
+  auto& slot = streams_[index_of(d)];
   if (!slot) {
     ReassemblerOptions o;
     o.dialects = dialects_;

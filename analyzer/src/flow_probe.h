@@ -2,8 +2,8 @@
 // that a capture with other traffic (SSH, HTTP, DNS) needs no port to be given.
 #pragma once
 
-#include <cstddef>
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -57,7 +57,7 @@ class FlowProbe {
   DialectSet dialects_;
   std::vector<Item> items_;
   GoodFrames good_;
-  std::array<std::unique_ptr<StreamReassembler>, 3> streams_;
+  std::array<std::unique_ptr<StreamReassembler>, kDirections> streams_;
   std::uint64_t bytes_ = 0;
 };
 

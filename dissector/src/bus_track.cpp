@@ -13,10 +13,6 @@ guint16 clamp16(unsigned value) {
   return static_cast<guint16>(value > 0xFFFF ? 0xFFFF : value);
 }
 
-std::size_t index_of(Direction d) {
-  return static_cast<std::size_t>(d);
-}
-
 BusSessionOptions session_options(const ProtocolSettings& s) {
   BusSessionOptions o;
   o.reassembler.dialects = DialectSet::all();  // a gateway may carry ASCII and RTU stations

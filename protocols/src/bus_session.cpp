@@ -12,16 +12,6 @@
 #include "request_book.h"
 
 namespace pvtap {
-namespace {
-
-constexpr std::size_t kDirections = 3;
-
-std::size_t index_of(Direction d) {
-  return static_cast<std::size_t>(d);
-}
-
-}  // namespace
-
 struct BusSession::Impl : MatchSink {
   // DirectionStream: the reassembler of one direction and where its events go.
   struct DirectionStream : ReassemblerSink {

@@ -3,16 +3,6 @@
 #include <algorithm>
 
 namespace pvtap {
-namespace {
-
-constexpr std::size_t kDirections = 3;
-
-std::size_t index_of(Direction d) {
-  return static_cast<std::size_t>(d);
-}
-
-}  // namespace
-
 struct SegmentedBus::Impl : BusSessionSink {
   Impl(BusSessionOptions o, const RegisterDecoder& decoder, BusSessionSink& outer_sink)
       : outer(outer_sink), session(o, decoder, *this) {}
@@ -85,8 +75,8 @@ void SegmentedBus::add(Direction d, std::uint64_t offset, std::span<const std::u
 }
 
 SegmentedBus::CallSpan SegmentedBus::show(Direction d, std::uint64_t from,
-                                           std::span<const std::uint8_t> bytes, double time,
-                                           bool can_wait) {
+                                          std::span<const std::uint8_t> bytes, double time,
+                                          bool can_wait) {
   add(d, from, bytes, time);
   if (!can_wait) end_turn(d);
   const std::uint64_t end = from + bytes.size();

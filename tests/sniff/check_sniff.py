@@ -19,6 +19,9 @@ import time
 
 import pty_bus
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "dissector"))
+from bus_frames import with_crc  # noqa: E402
+
 BAUD = 9600
 # Longest wait for pvtap to open a device or to exit by itself; a guard against hangs, not
 # a timing requirement.
@@ -213,15 +216,6 @@ def check_truth(args):
               f"the written pcap holds {len(read_back)} frames that differ from the "
               f"{len(live)} reported live")
     return bad.exit_status("truth")
-
-
-def with_crc(body):
-    crc = 0xFFFF
-    for b in body:
-        crc ^= b
-        for _ in range(8):
-            crc = (crc >> 1) ^ 0xA001 if crc & 1 else crc >> 1
-    return body + bytes([crc & 0xFF, crc >> 8])
 
 
 def check_damaged(args):

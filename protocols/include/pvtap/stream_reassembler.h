@@ -1,6 +1,7 @@
 // Turns chunks of raw bus bytes into frames and noise, accounting for every byte.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -13,6 +14,12 @@ namespace pvtap {
 
 // Direction: what the capture path knows about who sent a chunk.
 enum class Direction : std::uint8_t { Unknown = 0, ToSlave = 1, FromSlave = 2 };
+
+// The directions, as indexes of per-direction tables.
+inline constexpr std::size_t kDirections = 3;
+constexpr std::size_t index_of(Direction d) {
+  return static_cast<std::size_t>(d);
+}
 
 // What a direction says about the role of the frames in it.
 constexpr RoleHint role_hint(Direction d) {
