@@ -352,6 +352,9 @@ def mode_tshark(options, checks):
     if not options.plugin or not os.path.exists(options.plugin) or shutil.which("tshark") is None:
         print("skipped: needs tshark and the built Wireshark plugin")
         return SKIP
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "dissector"))
+    import tshark_runner  # noqa: E402  (tests/dissector: the check for a system-wide pvtap.so)
+    tshark_runner.refuse_system_plugin()
     expected = load_expectation(options.dir, options.name)
     args = input_args(options.dir, options.name, expected)
     home = tempfile.mkdtemp(prefix="pvtap-audit-tshark-")
