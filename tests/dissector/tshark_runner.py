@@ -8,6 +8,7 @@ well as the one under test and make every run fail on duplicate registrations; T
 refuses to start then, saying so (refuse_system_plugin).
 """
 
+import functools
 import glob
 import json
 import os
@@ -26,8 +27,9 @@ def plugin_path():
     return path
 
 
+@functools.lru_cache(maxsize=None)
 def global_plugin_folder():
-    """tshark's global plugin folder, as `tshark -G folders` names it."""
+    """tshark's global plugin folder, as `tshark -G folders` names it (asked once)."""
     listing = subprocess.run(["env", "-i", "PATH=/usr/sbin:/usr/bin:/sbin:/bin", "LC_ALL=C.UTF-8",
                               "tshark", "-G", "folders"], capture_output=True, text=True,
                              timeout=60).stdout
