@@ -12,7 +12,8 @@ source /usr/share/bash-completion/bash_completion
 # shellcheck source=packaging/bash-completion/pvtap
 source "$completion"
 
-# The completions bash would offer for the command line "$@" (the last word being completed).
+# The completions bash would offer for the command line "$@" (the last word being completed;
+# the first is the program, whose --help the completion reads).
 complete_line() {
     COMP_WORDS=("$@")
     COMP_CWORD=$(($# - 1))
@@ -58,20 +59,22 @@ for subcommand in audit sniff; do
         failures=$((failures + 1))
     fi
     expect_same "$subcommand options are those of its --help" "$options" \
-        "$(complete_line pvtap "$subcommand" --)"
+        "$(complete_line "$pvtap" "$subcommand" --)"
 done
 expect_same "--format values" "$(printf '%s\n' csv jsonl text)" \
-    "$(complete_line pvtap audit --format '')"
+    "$(complete_line "$pvtap" audit --format '')"
 expect_same "--dialect values" "$(printf '%s\n' ascii auto gsl hybrid)" \
-    "$(complete_line pvtap sniff --dialect '')"
+    "$(complete_line "$pvtap" sniff --dialect '')"
 expect_same "--gsl-ids values" "$(printf '%s\n' decimal hex)" \
-    "$(complete_line pvtap audit --gsl-ids '')"
+    "$(complete_line "$pvtap" audit --gsl-ids '')"
+expect_same "nothing is guessed for --timeout" "" "$(complete_line "$pvtap" audit --timeout '')"
+expect_same "--fail-on's value" "errors" "$(complete_line "$pvtap" audit --fail-on '')"
 expect_same "--parity values" "$(printf '%s\n' even none odd)" \
-    "$(complete_line pvtap sniff --device /dev/ttyS0 --parity '')"
+    "$(complete_line "$pvtap" sniff --device /dev/ttyS0 --parity '')"
 
 # Serial devices: what the system has, and the ports of PVTAP_SERIAL_PORTS.
 export PVTAP_SERIAL_PORTS=/dev/pts/77:/dev/pvtap-test-port
-devices=$(complete_line pvtap sniff --device '')
+devices=$(complete_line "$pvtap" sniff --device '')
 expect_contains "--device offers PVTAP_SERIAL_PORTS" /dev/pvtap-test-port "$devices"
 for tty in /dev/ttyS0 /dev/ttyUSB0; do
     [[ -e $tty ]] && expect_contains "--device offers $tty" "$tty" "$devices"
@@ -85,9 +88,9 @@ mkdir "$scratch/site"
 touch "$scratch/a.pcap" "$scratch/b.pcapng" "$scratch/notes.txt" "$scratch/site.toml"
 cd "$scratch" || exit 1
 expect_same "audit FILE offers captures and folders" "$(printf '%s\n' a.pcap b.pcapng site)" \
-    "$(complete_line pvtap audit --summary-only '')"
+    "$(complete_line "$pvtap" audit --summary-only '')"
 expect_same "--map offers TOML files and folders" "$(printf '%s\n' site site.toml)" \
-    "$(complete_line pvtap audit --map '')"
+    "$(complete_line "$pvtap" audit --map '')"
 
 if ((failures > 0)); then
     echo "$failures completion check(s) failed"
