@@ -3,9 +3,11 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "pvtap/register_decoder.h"
 #include "pvtap/register_map.h"
+#include "user_map_folder.h"
 
 namespace pvtap::analyzer {
 namespace {
@@ -54,7 +56,8 @@ void add_protocol_options(CLI::App& audit, AuditOptions& o, BaudRange baud_range
   audit
       .add_option("--map", o.maps,
                   "register map (TOML, see protocols/maps/README.md) replacing or extending the "
-                  "built-in map of its dialect; repeatable")
+                  "built-in map of its dialect; repeatable; read after the user's maps in "
+                  "~/.config/pvtap/maps/*.toml")
       ->type_name("FILE")
       ->allow_extra_args(false);
 }
@@ -79,7 +82,10 @@ void add_output_options(CLI::App& audit, AuditOptions& o) {
 }
 
 bool load_maps(const AuditOptions& o, RegisterDecoder& decoder) {
-  for (const std::string& path : o.maps) {
+  // The user's own maps first, so that a --map file is laid over them.
+  std::vector<std::string> paths = user_map_files(user_map_folder());
+  paths.insert(paths.end(), o.maps.begin(), o.maps.end());
+  for (const std::string& path : paths) {
     const RegisterMapResult loaded = load_register_map_file(path);
     // Several files stack in the order given, as the plugin stacks its folder's files.
     const RegisterMapResult resolved =

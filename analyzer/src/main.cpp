@@ -6,11 +6,25 @@
 #include "extcap_command.h"
 #include "sniff_command.h"
 
+namespace {
+
+// `pvtap --version`: this program's version, and the Wireshark its plugin was built for (a
+// plugin loads only into the Wireshark major.minor it was built against).
+#ifdef PVTAP_WIRESHARK_VERSION
+constexpr const char* kVersionText =
+    "pvtap " PVTAP_VERSION "\nWireshark plugin built for Wireshark " PVTAP_WIRESHARK_VERSION;
+#else
+constexpr const char* kVersionText = "pvtap " PVTAP_VERSION "\nWireshark plugin not built";
+#endif
+
+}  // namespace
+
 int main(int argc, char** argv) {
   // Wireshark runs capture interfaces as `pvtap --extcap-interfaces`, `--capture ...`.
   if (pvtap::analyzer::is_extcap_call(argc, argv)) return pvtap::analyzer::run_extcap(argc, argv);
   CLI::App app{"pvtap: see what crosses the wire between a data logger and its inverters", "pvtap"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", kVersionText, "print the version and exit");
   pvtap::analyzer::AuditOptions audit_options;
   CLI::App* audit = pvtap::analyzer::add_audit_command(app, audit_options);
   pvtap::analyzer::SniffCommandLine sniff_command;

@@ -37,8 +37,9 @@ const char* const kFooter =
     "  pvtap sniff --device /dev/ttyUSB0 --baud 19200 --parity even --format jsonl | jq .\n"
     "  pvtap sniff --device /dev/ttyUSB0 --device /dev/ttyUSB1 --write site.pcap\n"
     "  pvtap sniff --interface eth0 --port 4001 --duration 600 --summary-only\n"
-    "\nIn Wireshark: after `cmake --install`, the capture interfaces list \"RS485 tap\" for each\n"
-    "serial port (pvtap answers Wireshark's extcap calls).\n";
+    "\nIn Wireshark, once pvtap is installed (its Debian package, or `cmake --install`), the\n"
+    "capture interfaces list \"RS485 tap\" for each serial port (pvtap answers Wireshark's\n"
+    "extcap calls).\n";
 
 void add_source_options(CLI::App& sniff, SniffCommandLine& c) {
   LiveOptions& live = c.options.live;

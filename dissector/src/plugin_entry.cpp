@@ -11,9 +11,10 @@ WS_DLL_PUBLIC_DEF extern const int plugin_want_minor;
 WS_DLL_PUBLIC_DEF void plugin_register(void);
 }
 
-const char plugin_version[] = "0.1.0";
-const int plugin_want_major = 4;
-const int plugin_want_minor = 0;
+// From CMake: project(VERSION) and the Wireshark found at configure time.
+const char plugin_version[] = PVTAP_VERSION;
+const int plugin_want_major = PVTAP_WIRESHARK_MAJOR;
+const int plugin_want_minor = PVTAP_WIRESHARK_MINOR;
 
 void plugin_register(void) {
   static const proto_plugin plugin = {pvtap::dissector::register_protocols,

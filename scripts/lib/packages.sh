@@ -19,6 +19,13 @@ PVTAP_PACKAGES=(
   libpcap-dev
   libcli11-dev
   python3
+  # Packaging (scripts/package and its tests): man pages from --help, CPack's dependency
+  # computation (dpkg-shlibdeps needs file), the package check, man, the completion test.
+  help2man
+  file
+  lintian
+  man-db
+  bash-completion
   # The real-peer capture test (captures/real-peer/record): software we did not write.
   mbpoll
   python3-pymodbus

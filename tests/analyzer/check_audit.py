@@ -12,6 +12,7 @@ import csv
 import io
 import json
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -250,6 +251,61 @@ def mode_usage(options, checks):
         checks.true(f"--help explains {phrase}", phrase in helped.stdout)
 
 
+def gsl_map(name):
+    """A GSL map that renames register 1050 (grid line voltage AB in the built-in map)."""
+    return ('dialect = "gsl"\nmode = "extend"\n\n[[register]]\naddress = 1050\n'
+            'key = "line_ab"\nname = "%s"\nscale = 0.1\nunit = "V"\n' % name)
+
+
+def register_names(options, args, env, checks):
+    result = subprocess.run([options.pvtap, "audit", "--format", "jsonl", *args],
+                            capture_output=True, text=True, timeout=110, env=env)
+    checks.equal(f"exit status with {args} ({result.stderr.strip()[:200]})", result.returncode, 0)
+    return {value["name"] for line in parse_jsonl(result.stdout, checks)
+            for value in line.get("values", [])}
+
+
+def mode_user_maps(options, checks):
+    """~/.config/pvtap/maps/*.toml (or $XDG_CONFIG_HOME/pvtap/maps) before --map files."""
+    capture = capture_path(options.dir, "user0")
+    home = tempfile.mkdtemp(prefix="pvtap-user-maps-")
+    try:
+        folder = os.path.join(home, ".config", "pvtap", "maps")
+        os.makedirs(folder)
+        with open(os.path.join(folder, "site.toml"), "w") as f:
+            f.write(gsl_map("site line AB"))
+        env = {k: v for k, v in os.environ.items() if k != "XDG_CONFIG_HOME"}
+        env["HOME"] = home
+        names = register_names(options, [capture], env, checks)
+        checks.true("the user's map renames register 1050", "site line AB" in names)
+        checks.true("the built-in name is gone", "grid line voltage AB" not in names)
+        override = os.path.join(home, "override.toml")
+        with open(override, "w") as f:
+            f.write(gsl_map("override line AB"))
+        names = register_names(options, ["--map", override, capture], env, checks)
+        checks.true("a --map file is laid over the user's map", "override line AB" in names)
+        xdg = dict(env, XDG_CONFIG_HOME=os.path.join(home, "xdg"))
+        names = register_names(options, [capture], xdg, checks)
+        checks.true("XDG_CONFIG_HOME replaces ~/.config", "grid line voltage AB" in names)
+        with open(os.path.join(folder, "zz-broken.toml"), "w") as f:
+            f.write('dialect = "gsl"\n[[register]]\naddress = 1050\nscael = 0.1\n')
+        result = subprocess.run([options.pvtap, "audit", capture], capture_output=True,
+                                text=True, timeout=110, env=env)
+        checks.equal("a bad user map is a usage error", result.returncode, 2)
+        checks.true("the error names the user's map", "zz-broken.toml" in result.stderr)
+    finally:
+        shutil.rmtree(home, ignore_errors=True)
+
+
+def mode_version(options, checks):
+    result = subprocess.run([options.pvtap, "--version"], capture_output=True, text=True)
+    checks.equal("exit status of pvtap --version", result.returncode, 0)
+    pattern = (r"pvtap \d+\.\d+\.\d+\n"
+               r"Wireshark plugin (built for Wireshark \d+\.\d+\.\d+|not built)\n")
+    checks.true(f"pvtap --version names both versions: {result.stdout!r}",
+                re.fullmatch(pattern, result.stdout) is not None)
+
+
 def mode_formats(options, checks):
     expected = load_expectation(options.dir, options.name)
     args = input_args(options.dir, options.name, expected)
@@ -296,6 +352,9 @@ def mode_tshark(options, checks):
     if not options.plugin or not os.path.exists(options.plugin) or shutil.which("tshark") is None:
         print("skipped: needs tshark and the built Wireshark plugin")
         return SKIP
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "dissector"))
+    import tshark_runner  # noqa: E402  (tests/dissector: the check for a system-wide pvtap.so)
+    tshark_runner.refuse_system_plugin()
     expected = load_expectation(options.dir, options.name)
     args = input_args(options.dir, options.name, expected)
     home = tempfile.mkdtemp(prefix="pvtap-audit-tshark-")
@@ -332,7 +391,7 @@ def main():
     checks = Checks()
     modes = {"expect": mode_expect, "roundtrip": mode_roundtrip, "fail-on": mode_fail_on,
              "bad-inputs": mode_bad_inputs, "usage": mode_usage, "formats": mode_formats,
-             "tshark": mode_tshark}
+             "tshark": mode_tshark, "user-maps": mode_user_maps, "version": mode_version}
     if modes[options.mode](options, checks) == SKIP:
         return SKIP
     return checks.finish()

@@ -2,8 +2,14 @@
 
 tshark run as root ignores the personal plugin folder (and WIRESHARK_PLUGIN_DIR), so as root
 it runs as the unprivileged user 65534 through setpriv.
+
+A pvtap.so in tshark's global plugin folder (an installed pvtap package) would be loaded as
+well as the one under test and make every run fail on duplicate registrations; TsharkHome
+refuses to start then, saying so (refuse_system_plugin).
 """
 
+import functools
+import glob
 import json
 import os
 import shutil
@@ -21,10 +27,42 @@ def plugin_path():
     return path
 
 
+@functools.lru_cache(maxsize=None)
+def global_plugin_folder():
+    """tshark's global plugin folder, as `tshark -G folders` names it (asked once)."""
+    listing = subprocess.run(["env", "-i", "PATH=/usr/sbin:/usr/bin:/sbin:/bin", "LC_ALL=C.UTF-8",
+                              "tshark", "-G", "folders"], capture_output=True, text=True,
+                             timeout=60).stdout
+    for line in listing.splitlines():
+        name, _, folder = line.partition(":")
+        if name.strip() == "Global Plugins":
+            return folder.strip()
+    raise RuntimeError("tshark -G folders names no global plugin folder:\n" + listing)
+
+
+def system_plugin_copies():
+    """The pvtap.so files that tshark would load from its global plugin folder."""
+    folder = global_plugin_folder()
+    return sorted(glob.glob(os.path.join(folder, "pvtap.so")) +
+                  glob.glob(os.path.join(folder, "*", "pvtap.so")))
+
+
+def refuse_system_plugin():
+    """Fails with the reason when a system-wide pvtap.so would be loaded next to the test's."""
+    copies = system_plugin_copies()
+    if copies:
+        raise RuntimeError(
+            "a system-wide pvtap.so is installed (%s): tshark would load it as well as the "
+            "plugin under test, and every test would fail on duplicate protocol registrations. "
+            "Remove it first (dpkg -r pvtap, or delete the file left by cmake --install)."
+            % ", ".join(copies))
+
+
 class TsharkHome:
     """A temporary HOME holding the plugin, user register maps and the test captures."""
 
     def __init__(self, user_maps=None):
+        refuse_system_plugin()
         self.home = tempfile.mkdtemp(prefix="pvtap-tshark-")
         plugins = os.path.join(self.home, PLUGIN_SUBDIR)
         os.makedirs(plugins)

@@ -1,5 +1,5 @@
-"""`cmake --install` puts pvtap where Wireshark looks for extcaps: a link in the extcap folder
-to the installed binary. Installed under a temporary DESTDIR, so nothing is left behind.
+"""`cmake --install` puts pvtap where Wireshark looks for extcaps: a relative link in the
+extcap folder to the installed binary. Installed under a temporary DESTDIR, so nothing is left behind.
 """
 import os
 import shutil
@@ -24,8 +24,11 @@ class Install(unittest.TestCase):
                        capture_output=True, env=dict(os.environ, DESTDIR=self.destdir))
         link = self.destdir + os.path.join(self.extcap_dir, "pvtap")
         self.assertTrue(os.path.islink(link), link + " is no link")
-        self.assertEqual(os.readlink(link), os.path.join(PREFIX, "bin", "pvtap"))
-        binary = self.destdir + os.readlink(link)
+        # Relative, so that it resolves to the installed binary under DESTDIR too.
+        self.assertFalse(os.path.isabs(os.readlink(link)), os.readlink(link))
+        target = os.path.normpath(os.path.join(self.extcap_dir, os.readlink(link)))
+        self.assertEqual(target, os.path.join(PREFIX, "bin", "pvtap"))
+        binary = self.destdir + target
         self.assertTrue(os.access(binary, os.X_OK), binary)
         answer = subprocess.run([binary, "--extcap-interfaces"], capture_output=True, text=True,
                                 check=True)
