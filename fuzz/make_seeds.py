@@ -146,9 +146,12 @@ def tcp_seeds(out, max_bytes):
             corpus.add(bytes(data[:max_bytes]))
 
 
-def capture_seeds(out, max_bytes):
+def capture_seeds(out, max_bytes, extra):
     corpus = Corpus(out, "capture_file")
-    paths = [p for p in samples(".pcap")]
+    paths = samples(".pcap")
+    if extra:
+        paths += sorted(os.path.join(extra, n) for n in os.listdir(extra)
+                        if n.endswith(".pcap") or n.endswith(".pcapng"))
     for path in paths:
         with open(path, "rb") as f:
             corpus.add(f.read(max_bytes))
@@ -157,8 +160,10 @@ def capture_seeds(out, max_bytes):
         with tempfile.TemporaryDirectory() as tmp:
             for path in paths:
                 ng = os.path.join(tmp, "x.pcapng")
-                subprocess.run([editcap, "-F", "pcapng", "-r", path, ng, "1-20"], check=True,
-                               capture_output=True)
+                done = subprocess.run([editcap, "-F", "pcapng", "-r", path, ng, "1-20"],
+                                      capture_output=True)
+                if done.returncode != 0:
+                    continue
                 with open(ng, "rb") as f:
                     corpus.add(f.read(max_bytes))
 
@@ -212,10 +217,12 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("out")
     parser.add_argument("--max-bytes", type=int, default=4096)
+    parser.add_argument("--test-captures", help="also the captures of this folder "
+                        "(pvtap-capture-gen tests DIR)")
     a = parser.parse_args()
     core_seeds(a.out, a.max_bytes)
     tcp_seeds(a.out, a.max_bytes)
-    capture_seeds(a.out, a.max_bytes)
+    capture_seeds(a.out, a.max_bytes, a.test_captures)
     map_seeds(a.out)
     argument_seeds(a.out)
     for target in sorted(os.listdir(a.out)):
