@@ -19,6 +19,9 @@ PVTAP_PACKAGES=(
   libpcap-dev
   libcli11-dev
   python3
+  # scripts/fuzz: the libFuzzer targets are built with clang and its runtimes.
+  clang-14
+  libclang-rt-14-dev
   # The real-peer capture test (captures/real-peer/record): software we did not write.
   mbpoll
   python3-pymodbus
