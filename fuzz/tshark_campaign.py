@@ -136,17 +136,18 @@ class Hung:
     stderr = "timed out after %d s" % 300
 
 
-def run_bounded(command, env):
+def run_bounded(command, env, cwd=None):
     try:
         return subprocess.run(command, capture_output=True, text=True, errors="replace", env=env,
-                              timeout=300)
+                              cwd=cwd, timeout=300)
     except subprocess.TimeoutExpired:
         return Hung()
 
 
 def run_one(home, runtime, pvtap, variant):
     findings = []
-    tshark = run_bounded(home.tshark(["-nVxr", variant], runtime), None)
+    # In its HOME: tshark reads some files from its working folder (IOR.txt).
+    tshark = run_bounded(home.tshark(["-nVxr", variant], runtime), None, home.dir)
     kind, whose = judge(tshark, "tshark")
     if kind:
         findings.append(("tshark", kind, whose, tshark.stderr))
