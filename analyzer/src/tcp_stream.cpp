@@ -54,7 +54,9 @@ void TcpDirectionStream::on_segment(std::uint32_t seq, std::span<const std::uint
   }
   ++stats_.out_of_order_segments;
   store(next_offset_ + static_cast<std::uint64_t>(at), payload, on_wire, time);
-  if (pending_bytes_ > limits_.max_buffered) give_up_hole(time);
+  if (pending_bytes_ > limits_.max_buffered || pending_.size() > limits_.max_segments) {
+    give_up_hole(time);
+  }
 }
 
 void TcpDirectionStream::deliver(std::span<const std::uint8_t> bytes, std::uint32_t on_wire,

@@ -30,12 +30,15 @@ struct TcpStreamStats {
 // repeated or overlapping; each stream byte is delivered once, in order. A hole is given up
 // as lost when the peer acknowledges data beyond it (the receiver got bytes the capture
 // missed), when it stays open longer than `hole_wait` seconds of capture time, when more than
-// `max_buffered` bytes wait behind it, or at the end.
+// `max_buffered` bytes or `max_segments` segments wait behind it, or at the end.
 class TcpDirectionStream {
  public:
   struct Limits {
     double hole_wait = 2.0;
     std::size_t max_buffered = 1 << 20;
+    // Each waiting segment costs about 100 bytes besides its payload: without this limit a
+    // million one-byte segments behind a hole would hold over 100 MB within max_buffered.
+    std::size_t max_segments = 4096;
   };
 
   TcpDirectionStream(TcpStreamSink& sink, Limits limits) : sink_(sink), limits_(limits) {}

@@ -3,6 +3,7 @@
 #include <cstdarg>
 #include <cstdio>
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -29,10 +30,14 @@ void append_integer(std::string& out, T value) {
   out.append(buf.data(), r.ptr);
 }
 
-// Splits epoch seconds into whole seconds and microseconds, rounding once.
+// Splits epoch seconds into whole seconds and microseconds, rounding once. A capture's
+// timestamp can lie far beyond any date (pcapng has 64 bits of them): it is held to what
+// the microsecond count can represent (about the year 292,000) instead of overflowing it.
 void split_time(double epoch_seconds, std::time_t& seconds, long& micros) {
+  constexpr double kMaxMicros = 9.2e18;  // just under 2^63
   const double rounded = std::round(epoch_seconds * 1e6);
-  const auto total = static_cast<long long>(rounded);
+  const auto total = static_cast<long long>(
+      std::isnan(rounded) ? 0 : std::clamp(rounded, -kMaxMicros, kMaxMicros));
   seconds = static_cast<std::time_t>(total / 1000000);
   micros = static_cast<long>(total % 1000000);
   if (micros < 0) {

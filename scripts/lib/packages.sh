@@ -26,6 +26,9 @@ PVTAP_PACKAGES=(
   lintian
   man-db
   bash-completion
+  # scripts/fuzz: the libFuzzer targets are built with clang and its runtimes.
+  clang-14
+  libclang-rt-14-dev
   # The real-peer capture test (captures/real-peer/record): software we did not write.
   mbpoll
   python3-pymodbus

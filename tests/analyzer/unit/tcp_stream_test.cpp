@@ -118,6 +118,18 @@ TEST_F(TcpStreamTest, TooMuchWaitingDataGivesTheHoleUp) {
   EXPECT_EQ(sink_.text, "a[lost 9]" + std::string(70, 'x'));
 }
 
+TEST_F(TcpStreamTest, TooManyWaitingSegmentsGiveTheHoleUp) {
+  Recorder sink;
+  TcpDirectionStream stream(sink, TcpDirectionStream::Limits{2.0, 1 << 20, 3});
+  const std::string one = "x";
+  stream.on_segment(0, bytes_of("a"), 1, false, false, 0);
+  for (std::uint32_t seq = 13; seq >= 10; --seq) {  // four one-byte segments behind a hole
+    stream.on_segment(seq, bytes_of(one), 1, false, false, 0);
+  }
+  EXPECT_EQ(sink.text, "a[lost 9]xxxx");
+  EXPECT_FALSE(stream.has_hole());
+}
+
 TEST_F(TcpStreamTest, FlushLosesEveryRemainingHole) {
   segment(0, "a");
   segment(3, "d");

@@ -1,0 +1,42 @@
+// Fuzz target extcap_arguments: the parser of Wireshark's extcap command lines, and the check
+// of the capture settings they carry, on arbitrary argument lists (NUL-separated in the input).
+// Also the interface list answer for a port named by the input (names come from the system).
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "extcap_arguments.h"
+#include "extcap_options.h"
+#include "extcap_sentences.h"
+#include "fuzz_input.h"
+
+namespace {
+
+std::vector<std::string> split_arguments(const std::uint8_t* data, std::size_t size) {
+  std::vector<std::string> args(1);
+  for (std::size_t i = 0; i < size; ++i) {
+    if (data[i] == 0) {
+      args.emplace_back();
+    } else {
+      args.back() += static_cast<char>(data[i]);
+    }
+  }
+  return args;
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  using namespace pvtap::analyzer;
+  const auto args = split_arguments(data, size);
+  (void)looks_like_extcap_call(args);
+  const ExtcapCall call = parse_extcap_call(args);
+  (void)settings_problems(call.settings);
+  if (!call.interface.empty()) {
+    const std::vector<DiscoveredPort> ports{
+        {"/dev/" + call.interface, call.interface, "pvtap-" + call.interface}};
+    (void)interfaces_answer(ports);
+  }
+  return 0;
+}
