@@ -176,8 +176,14 @@ const char* unanswered_reason(const FrameRecord& r) {
   return "no reply before the end of the capture";
 }
 
+// A frame the session decided but no packet has shown yet (its bytes wait for the next
+// segment of its direction) has no packet to link to.
+bool shown(const FrameRecord* r) {
+  return r != nullptr && r->packet != 0;
+}
+
 void add_request_links(const Builder& b, const FrameRecord& r) {
-  if (r.response != nullptr) {
+  if (shown(r.response)) {
     b.generated_uint(b.hf().response_in, r.response->packet);
     return;
   }
@@ -186,12 +192,11 @@ void add_request_links(const Builder& b, const FrameRecord& r) {
   proto_item* item =
       proto_tree_add_expert_format(b.tree, b.t.pinfo, &b.ei().unanswered, b.t.tvb, b.t.offset, 0,
                                    "Request never answered: %s", unanswered_reason(r));
-  if (r.next_request != nullptr)
-    proto_item_append_text(item, " (frame %u)", r.next_request->packet);
+  if (shown(r.next_request)) proto_item_append_text(item, " (frame %u)", r.next_request->packet);
 }
 
 void add_reply_links(const Builder& b, const FrameRecord& r) {
-  if (r.request != nullptr) {
+  if (shown(r.request)) {
     b.generated_uint(b.hf().request_in, r.request->packet);
     // The latency the bus session measured (as pvtap audit reports it); a duplicate has none.
     nstime_t delta;
@@ -214,7 +219,7 @@ void add_reply_links(const Builder& b, const FrameRecord& r) {
   if (r.unsolicited) {
     proto_tree_add_expert(b.tree, b.t.pinfo, &b.ei().unsolicited, b.t.tvb, b.t.offset, 0);
   }
-  if (r.late_for != nullptr) {
+  if (shown(r.late_for)) {
     proto_tree_add_expert_format(b.tree, b.t.pinfo, &b.ei().late_reply, b.t.tvb, b.t.offset, 0,
                                  "Reply after its request in frame %u timed out",
                                  r.late_for->packet);
