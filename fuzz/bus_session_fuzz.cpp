@@ -22,7 +22,11 @@ class CountingSink : public pvtap::BusSessionSink {
     PVTAP_FUZZ_CHECK(f.bytes.size() <= pvtap::fuzz::max_frame_length(f.dialect));
     PVTAP_FUZZ_CHECK(f.id == frames);
     PVTAP_FUZZ_CHECK(!f.request_id || *f.request_id < f.id);
-    PVTAP_FUZZ_CHECK((f.frame == nullptr) == !f.parse_error.empty());
+    // A frame that does not parse says why; a damaged one still carries its header (it is
+    // paired by it), so only a frame with a good check may lack a parsed frame.
+    PVTAP_FUZZ_CHECK(f.frame != nullptr || !f.parse_error.empty());
+    PVTAP_FUZZ_CHECK(f.parse_error.empty() || f.frame == nullptr || !f.check.ok);
+    PVTAP_FUZZ_CHECK(!f.values_trusted || f.check.ok);
     frame_bytes += f.bytes.size();
     ++frames;
   }
