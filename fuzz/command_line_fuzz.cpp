@@ -18,14 +18,7 @@ namespace {
 
 // The arguments after the program name, in the reverse order CLI11's parse(vector&) wants.
 std::vector<std::string> reversed_arguments(const std::uint8_t* data, std::size_t size) {
-  std::vector<std::string> args(1);
-  for (std::size_t i = 0; i < size; ++i) {
-    if (data[i] == 0) {
-      args.emplace_back();
-    } else {
-      args.back() += static_cast<char>(data[i]);
-    }
-  }
+  std::vector<std::string> args = pvtap::fuzz::nul_separated_arguments(data, size);
   std::reverse(args.begin(), args.end());
   return args;
 }

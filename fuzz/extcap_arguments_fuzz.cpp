@@ -11,25 +11,11 @@
 #include "extcap_sentences.h"
 #include "fuzz_input.h"
 
-namespace {
-
-std::vector<std::string> split_arguments(const std::uint8_t* data, std::size_t size) {
-  std::vector<std::string> args(1);
-  for (std::size_t i = 0; i < size; ++i) {
-    if (data[i] == 0) {
-      args.emplace_back();
-    } else {
-      args.back() += static_cast<char>(data[i]);
-    }
-  }
-  return args;
-}
-
-}  // namespace
+namespace {}  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace pvtap::analyzer;
-  const auto args = split_arguments(data, size);
+  const auto args = pvtap::fuzz::nul_separated_arguments(data, size);
   (void)looks_like_extcap_call(args);
   const ExtcapCall call = parse_extcap_call(args);
   (void)settings_problems(call.settings);

@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <span>
+#include <string>
+#include <vector>
 
 namespace pvtap::fuzz {
 
@@ -46,5 +48,19 @@ class FuzzInput {
       std::abort();                                                                          \
     }                                                                                        \
   } while (0)
+
+// Command-line arguments as a fuzz input spells them: NUL-separated.
+inline std::vector<std::string> nul_separated_arguments(const std::uint8_t* data,
+                                                        std::size_t size) {
+  std::vector<std::string> args(1);
+  for (std::size_t i = 0; i < size; ++i) {
+    if (data[i] == 0) {
+      args.emplace_back();
+    } else {
+      args.back() += static_cast<char>(data[i]);
+    }
+  }
+  return args;
+}
 
 }  // namespace pvtap::fuzz
