@@ -15,14 +15,15 @@
 #include <vector>
 
 #include "audit_run.h"
-#include "capture_out.h"
 #include "common_options.h"
 #include "fuzz_input.h"
-#include "packet_builder.h"
 #include "pvtap/bus_session.h"
+#include "pvtap/capture/capture_writer.h"
+#include "pvtap/capture/exported_pdu_reader.h"
+#include "pvtap/capture/packet_builder.h"
+#include "pvtap/capture/rtac_record.h"
 #include "pvtap/frame_codec.h"
 #include "pvtap/register_map.h"
-#include "serial_records.h"
 #include "tcp_stream.h"
 
 namespace {
@@ -134,7 +135,7 @@ std::uint64_t pdu_65535(double) {
   const auto wire = pvtap::encode_frame(request);
   record.resize(65535 - wire.size(), 0x00);
   record.insert(record.end(), wire.begin(), wire.end());
-  const auto pdu = pvtap::analyzer::exported_pdu_record(record);
+  const auto pdu = pvtap::exported_pdu_record(record);
   PVTAP_FUZZ_CHECK(pdu && pdu->dissector == "pvtap" && pdu->pdu.size() == 65535 - 24);
   static const pvtap::RegisterDecoder decoder;
   SessionCount sink;
@@ -167,7 +168,7 @@ std::uint64_t map_registers(double scale) {
 // 10,000 gateway connections open at once: each connects, sends a request, and only when
 // all are open do the replies come, then every connection closes.
 std::uint64_t connections(double scale) {
-  using namespace pvtap::forge;
+  using namespace pvtap;
   const auto n = static_cast<unsigned>(10'000 * scale);
   char path[] = "/tmp/pvtap-pathological-XXXXXX";
   const int fd = ::mkstemp(path);
@@ -181,21 +182,22 @@ std::uint64_t connections(double scale) {
   req.count = 1;
   const auto wire = pvtap::encode_frame(req);
   {
-    PcapOut out(path, DLT_EN10MB);
-    const Host gateway = ipv4_host(10, 0, 0, 2, 4001);
+    PcapCaptureWriter out(path, DLT_EN10MB);
+    const Endpoint gateway = ipv4_endpoint(10, 0, 0, 2, 4001);
     double t = 1.0e9;
     auto master = [](unsigned i) {
-      return ipv4_host(10, 1, static_cast<std::uint8_t>(i >> 8), static_cast<std::uint8_t>(i),
-                       static_cast<std::uint16_t>(20000 + i % 40000));
+      return ipv4_endpoint(10, 1, static_cast<std::uint8_t>(i >> 8), static_cast<std::uint8_t>(i),
+                           static_cast<std::uint16_t>(20000 + i % 40000));
     };
     for (unsigned i = 0; i < n; ++i) {
-      out.write(t += 1e-5, tcp_packet(LinkLayer::Ethernet, master(i), gateway, {99, 0, kSyn}, {}));
       out.write(t += 1e-5,
-                tcp_packet(LinkLayer::Ethernet, master(i), gateway, {100, 0, kAck | kPsh}, wire));
+                tcp_packet(LinkLayer::Ethernet, {master(i), gateway}, {99, 0, tcp_flag::kSyn}, {}));
+      out.write(t += 1e-5, tcp_packet(LinkLayer::Ethernet, {master(i), gateway},
+                                      {100, 0, tcp_flag::kAck | tcp_flag::kPsh}, wire));
     }
     for (unsigned i = 0; i < n; ++i) {
-      out.write(t += 1e-5,
-                tcp_packet(LinkLayer::Ethernet, master(i), gateway, {108, 0, kAck | kFin}, {}));
+      out.write(t += 1e-5, tcp_packet(LinkLayer::Ethernet, {master(i), gateway},
+                                      {108, 0, tcp_flag::kAck | tcp_flag::kFin}, {}));
     }
   }
   pvtap::analyzer::AuditOptions o;

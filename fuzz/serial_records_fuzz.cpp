@@ -6,7 +6,8 @@
 #include <span>
 
 #include "fuzz_input.h"
-#include "serial_records.h"
+#include "pvtap/capture/exported_pdu_reader.h"
+#include "pvtap/capture/rtac_record.h"
 
 namespace {
 
@@ -16,7 +17,7 @@ bool inside(std::span<const std::uint8_t> part, std::span<const std::uint8_t> wh
 }
 
 void read_rtac(std::span<const std::uint8_t> record) {
-  const auto r = pvtap::analyzer::rtac_serial_record(record);
+  const auto r = pvtap::rtac_serial_record(record);
   if (!r) {
     PVTAP_FUZZ_CHECK(record.size() < 12);
     return;
@@ -26,7 +27,7 @@ void read_rtac(std::span<const std::uint8_t> record) {
 }
 
 void read_exported_pdu(std::span<const std::uint8_t> record) {
-  const auto r = pvtap::analyzer::exported_pdu_record(record);
+  const auto r = pvtap::exported_pdu_record(record);
   if (!r) return;
   PVTAP_FUZZ_CHECK(inside(r->pdu, record));
   const std::span<const std::uint8_t> name(

@@ -8,7 +8,7 @@
 
 #include "audit_run.h"
 #include "common_options.h"
-#include "link_types.h"
+#include "pvtap/capture/link_types.h"
 
 namespace pvtap::analyzer {
 namespace {

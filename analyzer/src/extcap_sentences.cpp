@@ -1,7 +1,7 @@
 #include "extcap_sentences.h"
 
 #include "extcap_options.h"
-#include "link_types.h"
+#include "pvtap/capture/link_types.h"
 
 namespace pvtap::analyzer {
 namespace {

@@ -8,7 +8,7 @@
 #include <tuple>
 #include <vector>
 
-#include "network_packet.h"
+#include "pvtap/capture/network_packet.h"
 #include "pvtap/bus_session.h"
 
 namespace pvtap::analyzer {

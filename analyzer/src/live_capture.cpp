@@ -5,7 +5,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "link_types.h"
+#include "pvtap/capture/link_types.h"
 
 namespace pvtap::analyzer {
 namespace {
@@ -190,7 +190,7 @@ void LiveCapture::on_packet(unsigned char* user, const pcap_pkthdr* header,
 }
 
 std::string LiveCapture::link_type_name() const {
-  return pvtap::analyzer::link_type_name(link_type_);
+  return pvtap::link_type_name(link_type_);
 }
 
 LiveDrops LiveCapture::drops() const {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "capture_file.h"
+#include "pvtap/capture/capture_file.h"
 
 struct pcap_pkthdr;
 

@@ -1,9 +1,10 @@
 // AuditRun's handling of one capture record, by the kind of input its link type makes it.
 #include "audit_bus.h"
 #include "audit_run.h"
-#include "exported_pdu_tags.h"
-#include "network_packet.h"
-#include "serial_records.h"
+#include "pvtap/capture/exported_pdu_tags.h"
+#include "pvtap/capture/network_packet.h"
+#include "pvtap/capture/exported_pdu_reader.h"
+#include "pvtap/capture/rtac_record.h"
 
 namespace pvtap::analyzer {
 

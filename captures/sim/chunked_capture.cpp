@@ -2,7 +2,7 @@
 
 #include "bus_bytes.h"
 #include "capture_outputs.h"
-#include "pcap_writer.h"
+#include "pvtap/capture/pcap_writer.h"
 
 namespace pvtap::sim {
 namespace {
@@ -15,7 +15,7 @@ constexpr std::size_t kPacketBytes = 62;
 }  // namespace
 
 std::string write_chunked_capture(const BusTimeline& timeline, const std::string& path) {
-  analyzer::PcapWriter file;
+  PcapWriter file;
   if (!file.open(path, DLT_USER0)) return file.error();
   const std::vector<TimedByte> bytes = bus_bytes(timeline);
   std::vector<std::uint8_t> chunk;

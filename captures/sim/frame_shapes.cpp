@@ -3,21 +3,9 @@
 #include "pvtap/function_codes.h"
 
 namespace pvtap::sim {
-namespace {
-
-Frame frame_of(Dialect d, Role role, std::uint8_t station, std::uint8_t function) {
-  Frame f;
-  f.dialect = d;
-  f.role = role;
-  f.station = station;
-  f.function = function;
-  return f;
-}
-
-}  // namespace
 
 Frame read_request(Dialect d, std::uint8_t station, const PollBlock& block) {
-  Frame f = frame_of(d, Role::Request, station, block.function);
+  Frame f = make_frame(d, Role::Request, station, block.function);
   f.start = block.start;
   f.count = block.count;
   return f;
@@ -25,7 +13,7 @@ Frame read_request(Dialect d, std::uint8_t station, const PollBlock& block) {
 
 Frame read_reply(Dialect d, std::uint8_t station, const PollBlock& block, const WordList& words,
                  DeviceNumber device) {
-  Frame f = frame_of(d, Role::Response, station, block.function);
+  Frame f = make_frame(d, Role::Response, station, block.function);
   f.words = words;
   const auto data_bytes = static_cast<std::uint8_t>(2 * words.size());
   switch (d) {
@@ -47,15 +35,15 @@ Frame read_reply(Dialect d, std::uint8_t station, const PollBlock& block, const 
 Frame error_reply(Dialect d, std::uint8_t station, const PollBlock& block, DeviceNumber device,
                   std::uint8_t gsl_code) {
   if (d == Dialect::Hybrid) {
-    Frame f = frame_of(d, Role::Response, station, fc::kHybridError);
+    Frame f = make_frame(d, Role::Response, station, fc::kHybridError);
     f.byte_count = 8;
     f.device = device;
     f.start = 0x1000;
     f.count = 0x00FF;
     return f;
   }
-  Frame f = frame_of(d, Role::Response, station,
-                     static_cast<std::uint8_t>(block.function | fc::kExceptionFlag));
+  Frame f = make_frame(d, Role::Response, station,
+                       static_cast<std::uint8_t>(block.function | fc::kExceptionFlag));
   f.exception_code = gsl_code;
   return f;
 }

@@ -4,15 +4,17 @@
 
 #include "bus_bytes.h"
 #include "capture_outputs.h"
-#include "pcap_writer.h"
+#include "pvtap/capture/packet_builder.h"
+#include "pvtap/capture/pcap_writer.h"
 #include "sim_random.h"
-#include "tcp_packet.h"
 
 namespace pvtap::sim {
 namespace {
 
-const TcpEndpoint kMaster{{0x02, 0, 0, 0, 0, 0x01}, {10, 0, 0, 1}, 50123};
-const TcpEndpoint kGateway{{0x02, 0, 0, 0, 0, 0x02}, {10, 0, 0, 2}, 4001};
+const Endpoint kMaster = ipv4_endpoint(10, 0, 0, 1, 50123);
+const Endpoint kGateway = ipv4_endpoint(10, 0, 0, 2, 4001);
+const MacAddress kMasterMac{0x02, 0, 0, 0, 0, 0x01};
+const MacAddress kGatewayMac{0x02, 0, 0, 0, 0, 0x02};
 
 // PlannedSegment: one TCP segment before sequence numbers are known.
 struct PlannedSegment {
@@ -74,21 +76,22 @@ std::string write_gateway_capture(const BusTimeline& timeline, const std::string
   std::stable_sort(plan.begin(), plan.end(),
                    [](const auto& a, const auto& b) { return a.time < b.time; });
 
-  analyzer::PcapWriter file;
+  PcapWriter file;
   if (!file.open(path, DLT_EN10MB)) return file.error();
   // Sequence numbers: each side's next byte; SYN and FIN count as one byte each.
   std::uint32_t next_seq[2] = {0x1A2B3C00u, 0x5F000000u};  // master, gateway
   std::uint16_t ip_id[2] = {0x2000, 0x7000};
   for (const PlannedSegment& s : plan) {
     const int me = s.from_master ? 0 : 1;
-    TcpSegmentFields f;
+    TcpHeader f;
+    f.window = 64240;
     f.seq = next_seq[me];
     f.flags = s.flags;
     f.ack = (s.flags & tcp_flag::kAck) ? next_seq[1 - me] : 0;
     f.ip_id = ip_id[me]++;
-    const auto& from = s.from_master ? kMaster : kGateway;
-    const auto& to = s.from_master ? kGateway : kMaster;
-    file.write(s.time, tcp_packet(from, to, f, s.payload));
+    const Route route = s.from_master ? Route{kMaster, kGateway, kMasterMac, kGatewayMac}
+                                      : Route{kGateway, kMaster, kGatewayMac, kMasterMac};
+    file.write(s.time, tcp_packet(LinkLayer::Ethernet, route, f, s.payload));
     next_seq[me] += static_cast<std::uint32_t>(s.payload.size());
     if (s.flags & (tcp_flag::kSyn | tcp_flag::kFin)) next_seq[me] += 1;
   }

@@ -1,11 +1,11 @@
 #include "capture_outputs.h"
-#include "exported_pdu_writer.h"
+#include "pvtap/capture/exported_pdu_writer.h"
 
 namespace pvtap::sim {
 
 std::string write_pdu_capture(const BusTimeline& timeline, const std::string& path) {
-  // The analyzer's writer is the one definition of pvtap's link-type-252 records.
-  analyzer::ExportedPduWriter writer;
+  // The capture library's writer is the one definition of pvtap's link-type-252 records.
+  ExportedPduWriter writer;
   if (!writer.open(path)) return writer.error();
   for (const BusEvent& e : timeline.events) {
     // The record's time is the frame's last byte (dissector/README.md). Nobody sends noise,

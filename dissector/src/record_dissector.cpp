@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "conversation_state.h"
+#include "pvtap/capture/exported_pdu_tags.h"
 #include "pvtap/framing_probe.h"
 #include "stream_dissection.h"
 
@@ -73,8 +74,9 @@ int dissect_record(tvbuff_t* tvb, packet_info* pinfo, proto_tree* tree, void*) {
 }  // namespace
 
 void register_record_dissector() {
-  g_proto_records = proto_register_protocol("pvtap bus records", "pvtap", "pvtap");
-  register_dissector("pvtap", dissect_record, g_proto_records);
+  g_proto_records = proto_register_protocol("pvtap bus records", exported_pdu::kDissectorName,
+                                            exported_pdu::kDissectorName);
+  register_dissector(exported_pdu::kDissectorName, dissect_record, g_proto_records);
   g_rtu_records = create_dissector_handle(rtu_record, rtu_protocol().proto);
   g_ascii_records = create_dissector_handle(ascii_record, ascii_protocol().proto);
 }

@@ -8,13 +8,9 @@
 
 namespace pvtap::test {
 
+// make_frame() taking the function as an int, as the tests write them (0x03, 'R').
 inline Frame frame_of(Dialect d, Role r, std::uint8_t station, int function) {
-  Frame f;
-  f.dialect = d;
-  f.role = r;
-  f.station = station;
-  f.function = static_cast<std::uint8_t>(function);
-  return f;
+  return make_frame(d, r, station, static_cast<std::uint8_t>(function));
 }
 
 // A read (or any start+count) request of an RTU or the ASCII dialect.

@@ -83,4 +83,14 @@ struct Frame {
   bool operator==(const Frame&) const = default;
 };
 
+// A frame with only its header fields set; the rest is filled in by the caller.
+inline Frame make_frame(Dialect dialect, Role role, std::uint8_t station, std::uint8_t function) {
+  Frame f;
+  f.dialect = dialect;
+  f.role = role;
+  f.station = station;
+  f.function = function;
+  return f;
+}
+
 }  // namespace pvtap

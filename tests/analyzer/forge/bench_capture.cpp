@@ -1,9 +1,9 @@
 // The benchmark capture: a gateway stream of poll rounds, written packet by packet.
 #include <pcap/pcap.h>
 
-#include "capture_out.h"
 #include "gateway_render.h"
 #include "inverter_traffic.h"
+#include "pvtap/capture/capture_writer.h"
 #include "test_captures.h"
 
 namespace pvtap::forge {
@@ -14,27 +14,29 @@ constexpr double kBenchStart = 1790000000.0;
 // BenchStream: one TCP connection written packet by packet, for captures too big to plan.
 class BenchStream {
  public:
-  BenchStream(CaptureOut& out, const GatewayLayout& layout) : out_(out), g_(layout) {}
+  BenchStream(CaptureWriter& out, const GatewayLayout& layout) : out_(out), g_(layout) {}
 
   void handshake(double t) {
-    out_.write(t, tcp_packet(g_.link, g_.master, g_.gateway, {mseq_ - 1, 0, kSyn}, {}));
-    out_.write(t + 1e-4,
-               tcp_packet(g_.link, g_.gateway, g_.master, {sseq_ - 1, mseq_, kSyn | kAck}, {}));
-    out_.write(t + 2e-4, tcp_packet(g_.link, g_.master, g_.gateway, {mseq_, sseq_, kAck}, {}));
+    out_.write(t, tcp_packet(g_.link, {g_.master, g_.gateway}, {mseq_ - 1, 0, tcp_flag::kSyn}, {}));
+    out_.write(t + 1e-4, tcp_packet(g_.link, {g_.gateway, g_.master},
+                                    {sseq_ - 1, mseq_, tcp_flag::kSyn | tcp_flag::kAck}, {}));
+    out_.write(t + 2e-4,
+               tcp_packet(g_.link, {g_.master, g_.gateway}, {mseq_, sseq_, tcp_flag::kAck}, {}));
   }
   // One data segment and the receiver's acknowledgement.
   void send(bool to_gateway, std::span<const std::uint8_t> bytes, double t) {
-    const Host& from = to_gateway ? g_.master : g_.gateway;
-    const Host& to = to_gateway ? g_.gateway : g_.master;
+    const Endpoint& from = to_gateway ? g_.master : g_.gateway;
+    const Endpoint& to = to_gateway ? g_.gateway : g_.master;
     std::uint32_t& seq = to_gateway ? mseq_ : sseq_;
     const std::uint32_t peer = to_gateway ? sseq_ : mseq_;
-    out_.write(t, tcp_packet(g_.link, from, to, {seq, peer, kAck | kPsh}, bytes));
+    out_.write(
+        t, tcp_packet(g_.link, {from, to}, {seq, peer, tcp_flag::kAck | tcp_flag::kPsh}, bytes));
     seq += static_cast<std::uint32_t>(bytes.size());
-    out_.write(t + 3e-4, tcp_packet(g_.link, to, from, {peer, seq, kAck}, {}));
+    out_.write(t + 3e-4, tcp_packet(g_.link, {to, from}, {peer, seq, tcp_flag::kAck}, {}));
   }
 
  private:
-  CaptureOut& out_;
+  CaptureWriter& out_;
   GatewayLayout g_;
   std::uint32_t mseq_ = 1000001;
   std::uint32_t sseq_ = 0xFFFFFF01;
@@ -43,7 +45,7 @@ class BenchStream {
 }  // namespace
 
 void write_bench_capture(const std::string& path, unsigned megabytes) {
-  PcapOut out(path, DLT_EN10MB);
+  PcapCaptureWriter out(path, DLT_EN10MB);
   BenchStream stream(out, GatewayLayout{});
   stream.handshake(kBenchStart - 0.01);
   const std::uint64_t target = std::uint64_t{megabytes} << 20;

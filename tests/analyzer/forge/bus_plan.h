@@ -8,11 +8,13 @@
 #include <string>
 #include <vector>
 
-#include "packet_builder.h"
+#include "pvtap/capture/packet_builder.h"
 #include "pvtap/frame.h"
 #include "pvtap/stream_reassembler.h"
 
 namespace pvtap::forge {
+
+using Bytes = std::vector<std::uint8_t>;
 
 // BusItem: one transmission on the bus, in time order.
 struct BusItem {

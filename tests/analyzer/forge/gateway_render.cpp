@@ -116,40 +116,44 @@ struct GatewayRender::Wire {
   std::uint64_t gateway_sent = 0;
 };
 
-void GatewayRender::write_segment(const GatewaySegment& seg, Wire& w, CaptureOut& out) const {
+void GatewayRender::write_segment(const GatewaySegment& seg, Wire& w, CaptureWriter& out) const {
   const GatewayLayout& g = layout_;
   const bool to_slave = seg.direction == Direction::ToSlave;
   const Bytes& stream = to_slave ? to_slave_ : from_slave_;
   const std::span<const std::uint8_t> payload(stream.data() + seg.begin, seg.end - seg.begin);
-  const Host& from = to_slave ? g.master : g.gateway;
-  const Host& to = to_slave ? g.gateway : g.master;
+  const Endpoint& from = to_slave ? g.master : g.gateway;
+  const Endpoint& to = to_slave ? g.gateway : g.master;
   const std::uint32_t seq = (to_slave ? w.mseq : w.sseq) + static_cast<std::uint32_t>(seg.begin);
   (to_slave ? w.at_gateway : w.at_master).add(seg.begin, seg.end);
   std::uint64_t& sent = to_slave ? w.master_sent : w.gateway_sent;
   sent = std::max(sent, seg.end);
   if (!seg.lost && g.udp) {
-    out.write(seg.time, udp_packet(g.link, from, to, payload));
+    out.write(seg.time, udp_packet(g.link, {from, to}, payload));
   } else if (!seg.lost) {
     out.write(seg.time,
-              tcp_packet(g.link, from, to, {seq, w.ack_to(!to_slave), kAck | kPsh}, payload));
+              tcp_packet(g.link, {from, to},
+                         {seq, w.ack_to(!to_slave), tcp_flag::kAck | tcp_flag::kPsh}, payload));
   }
   if (g.udp || !g.acks) return;
   // The receiver acknowledges what it holds, lost segments included: it did get them.
   out.write(seg.time + kAckDelay,
-            tcp_packet(g.link, to, from, {w.next_seq(!to_slave), w.ack_to(to_slave), kAck}, {}));
+            tcp_packet(g.link, {to, from},
+                       {w.next_seq(!to_slave), w.ack_to(to_slave), tcp_flag::kAck}, {}));
 }
 
-Expected GatewayRender::write(CaptureOut& out) const {
+Expected GatewayRender::write(CaptureWriter& out) const {
   const GatewayLayout& g = layout_;
-  const Host& m = g.master;
-  const Host& s = g.gateway;
+  const Endpoint& m = g.master;
+  const Endpoint& s = g.gateway;
   Wire w(g);
   const bool tcp_frame = !g.udp && g.handshake;
   const double first = segments_.empty() ? 0.0 : segments_.front().time;
   if (tcp_frame) {
-    out.write(first - 0.010, tcp_packet(g.link, m, s, {g.master_isn, 0, kSyn}, {}));
-    out.write(first - 0.009, tcp_packet(g.link, s, m, {g.gateway_isn, w.mseq, kSyn | kAck}, {}));
-    out.write(first - 0.008, tcp_packet(g.link, m, s, {w.mseq, w.sseq, kAck}, {}));
+    out.write(first - 0.010, tcp_packet(g.link, {m, s}, {g.master_isn, 0, tcp_flag::kSyn}, {}));
+    out.write(
+        first - 0.009,
+        tcp_packet(g.link, {s, m}, {g.gateway_isn, w.mseq, tcp_flag::kSyn | tcp_flag::kAck}, {}));
+    out.write(first - 0.008, tcp_packet(g.link, {m, s}, {w.mseq, w.sseq, tcp_flag::kAck}, {}));
   }
   std::vector<BusPlan::LostRange> lost;
   double last = first;
@@ -161,9 +165,11 @@ Expected GatewayRender::write(CaptureOut& out) const {
   if (tcp_frame) {
     const std::uint32_t mfin = w.next_seq(true);
     const std::uint32_t sfin = w.next_seq(false);
-    out.write(last + 1.5, tcp_packet(g.link, m, s, {mfin, sfin, kFin | kAck}, {}));
-    out.write(last + 1.501, tcp_packet(g.link, s, m, {sfin, mfin + 1, kFin | kAck}, {}));
-    out.write(last + 1.502, tcp_packet(g.link, m, s, {mfin + 1, sfin + 1, kAck}, {}));
+    out.write(last + 1.5,
+              tcp_packet(g.link, {m, s}, {mfin, sfin, tcp_flag::kFin | tcp_flag::kAck}, {}));
+    out.write(last + 1.501,
+              tcp_packet(g.link, {s, m}, {sfin, mfin + 1, tcp_flag::kFin | tcp_flag::kAck}, {}));
+    out.write(last + 1.502, tcp_packet(g.link, {m, s}, {mfin + 1, sfin + 1, tcp_flag::kAck}, {}));
   }
   return plan_.expected(lost);
 }

@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "bus_plan.h"
-#include "capture_out.h"
-#include "packet_builder.h"
+#include "pvtap/capture/capture_writer.h"
+#include "pvtap/capture/packet_builder.h"
 
 namespace pvtap::forge {
 
@@ -23,8 +23,8 @@ struct GatewaySegment {
 // GatewayLayout: the two hosts and how the flow looks on the wire.
 struct GatewayLayout {
   LinkLayer link = LinkLayer::Ethernet;
-  Host master = ipv4_host(10, 0, 0, 1, 50123);
-  Host gateway = ipv4_host(10, 0, 0, 2, 4001);
+  Endpoint master = ipv4_endpoint(10, 0, 0, 1, 50123);
+  Endpoint gateway = ipv4_endpoint(10, 0, 0, 2, 4001);
   bool udp = false;
   bool handshake = true;
   bool acks = true;  // the receiver acknowledges every data segment 0.3 ms later
@@ -51,11 +51,11 @@ class GatewayRender {
 
   // Writes the packets (handshake, segments, acknowledgements, FINs); returns the audit the
   // capture must give.
-  Expected write(CaptureOut& out) const;
+  Expected write(CaptureWriter& out) const;
 
  private:
   struct Wire;
-  void write_segment(const GatewaySegment& seg, Wire& w, CaptureOut& out) const;
+  void write_segment(const GatewaySegment& seg, Wire& w, CaptureWriter& out) const;
 
   const BusPlan& plan_;
   GatewayLayout layout_;

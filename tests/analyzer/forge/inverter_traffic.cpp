@@ -9,48 +9,39 @@ constexpr double kBetweenExchanges = 0.050;
 constexpr double kMasterTimeout = 1.2;  // the logger waits this long for a silent inverter
 constexpr DeviceNumber kHybridDevice{0x32, 4711};
 
-Frame frame_of(Dialect d, Role r, std::uint8_t station, std::uint8_t function) {
-  Frame f;
-  f.dialect = d;
-  f.role = r;
-  f.station = station;
-  f.function = function;
-  return f;
-}
-
 }  // namespace
 
 Frame gsl_read(std::uint8_t station, std::uint16_t first_id, std::uint16_t count) {
-  Frame f = frame_of(Dialect::Gsl, Role::Request, station, fc::kGslReadHolding);
+  Frame f = make_frame(Dialect::Gsl, Role::Request, station, fc::kGslReadHolding);
   f.start = first_id;  // decimal IDs: ID 1050 is wire address 1050 (0x041A)
   f.count = count;
   return f;
 }
 
 Frame gsl_reply(std::uint8_t station, const WordList& words) {
-  Frame f = frame_of(Dialect::Gsl, Role::Response, station, fc::kGslReadHolding);
+  Frame f = make_frame(Dialect::Gsl, Role::Response, station, fc::kGslReadHolding);
   f.byte_count = static_cast<std::uint8_t>(2 * words.size());
   f.words = words;
   return f;
 }
 
 Frame gsl_exception(std::uint8_t station, std::uint8_t function, std::uint8_t code) {
-  Frame f = frame_of(Dialect::Gsl, Role::Response, station,
-                     static_cast<std::uint8_t>(function | fc::kExceptionFlag));
+  Frame f = make_frame(Dialect::Gsl, Role::Response, station,
+                       static_cast<std::uint8_t>(function | fc::kExceptionFlag));
   f.exception_code = code;
   return f;
 }
 
 Frame hybrid_read(std::uint8_t station, std::uint8_t function, std::uint16_t start,
                   std::uint16_t count) {
-  Frame f = frame_of(Dialect::Hybrid, Role::Request, station, function);
+  Frame f = make_frame(Dialect::Hybrid, Role::Request, station, function);
   f.start = start;
   f.count = count;
   return f;
 }
 
 Frame hybrid_reply(std::uint8_t station, std::uint8_t function, const WordList& words) {
-  Frame f = frame_of(Dialect::Hybrid, Role::Response, station, function);
+  Frame f = make_frame(Dialect::Hybrid, Role::Response, station, function);
   f.byte_count = static_cast<std::uint8_t>(4 + 2 * words.size());
   f.device = kHybridDevice;
   f.words = words;
@@ -58,7 +49,7 @@ Frame hybrid_reply(std::uint8_t station, std::uint8_t function, const WordList& 
 }
 
 Frame hybrid_error(std::uint8_t station) {
-  Frame f = frame_of(Dialect::Hybrid, Role::Response, station, fc::kHybridError);
+  Frame f = make_frame(Dialect::Hybrid, Role::Response, station, fc::kHybridError);
   f.byte_count = 8;
   f.device = kHybridDevice;
   f.start = 0x1000;
@@ -67,14 +58,14 @@ Frame hybrid_error(std::uint8_t station) {
 }
 
 Frame ascii_read(std::uint8_t station, std::uint16_t start, std::uint16_t count) {
-  Frame f = frame_of(Dialect::Ascii, Role::Request, station, fc::kAsciiRead);
+  Frame f = make_frame(Dialect::Ascii, Role::Request, station, fc::kAsciiRead);
   f.start = start;
   f.count = count;
   return f;
 }
 
 Frame ascii_reply(std::uint8_t station, std::uint16_t start, const WordList& words) {
-  Frame f = frame_of(Dialect::Ascii, Role::Response, station, fc::kAsciiRead);
+  Frame f = make_frame(Dialect::Ascii, Role::Response, station, fc::kAsciiRead);
   f.start = start;
   f.words = words;
   return f;

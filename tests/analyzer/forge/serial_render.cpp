@@ -47,7 +47,7 @@ Bytes rtac_header(double time, std::uint8_t event) {
 
 }  // namespace
 
-void write_timer_chunks(const BusPlan& plan, CaptureOut& out, double tick) {
+void write_timer_chunks(const BusPlan& plan, CaptureWriter& out, double tick) {
   const std::vector<TimedByte> bytes = timed_bytes(plan);
   Bytes chunk;
   double chunk_end = 0;
@@ -63,7 +63,7 @@ void write_timer_chunks(const BusPlan& plan, CaptureOut& out, double tick) {
   if (!chunk.empty()) out.write(chunk_end, chunk);
 }
 
-void write_rtac_records(const BusPlan& plan, CaptureOut& out, std::size_t chunk,
+void write_rtac_records(const BusPlan& plan, CaptureWriter& out, std::size_t chunk,
                         const std::vector<std::size_t>& dropped) {
   constexpr std::uint8_t kDataRx = 0x02;
   constexpr std::uint8_t kDataLost = 0x05;

@@ -8,10 +8,10 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "capture_out.h"
 #include "expectation_file.h"
 #include "gateway_render.h"
 #include "inverter_traffic.h"
+#include "pvtap/capture/capture_writer.h"
 #include "serial_render.h"
 
 namespace pvtap::forge {
@@ -109,7 +109,7 @@ void eth_tcp(const std::string& dir) {
   // The lonely station's request is lost: its reply is unsolicited.
   g.lose(g.segment_of(l.lonely));
 
-  PcapOut out(path_in(dir, "eth_tcp.pcap"), link_type_of(LinkLayer::Ethernet));
+  PcapCaptureWriter out(path_in(dir, "eth_tcp.pcap"), link_type_of(LinkLayer::Ethernet));
   save(dir, "eth_tcp", g.write(out));
 }
 
@@ -117,7 +117,7 @@ void gateway_capture(const std::string& dir, const std::string& name, const BusP
                      GatewayLayout layout, bool pcapng, std::vector<std::string> args = {}) {
   GatewayRender g(plan, layout);
   split_hybrid_replies(g, plan);
-  auto out = open_capture(path_in(dir, name), link_type_of(layout.link), pcapng);
+  auto out = open_capture_writer(path_in(dir, name), link_type_of(layout.link), pcapng);
   Expected e = g.write(*out);
   e.args = std::move(args);
   const std::string stem = name.substr(0, name.find('.'));
@@ -138,8 +138,8 @@ void link_layer_captures(const std::string& dir) {
   faults[1].gsl2_exception = true;
   GatewayLayout v6;
   v6.link = LinkLayer::Sll2;
-  v6.master = ipv6_host(1, 50200);
-  v6.gateway = ipv6_host(2, 4001);
+  v6.master = ipv6_endpoint(1, 50200);
+  v6.gateway = ipv6_endpoint(2, 4001);
   gateway_capture(dir, "sll2_tcp6.pcap", site_plan(3, faults), v6, false);
 
   faults[1] = RoundFaults{};
@@ -151,8 +151,8 @@ void link_layer_captures(const std::string& dir) {
   // Captured in the middle of the connection: no handshake; the gateway's lower port tells.
   GatewayLayout loop;
   loop.link = LinkLayer::Loopback;
-  loop.master = ipv4_host(127, 0, 0, 1, 40000);
-  loop.gateway = ipv4_host(127, 0, 0, 1, 502);
+  loop.master = ipv4_endpoint(127, 0, 0, 1, 40000);
+  loop.gateway = ipv4_endpoint(127, 0, 0, 1, 502);
   loop.handshake = false;
   gateway_capture(dir, "loopback_tcp.pcap", site_plan(3, {}), loop, false);
 
@@ -166,26 +166,29 @@ void link_layer_captures(const std::string& dir) {
 // recognized by its frames; with --port 4001 it is chosen; with --port 80 nothing is found.
 void other_traffic(const std::string& dir) {
   const BusPlan plan = site_plan(3, {});
-  PcapOut out(path_in(dir, "eth_other_traffic.pcap"), link_type_of(LinkLayer::Ethernet));
+  PcapCaptureWriter out(path_in(dir, "eth_other_traffic.pcap"), link_type_of(LinkLayer::Ethernet));
   out.write(kStart - 3.0, arp_packet());
-  const Host browser = ipv4_host(10, 0, 0, 1, 51000);
-  const Host web = ipv4_host(10, 0, 0, 9, 80);
+  const Endpoint browser = ipv4_endpoint(10, 0, 0, 1, 51000);
+  const Endpoint web = ipv4_endpoint(10, 0, 0, 9, 80);
   std::string page = "HTTP/1.1 200 OK\r\nContent-Type: text/html\r\n\r\n";
   while (page.size() < 4000) page += "<p>inverter portal, nothing to see on the bus</p>\n";
   const std::string request = "GET / HTTP/1.1\r\nHost: portal\r\n\r\n";
   const Bytes get(request.begin(), request.end());
   const Bytes body(page.begin(), page.end());
-  out.write(kStart - 2.0, tcp_packet(LinkLayer::Ethernet, browser, web, {100, 0, kSyn}, {}));
-  out.write(kStart - 1.99,
-            tcp_packet(LinkLayer::Ethernet, web, browser, {7000, 101, kSyn | kAck}, {}));
-  out.write(kStart - 1.98, tcp_packet(LinkLayer::Ethernet, browser, web, {101, 7001, kAck}, get));
+  out.write(kStart - 2.0,
+            tcp_packet(LinkLayer::Ethernet, {browser, web}, {100, 0, tcp_flag::kSyn}, {}));
+  out.write(kStart - 1.99, tcp_packet(LinkLayer::Ethernet, {web, browser},
+                                      {7000, 101, tcp_flag::kSyn | tcp_flag::kAck}, {}));
+  out.write(kStart - 1.98,
+            tcp_packet(LinkLayer::Ethernet, {browser, web}, {101, 7001, tcp_flag::kAck}, get));
   for (std::size_t at = 0; at < body.size(); at += 1400) {
     const std::size_t n = std::min<std::size_t>(1400, body.size() - at);
-    out.write(kStart - 1.9 + 0.001 * static_cast<double>(at / 1400),
-              tcp_packet(LinkLayer::Ethernet, web, browser,
-                         {7001 + static_cast<std::uint32_t>(at),
-                          101 + static_cast<std::uint32_t>(get.size()), kAck | kPsh},
-                         std::span(body).subspan(at, n)));
+    out.write(
+        kStart - 1.9 + 0.001 * static_cast<double>(at / 1400),
+        tcp_packet(LinkLayer::Ethernet, {web, browser},
+                   {7001 + static_cast<std::uint32_t>(at),
+                    101 + static_cast<std::uint32_t>(get.size()), tcp_flag::kAck | tcp_flag::kPsh},
+                   std::span(body).subspan(at, n)));
   }
   GatewayRender g(plan, GatewayLayout{});
   Expected e = g.write(out);
@@ -210,7 +213,7 @@ void user0_and_raw(const std::string& dir) {
   faults[2].hybrid_error_reply = true;
   const BusPlan plan = site_plan(4, faults);
   {
-    PcapOut out(path_in(dir, "user0.pcap"), DLT_USER0);
+    PcapCaptureWriter out(path_in(dir, "user0.pcap"), DLT_USER0);
     write_timer_chunks(plan, out);
   }
   save(dir, "user0", plan.expected());
@@ -234,7 +237,7 @@ void rtac(const std::string& dir) {
   const std::size_t gsl2 = plan.find(0, Dialect::Gsl, Role::Request, kGslStation2);
   const std::size_t dropped = plan.find(gsl2 + 1, Dialect::Gsl, Role::Request, kGslStation2);
   {
-    PcapOut out(path_in(dir, "rtac.pcap"), DLT_RTAC_SERIAL);
+    PcapCaptureWriter out(path_in(dir, "rtac.pcap"), DLT_RTAC_SERIAL);
     write_rtac_records(plan, out, 5, {dropped, dropped + 1});
   }
   const std::vector<std::uint64_t> offsets = plan.stream_offsets(false);
@@ -255,7 +258,7 @@ void decoder_options(const std::string& dir) {
   plan.expect_value("1", "1056", 50.02);
   plan.expect_value("6", "0x1006", 5.30);
   {
-    PcapOut out(path_in(dir, "options.pcap"), DLT_USER1);
+    PcapCaptureWriter out(path_in(dir, "options.pcap"), DLT_USER1);
     write_timer_chunks(plan, out);
   }
   std::ofstream map(path_in(dir, "site_map.toml"));
@@ -270,7 +273,7 @@ void bad_inputs(const std::string& dir) {
   std::ofstream(path_in(dir, "not_a_capture.txt")) << "time,station,value\n1,2,3\n";
   std::ofstream(path_in(dir, "empty.pcap"));
   {
-    PcapOut out(path_in(dir, "unsupported.pcap"), DLT_IEEE802_11);
+    PcapCaptureWriter out(path_in(dir, "unsupported.pcap"), DLT_IEEE802_11);
     out.write(kStart, Bytes(24, 0));
   }
   // user0.pcap cut in the middle of a record.

@@ -5,10 +5,11 @@
 #include <string>
 #include <vector>
 
-#include "capture_file.h"
-#include "exported_pdu_writer.h"
-#include "link_types.h"
-#include "serial_records.h"
+#include "pvtap/capture/capture_file.h"
+#include "pvtap/capture/exported_pdu_writer.h"
+#include "pvtap/capture/link_types.h"
+#include "pvtap/capture/exported_pdu_reader.h"
+#include "pvtap/capture/rtac_record.h"
 
 namespace pvtap::analyzer {
 namespace {

@@ -1,23 +1,22 @@
 // decode_network_packet on packets of every network link type pvtap reads.
-#include "network_packet.h"
+#include "pvtap/capture/network_packet.h"
 
 #include <gtest/gtest.h>
 
-#include "link_types.h"
-#include "packet_builder.h"
+#include "pvtap/capture/link_types.h"
+#include "pvtap/capture/packet_builder.h"
 
 namespace pvtap::analyzer {
 namespace {
 
-using forge::Bytes;
-using forge::LinkLayer;
+using Bytes = PacketBytes;
 
 const Bytes kPayload = {0x01, 0x03, 0x00, 0x00, 0x00, 0x0A, 0xC5, 0xCD};
 
-void expect_segment(LinkLayer link, const forge::Host& from, const forge::Host& to) {
-  const Bytes packet = forge::tcp_packet(link, from, to, {1234, 5678, 0x18}, kPayload);
+void expect_segment(LinkLayer link, const Endpoint& from, const Endpoint& to) {
+  const Bytes packet = tcp_packet(link, {from, to}, {1234, 5678, 0x18}, kPayload);
   Segment s;
-  ASSERT_EQ(decode_network_packet(forge::link_type_of(link), packet, s), PacketVerdict::Segment);
+  ASSERT_EQ(decode_network_packet(link_type_of(link), packet, s), PacketVerdict::Segment);
   EXPECT_EQ(s.transport, Transport::Tcp);
   EXPECT_EQ(s.source.port, from.port);
   EXPECT_EQ(s.destination.port, to.port);
@@ -29,20 +28,20 @@ void expect_segment(LinkLayer link, const forge::Host& from, const forge::Host& 
 }
 
 TEST(NetworkPacket, EveryLinkLayerCarriesTcpOverIpv4) {
-  const auto master = forge::ipv4_host(10, 0, 0, 1, 50000);
-  const auto gateway = forge::ipv4_host(10, 0, 0, 2, 4001);
+  const auto master = ipv4_endpoint(10, 0, 0, 1, 50000);
+  const auto gateway = ipv4_endpoint(10, 0, 0, 2, 4001);
   for (const LinkLayer link : {LinkLayer::Ethernet, LinkLayer::Sll, LinkLayer::Sll2, LinkLayer::Raw,
                                LinkLayer::Loopback}) {
-    SCOPED_TRACE(forge::link_type_of(link));
+    SCOPED_TRACE(link_type_of(link));
     expect_segment(link, master, gateway);
   }
 }
 
 TEST(NetworkPacket, Ipv6AndItsEndpointText) {
-  const auto master = forge::ipv6_host(1, 50000);
-  const auto gateway = forge::ipv6_host(2, 502);
+  const auto master = ipv6_endpoint(1, 50000);
+  const auto gateway = ipv6_endpoint(2, 502);
   expect_segment(LinkLayer::Sll2, master, gateway);
-  const Bytes packet = forge::udp_packet(LinkLayer::Raw, master, gateway, kPayload);
+  const Bytes packet = udp_packet(LinkLayer::Raw, {master, gateway}, kPayload);
   Segment s;
   ASSERT_EQ(decode_network_packet(dlt::kRaw, packet, s), PacketVerdict::Segment);
   EXPECT_EQ(s.transport, Transport::Udp);
@@ -50,8 +49,9 @@ TEST(NetworkPacket, Ipv6AndItsEndpointText) {
 }
 
 TEST(NetworkPacket, EthernetPaddingIsNotPayload) {
-  const Bytes packet = forge::tcp_packet(LinkLayer::Ethernet, forge::ipv4_host(1, 2, 3, 4, 1),
-                                         forge::ipv4_host(1, 2, 3, 5, 2), {1, 0, 0x10}, {});
+  const Bytes packet =
+      tcp_packet(LinkLayer::Ethernet, {ipv4_endpoint(1, 2, 3, 4, 1), ipv4_endpoint(1, 2, 3, 5, 2)},
+                 {1, 0, 0x10}, {});
   ASSERT_EQ(packet.size(), 60u);  // padded from 54
   Segment s;
   ASSERT_EQ(decode_network_packet(dlt::kEthernet, packet, s), PacketVerdict::Segment);
@@ -60,8 +60,9 @@ TEST(NetworkPacket, EthernetPaddingIsNotPayload) {
 }
 
 TEST(NetworkPacket, SnapLengthCutIsVisible) {
-  Bytes packet = forge::tcp_packet(LinkLayer::Raw, forge::ipv4_host(1, 2, 3, 4, 1),
-                                   forge::ipv4_host(1, 2, 3, 5, 2), {1, 0, 0x10}, kPayload);
+  Bytes packet =
+      tcp_packet(LinkLayer::Raw, {ipv4_endpoint(1, 2, 3, 4, 1), ipv4_endpoint(1, 2, 3, 5, 2)},
+                 {1, 0, 0x10}, kPayload);
   packet.resize(packet.size() - 3);
   Segment s;
   ASSERT_EQ(decode_network_packet(dlt::kRaw, packet, s), PacketVerdict::Segment);
@@ -71,9 +72,9 @@ TEST(NetworkPacket, SnapLengthCutIsVisible) {
 
 TEST(NetworkPacket, OtherTrafficIsToldApart) {
   Segment s;
-  EXPECT_EQ(decode_network_packet(dlt::kEthernet, forge::arp_packet(), s), PacketVerdict::NotIp);
-  Bytes icmp = forge::udp_packet(LinkLayer::Raw, forge::ipv4_host(1, 2, 3, 4, 1),
-                                 forge::ipv4_host(1, 2, 3, 5, 2), kPayload);
+  EXPECT_EQ(decode_network_packet(dlt::kEthernet, arp_packet(), s), PacketVerdict::NotIp);
+  Bytes icmp = udp_packet(LinkLayer::Raw,
+                          {ipv4_endpoint(1, 2, 3, 4, 1), ipv4_endpoint(1, 2, 3, 5, 2)}, kPayload);
   icmp[9] = 1;  // protocol ICMP
   EXPECT_EQ(decode_network_packet(dlt::kRaw, icmp, s), PacketVerdict::OtherIp);
   Bytes fragment = icmp;

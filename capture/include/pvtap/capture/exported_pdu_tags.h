@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string_view>
 
-namespace pvtap::analyzer::exported_pdu {
+namespace pvtap::exported_pdu {
 
 inline constexpr std::uint16_t kTagEnd = 0;
 inline constexpr std::uint16_t kTagDissectorName = 12;
@@ -16,7 +16,8 @@ inline constexpr std::uint16_t kTagP2pDirection = 35;  // 4-byte signed value
 inline constexpr std::int32_t kDirectionSent = 0;
 inline constexpr std::int32_t kDirectionReceived = 1;
 
-// The dissector of pvtap's Wireshark plugin.
-inline constexpr std::string_view kDissectorName = "pvtap";
+// The dissector of pvtap's Wireshark plugin: the analyzer writes it into every record, the
+// plugin registers under it.
+inline constexpr char kDissectorName[] = "pvtap";
 
-}  // namespace pvtap::analyzer::exported_pdu
+}  // namespace pvtap::exported_pdu

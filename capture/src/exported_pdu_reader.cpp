@@ -1,12 +1,9 @@
-#include "serial_records.h"
+#include "pvtap/capture/exported_pdu_reader.h"
 
-#include "exported_pdu_tags.h"
+#include "pvtap/capture/exported_pdu_tags.h"
 
-namespace pvtap::analyzer {
+namespace pvtap {
 namespace {
-
-constexpr std::size_t kRtacHeader = 12;
-constexpr std::uint8_t kRtacCaptureDataLost = 0x05;
 
 std::uint16_t be16(std::span<const std::uint8_t> b, std::size_t at) {
   return static_cast<std::uint16_t>((b[at] << 8) | b[at + 1]);
@@ -19,14 +16,6 @@ Direction direction_of(std::int32_t p2p) {
 }
 
 }  // namespace
-
-std::optional<SerialRecord> rtac_serial_record(std::span<const std::uint8_t> record) {
-  if (record.size() < kRtacHeader) return std::nullopt;
-  SerialRecord r;
-  r.bytes = record.subspan(kRtacHeader);
-  r.data_lost_before = record[8] == kRtacCaptureDataLost;
-  return r;
-}
 
 std::optional<ExportedPdu> exported_pdu_record(std::span<const std::uint8_t> record) {
   ExportedPdu out;
@@ -54,4 +43,4 @@ std::optional<ExportedPdu> exported_pdu_record(std::span<const std::uint8_t> rec
   return out;
 }
 
-}  // namespace pvtap::analyzer
+}  // namespace pvtap

@@ -1,12 +1,10 @@
-#include "capture_out.h"
-
-#include <pcap/pcap.h>
+#include "pvtap/capture/capture_writer.h"
 
 #include <cmath>
 #include <stdexcept>
 #include <vector>
 
-namespace pvtap::forge {
+namespace pvtap {
 namespace {
 
 void split_time(double time, std::uint64_t& seconds, std::uint32_t& micros) {
@@ -38,31 +36,18 @@ void write_block(std::FILE* f, std::uint32_t type, std::vector<std::uint8_t> bod
 
 }  // namespace
 
-PcapOut::PcapOut(const std::string& path, int link_type, int snap_length) {
-  pcap_ = pcap_open_dead(link_type, snap_length);
-  dumper_ = pcap_ != nullptr ? pcap_dump_open(pcap_, path.c_str()) : nullptr;
-  if (dumper_ == nullptr) throw std::runtime_error("cannot write " + path);
+PcapCaptureWriter::PcapCaptureWriter(const std::string& path, int link_type, int snap_length) {
+  if (!file_.open(path, link_type, snap_length)) {
+    throw std::runtime_error("cannot write " + path + ": " + file_.error());
+  }
 }
 
-PcapOut::~PcapOut() {
-  pcap_dump_close(dumper_);
-  pcap_close(pcap_);
+void PcapCaptureWriter::write(double time, std::span<const std::uint8_t> bytes,
+                              std::uint32_t length_on_wire) {
+  file_.write(std::llround(time * 1e6), bytes, length_on_wire);
 }
 
-void PcapOut::write(double time, std::span<const std::uint8_t> bytes,
-                    std::uint32_t length_on_wire) {
-  pcap_pkthdr h{};
-  std::uint64_t seconds = 0;
-  std::uint32_t micros = 0;
-  split_time(time, seconds, micros);
-  h.ts.tv_sec = static_cast<time_t>(seconds);
-  h.ts.tv_usec = static_cast<suseconds_t>(micros);
-  h.caplen = static_cast<bpf_u_int32>(bytes.size());
-  h.len = length_on_wire != 0 ? length_on_wire : h.caplen;
-  pcap_dump(reinterpret_cast<u_char*>(dumper_), &h, bytes.data());
-}
-
-PcapngOut::PcapngOut(const std::string& path, int link_type) {
+PcapngCaptureWriter::PcapngCaptureWriter(const std::string& path, int link_type) {
   file_ = std::fopen(path.c_str(), "wb");
   if (file_ == nullptr) throw std::runtime_error("cannot write " + path);
   std::vector<std::uint8_t> shb;
@@ -79,12 +64,12 @@ PcapngOut::PcapngOut(const std::string& path, int link_type) {
   write_block(file_, 0x00000001, idb);
 }
 
-PcapngOut::~PcapngOut() {
+PcapngCaptureWriter::~PcapngCaptureWriter() {
   std::fclose(file_);
 }
 
-void PcapngOut::write(double time, std::span<const std::uint8_t> bytes,
-                      std::uint32_t length_on_wire) {
+void PcapngCaptureWriter::write(double time, std::span<const std::uint8_t> bytes,
+                                std::uint32_t length_on_wire) {
   std::uint64_t seconds = 0;
   std::uint32_t micros = 0;
   split_time(time, seconds, micros);
@@ -99,9 +84,10 @@ void PcapngOut::write(double time, std::span<const std::uint8_t> bytes,
   write_block(file_, 0x00000006, epb);
 }
 
-std::unique_ptr<CaptureOut> open_capture(const std::string& path, int link_type, bool pcapng) {
-  if (pcapng) return std::make_unique<PcapngOut>(path, link_type);
-  return std::make_unique<PcapOut>(path, link_type);
+std::unique_ptr<CaptureWriter> open_capture_writer(const std::string& path, int link_type,
+                                                   bool pcapng) {
+  if (pcapng) return std::make_unique<PcapngCaptureWriter>(path, link_type);
+  return std::make_unique<PcapCaptureWriter>(path, link_type);
 }
 
-}  // namespace pvtap::forge
+}  // namespace pvtap

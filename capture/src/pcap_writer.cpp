@@ -1,15 +1,15 @@
-#include "pcap_writer.h"
+#include "pvtap/capture/pcap_writer.h"
 
 #include <pcap/pcap.h>
 
-namespace pvtap::analyzer {
+namespace pvtap {
 
 PcapWriter::~PcapWriter() {
   close();
 }
 
-bool PcapWriter::open(const std::string& path, int link_type) {
-  pcap_ = pcap_open_dead(link_type, 65535);
+bool PcapWriter::open(const std::string& path, int link_type, int snap_length) {
+  pcap_ = pcap_open_dead(link_type, snap_length);
   if (pcap_ == nullptr) {
     error_ = "cannot set up a pcap writer";
     return false;
@@ -24,12 +24,14 @@ bool PcapWriter::open(const std::string& path, int link_type) {
   return true;
 }
 
-void PcapWriter::write(std::int64_t micros, std::span<const std::uint8_t> record) {
+void PcapWriter::write(std::int64_t micros, std::span<const std::uint8_t> record,
+                       std::uint32_t length_on_wire) {
   if (dumper_ == nullptr) return;
   pcap_pkthdr header{};
   header.ts.tv_sec = static_cast<time_t>(micros / 1'000'000);
   header.ts.tv_usec = static_cast<suseconds_t>(micros % 1'000'000);
-  header.caplen = header.len = static_cast<bpf_u_int32>(record.size());
+  header.caplen = static_cast<bpf_u_int32>(record.size());
+  header.len = length_on_wire != 0 ? length_on_wire : header.caplen;
   pcap_dump(reinterpret_cast<u_char*>(dumper_), &header, record.data());
 }
 
@@ -55,4 +57,4 @@ bool PcapWriter::close() {
   return ok;
 }
 
-}  // namespace pvtap::analyzer
+}  // namespace pvtap

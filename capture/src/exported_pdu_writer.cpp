@@ -1,15 +1,16 @@
-#include "exported_pdu_writer.h"
+#include "pvtap/capture/exported_pdu_writer.h"
 
 #include <pcap/pcap.h>
 
 #include <algorithm>
 #include <cmath>
+#include <string_view>
 
-#include "exported_pdu_tags.h"
-#include "link_types.h"
+#include "pvtap/capture/exported_pdu_tags.h"
+#include "pvtap/capture/link_types.h"
 #include "pvtap/framing_probe.h"
 
-namespace pvtap::analyzer {
+namespace pvtap {
 namespace {
 
 static_assert(dlt::kUpperPdu == DLT_WIRESHARK_UPPER_PDU);
@@ -30,7 +31,7 @@ std::size_t put_tag(std::uint8_t* out, std::uint16_t tag, std::uint16_t length) 
 // direction tag (when known), end tag.
 std::size_t put_tags(std::uint8_t* out, Direction direction) {
   std::size_t at = 0;
-  const auto name = exported_pdu::kDissectorName;
+  const std::string_view name = exported_pdu::kDissectorName;
   const auto padded = static_cast<std::uint16_t>((name.size() + 3) / 4 * 4);
   at += put_tag(out + at, exported_pdu::kTagDissectorName, padded);
   std::fill_n(out + at, padded, std::uint8_t{0});
@@ -86,4 +87,4 @@ bool ExportedPduWriter::close() {
   return file_.close();
 }
 
-}  // namespace pvtap::analyzer
+}  // namespace pvtap

@@ -1,12 +1,12 @@
-#include "network_packet.h"
+#include "pvtap/capture/network_packet.h"
 
 #include <algorithm>
 #include <cstdio>
 #include <optional>
 
-#include "link_types.h"
+#include "pvtap/capture/link_types.h"
 
-namespace pvtap::analyzer {
+namespace pvtap {
 namespace {
 
 using Bytes = std::span<const std::uint8_t>;
@@ -198,4 +198,4 @@ PacketVerdict decode_network_packet(int link_type, std::span<const std::uint8_t>
   return PacketVerdict::OtherIp;
 }
 
-}  // namespace pvtap::analyzer
+}  // namespace pvtap

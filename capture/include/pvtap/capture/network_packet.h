@@ -7,7 +7,7 @@
 #include <span>
 #include <string>
 
-namespace pvtap::analyzer {
+namespace pvtap {
 
 // Endpoint: an IPv4 or IPv6 address and a port.
 struct Endpoint {
@@ -22,11 +22,12 @@ struct Endpoint {
 
 enum class Transport : std::uint8_t { Tcp, Udp };
 
-// TCP flags pvtap reads.
+// TCP flags pvtap reads and writes.
 namespace tcp_flag {
 inline constexpr std::uint8_t kFin = 0x01;
 inline constexpr std::uint8_t kSyn = 0x02;
 inline constexpr std::uint8_t kRst = 0x04;
+inline constexpr std::uint8_t kPsh = 0x08;
 inline constexpr std::uint8_t kAck = 0x10;
 }  // namespace tcp_flag
 
@@ -55,4 +56,4 @@ enum class PacketVerdict : std::uint8_t {
 PacketVerdict decode_network_packet(int link_type, std::span<const std::uint8_t> packet,
                                     Segment& out);
 
-}  // namespace pvtap::analyzer
+}  // namespace pvtap

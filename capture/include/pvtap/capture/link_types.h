@@ -4,7 +4,7 @@
 #include <optional>
 #include <string>
 
-namespace pvtap::analyzer {
+namespace pvtap {
 
 // Link type numbers as libpcap's pcap_datalink() reports them on Linux (DLT_*).
 namespace dlt {
@@ -38,4 +38,4 @@ std::string link_type_name(int link_type);
 // "Ethernet (1), Linux cooked SLL (113), ..." for error messages and --help.
 std::string supported_link_types_text();
 
-}  // namespace pvtap::analyzer
+}  // namespace pvtap

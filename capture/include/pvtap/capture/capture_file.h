@@ -9,7 +9,7 @@
 typedef struct pcap pcap_t;
 struct pcap_pkthdr;
 
-namespace pvtap::analyzer {
+namespace pvtap {
 
 // CapturedPacket: one record; `bytes` is valid until the next call to next().
 struct CapturedPacket {
@@ -55,4 +55,4 @@ class CaptureFile {
 // The largest record among the first `records` of a capture (0 when it cannot be read).
 std::size_t largest_early_record(const std::string& path, std::size_t records);
 
-}  // namespace pvtap::analyzer
+}  // namespace pvtap

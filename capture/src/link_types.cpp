@@ -1,8 +1,8 @@
-#include "link_types.h"
+#include "pvtap/capture/link_types.h"
 
 #include <pcap/pcap.h>
 
-namespace pvtap::analyzer {
+namespace pvtap {
 
 std::optional<InputKind> input_kind_of(int link_type) {
   switch (link_type) {
@@ -43,4 +43,4 @@ std::string supported_link_types_text() {
          "exported PDU (252)";
 }
 
-}  // namespace pvtap::analyzer
+}  // namespace pvtap

@@ -9,11 +9,11 @@
 #include <span>
 #include <string>
 
-#include "pcap_writer.h"
+#include "pvtap/capture/pcap_writer.h"
 #include "pvtap/dialect.h"
 #include "pvtap/stream_reassembler.h"
 
-namespace pvtap::analyzer {
+namespace pvtap {
 
 class ExportedPduWriter {
  public:
@@ -44,4 +44,4 @@ class ExportedPduWriter {
   std::array<std::uint8_t, 8192> record_{};  // tags + the largest frame or noise run, reused
 };
 
-}  // namespace pvtap::analyzer
+}  // namespace pvtap

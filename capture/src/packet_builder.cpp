@@ -1,16 +1,16 @@
-#include "packet_builder.h"
+#include "pvtap/capture/packet_builder.h"
 
 #include <pcap/pcap.h>
 
-namespace pvtap::forge {
+namespace pvtap {
 namespace {
 
-void put16(Bytes& b, std::uint16_t v) {
+void put16(PacketBytes& b, std::uint16_t v) {
   b.push_back(static_cast<std::uint8_t>(v >> 8));
   b.push_back(static_cast<std::uint8_t>(v));
 }
 
-void put32(Bytes& b, std::uint32_t v) {
+void put32(PacketBytes& b, std::uint32_t v) {
   put16(b, static_cast<std::uint16_t>(v >> 16));
   put16(b, static_cast<std::uint16_t>(v));
 }
@@ -29,12 +29,21 @@ std::uint16_t fold(std::uint32_t sum) {
   return static_cast<std::uint16_t>(~sum);
 }
 
-std::span<const std::uint8_t> address_of(const Host& h) {
-  return std::span<const std::uint8_t>(h.address).first(h.ipv6 ? 16 : 4);
+// Byte by byte: gcc 12 sees a false out-of-bounds copy in vector::insert of a std::array.
+void put_mac(PacketBytes& b, const MacAddress& mac) {
+  for (const std::uint8_t byte : mac) b.push_back(byte);
+}
+
+bool is_ipv6(const Endpoint& e) {
+  return e.ip_version == 6;
+}
+
+std::span<const std::uint8_t> address_of(const Endpoint& e) {
+  return std::span<const std::uint8_t>(e.address).first(is_ipv6(e) ? 16 : 4);
 }
 
 // The transport checksum over the IP pseudo-header and the segment.
-std::uint16_t transport_checksum(const Host& from, const Host& to, std::uint8_t protocol,
+std::uint16_t transport_checksum(const Endpoint& from, const Endpoint& to, std::uint8_t protocol,
                                  std::span<const std::uint8_t> segment) {
   std::uint32_t sum = sum16(address_of(from));
   sum = sum16(address_of(to), sum);
@@ -43,16 +52,17 @@ std::uint16_t transport_checksum(const Host& from, const Host& to, std::uint8_t 
   return fold(sum16(segment, sum));
 }
 
-Bytes ip_packet(const Host& from, const Host& to, std::uint8_t protocol, Bytes segment) {
+PacketBytes ip_packet(const Endpoint& from, const Endpoint& to, std::uint8_t protocol,
+                      std::uint16_t ip_id, PacketBytes segment) {
   const std::size_t checksum_at = protocol == 6 ? 16 : 6;
   const std::uint16_t checksum = transport_checksum(from, to, protocol, segment);
   segment[checksum_at] = static_cast<std::uint8_t>(checksum >> 8);
   segment[checksum_at + 1] = static_cast<std::uint8_t>(checksum);
-  Bytes ip;
-  if (!from.ipv6) {
+  PacketBytes ip;
+  if (!is_ipv6(from)) {
     ip = {0x45, 0x00};
     put16(ip, static_cast<std::uint16_t>(20 + segment.size()));
-    put16(ip, 0x1234);  // identification
+    put16(ip, ip_id);
     put16(ip, 0x4000);  // don't fragment
     ip.push_back(64);
     ip.push_back(protocol);
@@ -74,16 +84,20 @@ Bytes ip_packet(const Host& from, const Host& to, std::uint8_t protocol, Bytes s
   return ip;
 }
 
-Bytes with_link(LinkLayer link, bool ipv6, Bytes ip) {
+PacketBytes with_link(LinkLayer link, const Route& route, PacketBytes ip) {
+  const bool ipv6 = is_ipv6(route.from);
   const std::uint16_t ethertype = ipv6 ? 0x86DD : 0x0800;
-  Bytes out;
+  PacketBytes out;
   switch (link) {
     case LinkLayer::Ethernet:
-      out = {0x02, 0x00, 0x00, 0x00, 0x00, 0x02, 0x02, 0x00, 0x00, 0x00, 0x00, 0x01};
+      put_mac(out, route.to_mac);
+      put_mac(out, route.from_mac);
       put16(out, ethertype);
       break;
     case LinkLayer::Sll:
-      out = {0x00, 0x00, 0x00, 0x01, 0x00, 0x06, 0x02, 0x00, 0x00, 0x00, 0x00, 0x01, 0x00, 0x00};
+      out = {0x00, 0x00, 0x00, 0x01, 0x00, 0x06};  // to us, ARPHRD_ETHER, address length
+      put_mac(out, route.from_mac);
+      put16(out, 0);  // address padding
       put16(out, ethertype);
       break;
     case LinkLayer::Sll2:
@@ -93,7 +107,8 @@ Bytes with_link(LinkLayer link, bool ipv6, Bytes ip) {
       put16(out, 1);     // ARPHRD_ETHER
       out.push_back(0);  // packet type: to us
       out.push_back(6);  // address length
-      for (int i = 0; i < 8; ++i) out.push_back(i < 6 ? 0x02 : 0x00);
+      put_mac(out, route.from_mac);
+      put16(out, 0);  // address padding
       break;
     case LinkLayer::Loopback:
       // BSD loopback: the address family in the capturing host's order (little-endian here).
@@ -112,8 +127,9 @@ Bytes with_link(LinkLayer link, bool ipv6, Bytes ip) {
 
 }  // namespace
 
-Host ipv4_host(std::uint8_t a, std::uint8_t b, std::uint8_t c, std::uint8_t d, std::uint16_t port) {
-  Host h;
+Endpoint ipv4_endpoint(std::uint8_t a, std::uint8_t b, std::uint8_t c, std::uint8_t d,
+                       std::uint16_t port) {
+  Endpoint h;
   h.address[0] = a;
   h.address[1] = b;
   h.address[2] = c;
@@ -122,9 +138,9 @@ Host ipv4_host(std::uint8_t a, std::uint8_t b, std::uint8_t c, std::uint8_t d, s
   return h;
 }
 
-Host ipv6_host(std::uint16_t last_group, std::uint16_t port) {
-  Host h;
-  h.ipv6 = true;
+Endpoint ipv6_endpoint(std::uint16_t last_group, std::uint16_t port) {
+  Endpoint h;
+  h.ip_version = 6;
   h.address[0] = 0xFD;
   h.address[14] = static_cast<std::uint8_t>(last_group >> 8);
   h.address[15] = static_cast<std::uint8_t>(last_group);
@@ -148,41 +164,45 @@ int link_type_of(LinkLayer link) {
   return DLT_EN10MB;
 }
 
-Bytes tcp_packet(LinkLayer link, const Host& from, const Host& to, const TcpHeader& tcp,
-                 std::span<const std::uint8_t> payload) {
-  Bytes segment;
+PacketBytes tcp_packet(LinkLayer link, const Route& route, const TcpHeader& tcp,
+                       std::span<const std::uint8_t> payload) {
+  const Endpoint& from = route.from;
+  const Endpoint& to = route.to;
+  PacketBytes segment;
   put16(segment, from.port);
   put16(segment, to.port);
   put32(segment, tcp.seq);
   put32(segment, tcp.ack);
   segment.push_back(0x50);  // 20-byte header
   segment.push_back(tcp.flags);
-  put16(segment, 65535);  // window
-  put16(segment, 0);      // checksum, filled in below
-  put16(segment, 0);      // urgent pointer
+  put16(segment, tcp.window);
+  put16(segment, 0);  // checksum, filled in below
+  put16(segment, 0);  // urgent pointer
   segment.insert(segment.end(), payload.begin(), payload.end());
-  return with_link(link, from.ipv6, ip_packet(from, to, 6, std::move(segment)));
+  return with_link(link, route, ip_packet(from, to, 6, tcp.ip_id, std::move(segment)));
 }
 
-Bytes udp_packet(LinkLayer link, const Host& from, const Host& to,
-                 std::span<const std::uint8_t> payload) {
-  Bytes segment;
+PacketBytes udp_packet(LinkLayer link, const Route& route, std::span<const std::uint8_t> payload) {
+  const Endpoint& from = route.from;
+  const Endpoint& to = route.to;
+  PacketBytes segment;
   put16(segment, from.port);
   put16(segment, to.port);
   put16(segment, static_cast<std::uint16_t>(8 + payload.size()));
   put16(segment, 0);
   segment.insert(segment.end(), payload.begin(), payload.end());
-  return with_link(link, from.ipv6, ip_packet(from, to, 17, std::move(segment)));
+  return with_link(link, route, ip_packet(from, to, 17, TcpHeader{}.ip_id, std::move(segment)));
 }
 
-Bytes arp_packet() {
-  Bytes out = {0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0x02, 0x00, 0x00, 0x00, 0x00, 0x01, 0x08, 0x06};
-  const Bytes body = {0x00, 0x01, 0x08, 0x00, 0x06, 0x04, 0x00, 0x01, 0x02, 0x00,
-                      0x00, 0x00, 0x00, 0x01, 0x0A, 0x00, 0x00, 0x01, 0x00, 0x00,
-                      0x00, 0x00, 0x00, 0x00, 0x0A, 0x00, 0x00, 0x02};
+PacketBytes arp_packet() {
+  PacketBytes out = {0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0x02,
+                     0x00, 0x00, 0x00, 0x00, 0x01, 0x08, 0x06};
+  const PacketBytes body = {0x00, 0x01, 0x08, 0x00, 0x06, 0x04, 0x00, 0x01, 0x02, 0x00,
+                            0x00, 0x00, 0x00, 0x01, 0x0A, 0x00, 0x00, 0x01, 0x00, 0x00,
+                            0x00, 0x00, 0x00, 0x00, 0x0A, 0x00, 0x00, 0x02};
   out.insert(out.end(), body.begin(), body.end());
   while (out.size() < 60) out.push_back(0);
   return out;
 }
 
-}  // namespace pvtap::forge
+}  // namespace pvtap

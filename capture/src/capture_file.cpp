@@ -1,4 +1,4 @@
-#include "capture_file.h"
+#include "pvtap/capture/capture_file.h"
 
 #include <pcap/pcap.h>
 #include <stdio_ext.h>
@@ -8,9 +8,9 @@
 #include <cerrno>
 #include <cstring>
 
-#include "link_types.h"
+#include "pvtap/capture/link_types.h"
 
-namespace pvtap::analyzer {
+namespace pvtap {
 namespace {
 
 constexpr std::size_t kReadBuffer = 1 << 20;
@@ -98,7 +98,7 @@ CaptureFile::Next CaptureFile::next(CapturedPacket& packet) {
 }
 
 std::string CaptureFile::link_type_name() const {
-  return pvtap::analyzer::link_type_name(link_type_);
+  return pvtap::link_type_name(link_type_);
 }
 
 std::uint64_t CaptureFile::position() const {
@@ -118,4 +118,4 @@ std::size_t largest_early_record(const std::string& path, std::size_t records) {
   return largest;
 }
 
-}  // namespace pvtap::analyzer
+}  // namespace pvtap

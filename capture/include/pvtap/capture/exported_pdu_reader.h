@@ -1,0 +1,23 @@
+// The reader of link type 252 records (Wireshark's exported PDUs), as --write writes them.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string_view>
+
+#include "pvtap/stream_reassembler.h"
+
+namespace pvtap {
+
+// ExportedPdu: one record of link type 252 (Wireshark's exported PDUs): tags, then the PDU.
+struct ExportedPdu {
+  std::string_view dissector;  // EXP_PDU_TAG_DISSECTOR_NAME, trailing NULs removed
+  Direction direction = Direction::Unknown;
+  std::span<const std::uint8_t> pdu;
+};
+
+// Reads the tag list of a 252 record; nullopt when it is cut short or has no end tag.
+std::optional<ExportedPdu> exported_pdu_record(std::span<const std::uint8_t> record);
+
+}  // namespace pvtap
