@@ -11,11 +11,13 @@
 #include <cstdio>
 #include <string>
 
-#include "audit_run.h"
-#include "common_options.h"
+#include "cli/audit_command.h"
+#include "cli/common_options.h"
+#include "cli/exit_status.h"
 #include "fuzz_input.h"
-#include "output_stream.h"
+#include "output/output_stream.h"
 #include "pvtap/register_decoder.h"
+#include "sources/capture_reader.h"
 
 namespace {
 
@@ -77,10 +79,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const MemoryFile file(data, size);
   const auto options = options_for(file.path(), data[size - 1]);
   QuietStderr quiet;
-  if (pvtap::analyzer::check_inputs(options)) return 0;
+  if (pvtap::analyzer::check_inputs(options.captures, options.raw_dumps)) return 0;
   pvtap::analyzer::OutputStream out(null_file());
-  pvtap::analyzer::AuditRun run(options, decoder, out);
-  const int status = run.run();
+  const int status = pvtap::analyzer::audit(options, decoder, out);
   PVTAP_FUZZ_CHECK(status == pvtap::analyzer::kExitOk || status == pvtap::analyzer::kExitBadInput ||
                    status == pvtap::analyzer::kExitFindings);
   return 0;

@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "audit_command.h"
-#include "common_options.h"
+#include "cli/audit_command.h"
+#include "cli/common_options.h"
+#include "cli/sniff_command.h"
 #include "fuzz_input.h"
-#include "sniff_command.h"
 
 namespace {
 

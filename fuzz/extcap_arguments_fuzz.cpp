@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "extcap_arguments.h"
-#include "extcap_options.h"
-#include "extcap_sentences.h"
+#include "extcap/extcap_arguments.h"
+#include "extcap/extcap_options.h"
+#include "extcap/extcap_sentences.h"
 #include "fuzz_input.h"
 
 namespace {}  // namespace

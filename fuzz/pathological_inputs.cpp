@@ -14,9 +14,11 @@
 #include <string>
 #include <vector>
 
-#include "audit_run.h"
-#include "common_options.h"
+#include "cli/audit_command.h"
+#include "cli/common_options.h"
+#include "cli/exit_status.h"
 #include "fuzz_input.h"
+#include "gateway/tcp_stream.h"
 #include "pvtap/bus_session.h"
 #include "pvtap/capture/capture_writer.h"
 #include "pvtap/capture/exported_pdu_reader.h"
@@ -24,7 +26,6 @@
 #include "pvtap/capture/rtac_record.h"
 #include "pvtap/frame_codec.h"
 #include "pvtap/register_map.h"
-#include "tcp_stream.h"
 
 namespace {
 
@@ -209,8 +210,7 @@ std::uint64_t connections(double scale) {
   int status = 0;
   {
     pvtap::analyzer::OutputStream out(null);
-    pvtap::analyzer::AuditRun run(o, decoder, out);
-    status = run.run();
+    status = pvtap::analyzer::audit(o, decoder, out);
   }
   std::fclose(null);
   ::unlink(path);

@@ -12,7 +12,7 @@
 #include <span>
 
 #include "fuzz_input.h"
-#include "tcp_stream.h"
+#include "gateway/tcp_stream.h"
 
 namespace {
 

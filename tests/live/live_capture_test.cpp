@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "live_capture.h"
+#include "sources/live_capture.h"
 
 namespace pvtap::analyzer {
 namespace {

@@ -1,7 +1,7 @@
 // Reading Wireshark's extcap command lines: the questions, the capture settings, and what
 // pvtap skips or refuses.
 // The suites start with a lower-case "extcap" so that `ctest -R extcap` selects them.
-#include "extcap_arguments.h"
+#include "extcap/extcap_arguments.h"
 
 #include <gtest/gtest.h>
 

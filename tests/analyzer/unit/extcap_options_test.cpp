@@ -1,6 +1,6 @@
 // The options dialog's settings: their table, their check, and the capture they make.
 // The suites start with a lower-case "extcap" so that `ctest -R extcap` selects them.
-#include "extcap_options.h"
+#include "extcap/extcap_options.h"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "extcap_capture.h"
+#include "extcap/extcap_capture.h"
 
 namespace pvtap::analyzer {
 namespace {
@@ -65,7 +65,7 @@ TEST(extcapOptions, ACaptureSniffsThePortWithTheSettingsIntoTheFifo) {
   settings.parity = "even";
   settings.stop_bits = "2";
   settings.dialect = "hybrid";
-  const AuditOptions o = capture_options(port, settings, "/tmp/fifo");
+  const SniffOptions o = capture_options(port, settings, "/tmp/fifo");
   EXPECT_EQ(o.live.devices, (std::vector<std::string>{"/dev/serial/by-id/usb-FTDI-port0"}));
   EXPECT_EQ(o.baud, 19200u);
   EXPECT_EQ(o.live.line.parity, 'E');

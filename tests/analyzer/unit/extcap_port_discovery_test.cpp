@@ -1,6 +1,6 @@
 // Finding serial ports in a fake /dev and /sys/class/tty built in a temporary folder.
 // The suites start with a lower-case "extcap" so that `ctest -R extcap` selects them.
-#include "extcap_port_discovery.h"
+#include "extcap/extcap_port_discovery.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>

@@ -1,6 +1,6 @@
 // The sentences pvtap answers Wireshark's extcap questions with, word for word.
 // The suites start with a lower-case "extcap" so that `ctest -R extcap` selects them.
-#include "extcap_sentences.h"
+#include "extcap/extcap_sentences.h"
 
 #include <gtest/gtest.h>
 

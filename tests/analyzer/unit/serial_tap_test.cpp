@@ -12,9 +12,9 @@
 #include <fstream>
 #include <string>
 
-#include "device_tap.h"
-#include "serial_port.h"
-#include "usb_latency_timer.h"
+#include "sources/device_tap.h"
+#include "sources/serial_port.h"
+#include "sources/usb_latency_timer.h"
 
 namespace pvtap::analyzer {
 namespace {

@@ -1,5 +1,5 @@
 // Number, hex, JSON and CSV text as the output formats write it.
-#include "text_append.h"
+#include "output/text_append.h"
 
 #include <gtest/gtest.h>
 

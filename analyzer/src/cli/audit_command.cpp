@@ -1,0 +1,127 @@
+#include "cli/audit_command.h"
+
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <string>
+
+#include "cli/common_options.h"
+#include "cli/exit_status.h"
+#include "output/progress_bar.h"
+#include "output/run_output.h"
+#include "pipeline/pipeline.h"
+#include "pvtap/capture/link_types.h"
+#include "sources/capture_reader.h"
+
+namespace pvtap::analyzer {
+namespace {
+
+const char* const kDescription =
+    "Audit captured inverter bus traffic: every frame with its check verdict and decoded "
+    "values, then a report of bad checks, timeouts, exceptions, noise, data loss, latency, "
+    "polling and bus timing, and the latest value of every register per station.";
+
+std::string footer_text() {
+  return "\nInputs (recognized by the capture's link type; pcap and pcapng):\n"
+         "  gateway traffic    Ethernet, Linux cooked (SLL, SLL2), raw IP and loopback captures\n"
+         "                     of a serial-to-TCP gateway (TCP or UDP). TCP is reassembled per\n"
+         "                     direction; lost segments are reported as data-loss gaps. The side\n"
+         "                     on the gateway port is the slave side.\n"
+         "  serial captures    USER0-USER15 and RTAC serial: raw bus bytes in chunks.\n"
+         "  exported PDUs      link type 252 as written by --write.\n"
+         "  --raw FILE         a plain dump of bus bytes (cat /dev/ttyUSB0 > FILE), no time.\n"
+         "  Several FILEs are read in the order given as one capture (e.g. a ring buffer).\n"
+         "\nOutput on stdout: frames (and timeouts, noise, gaps) in the chosen format, then the\n"
+         "report. jsonl ends with a {\"type\":\"summary\",...} line; csv holds rows only (use\n"
+         "--summary-only for the report).\n"
+         "\nExit status: 0 done; 1 findings (bad checks, timeouts, exceptions) with\n"
+         "--fail-on errors; 2 usage error or unreadable input (a truncated capture still\n"
+         "prints what was read before it).\n"
+         "\nExamples:\n"
+         "  pvtap audit site.pcapng\n"
+         "  pvtap audit --format jsonl --port 4001 gateway.pcap | jq 'select(.check==\"bad\")'\n"
+         "  pvtap audit --summary-only --fail-on errors --timeout 0.5 bus.pcap\n"
+         "  pvtap audit --raw ttyUSB0.bin --dialect gsl --baud 4800\n"
+         "  pvtap audit --write frames.pcap capture.pcap   (open frames.pcap in Wireshark)\n"
+         "\nSupported link types: " +
+         supported_link_types_text() + "\n";
+}
+
+void add_input_options(CLI::App& audit, AuditOptions& o) {
+  audit.add_option("FILE", o.captures, "pcap or pcapng capture(s) to audit")->type_name("FILE");
+  audit.add_option("--raw", o.raw_dumps, "a plain dump of bus bytes (no timestamps); repeatable")
+      ->type_name("FILE")
+      ->allow_extra_args(false);
+  audit
+      .add_option("--port", o.ports,
+                  "gateway TCP/UDP port(s), comma-separated or repeated; other traffic is "
+                  "ignored. Default: recognize the protocol on any port")
+      ->type_name("PORT")
+      ->delimiter(',')
+      ->allow_extra_args(false);
+}
+
+}  // namespace
+
+CLI::App* add_audit_command(CLI::App& app, AuditOptions& options) {
+  CLI::App* audit = app.add_subcommand("audit", kDescription);
+  audit->footer(footer_text());
+  add_input_options(*audit, options);
+  add_protocol_options(*audit, options, kAnyBaud);
+  add_output_options(*audit, options);
+  return audit;
+}
+
+int run_audit(AuditOptions& options) {
+  apply_choices(options);
+  if (options.captures.empty() && options.raw_dumps.empty()) {
+    std::fprintf(stderr, "pvtap: audit needs a capture FILE or --raw FILE (see --help)\n");
+    return kExitBadInput;
+  }
+  if (!options.captures.empty() && !options.raw_dumps.empty()) {
+    std::fprintf(stderr, "pvtap: give either capture FILEs or --raw dumps, not both\n");
+    return kExitBadInput;
+  }
+  if (const auto error = check_inputs(options.captures, options.raw_dumps)) {
+    std::fprintf(stderr, "pvtap: %s\n", error->c_str());
+    return kExitBadInput;
+  }
+  RegisterDecoder decoder(DecoderOptions{options.gsl_ids, PairRule::Binary});
+  if (!load_maps(options, decoder)) return kExitBadInput;
+  options.progress = ::isatty(STDERR_FILENO) == 1;
+  OutputStream out(stdout);
+  const int status = audit(options, decoder, out);
+  out.flush();
+  if (out.failed()) {
+    std::fprintf(stderr, "pvtap: cannot write the output\n");
+    return kExitBadInput;
+  }
+  return status;
+}
+
+int audit(const AuditOptions& options, const RegisterDecoder& decoder, OutputStream& out) {
+  RunOutput output(output_settings(options), out);
+  if (!output.open()) return kExitBadInput;
+  PipelineSettings settings = pipeline_settings(options);
+  settings.has_timestamps = options.raw_dumps.empty();
+  Pipeline pipeline(settings, decoder, output.events());
+  ProgressBar progress(options.progress, total_size(options.captures, options.raw_dumps));
+  CaptureReader reader(pipeline, progress);
+  const bool complete = reader.read(options.captures, options.raw_dumps);
+  pipeline.finish(reader.last_time());
+  progress.clear();
+  AuditReport report = pipeline.report();
+  report.inputs = reader.inputs();
+  report.written_records = output.written_records();
+  output.write_summary(report);
+  out.flush();
+  if (!output.close()) return kExitBadInput;
+  if (!complete) {
+    reader.report_truncation();
+    return kExitBadInput;
+  }
+  return options.fail_on_errors && has_findings(report) ? kExitFindings : kExitOk;
+}
+
+}  // namespace pvtap::analyzer

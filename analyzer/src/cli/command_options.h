@@ -1,0 +1,62 @@
+// What `pvtap audit` and `pvtap sniff` were asked to do, as parsed from their command lines.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "output/event_writer.h"
+#include "pvtap/dialect.h"
+#include "pvtap/register_decoder.h"
+#include "sources/serial_line.h"
+
+namespace pvtap::analyzer {
+
+// CommonOptions: the protocol, register map and output options both commands take.
+struct CommonOptions {
+  // As typed; apply_choices() turns them into the typed fields below.
+  std::string dialect = "auto";  // auto, ascii, hybrid or gsl
+  std::string gsl_id_reading = "decimal";
+  std::string format_name = "text";
+  std::string fail_on;  // empty or "errors"
+
+  DialectSet dialects = DialectSet::all();
+  std::uint32_t baud = 9600;
+  double timeout = 1.0;  // seconds
+  // A silence this long between two TCP/UDP segments of one direction proves a frame
+  // boundary (see ReassemblerOptions::boundary_gap); 0 never.
+  double gateway_gap_ms = 50;
+  std::vector<std::uint16_t> ports;
+  GslIdReading gsl_ids = GslIdReading::Decimal;
+  std::vector<std::string> maps;
+  OutputFormat format = OutputFormat::Text;
+  bool summary_only = false;
+  std::string write_path;
+  bool fail_on_errors = false;
+};
+
+// AuditOptions: `pvtap audit`: capture files or plain dumps.
+struct AuditOptions : CommonOptions {
+  std::vector<std::string> captures;   // pcap/pcapng files, read in order as one capture
+  std::vector<std::string> raw_dumps;  // plain bus byte dumps (--raw)
+  bool progress = false;               // draw a progress bar on stderr
+};
+
+// LiveOptions: what `pvtap sniff` reads, and when it stops.
+struct LiveOptions {
+  std::vector<std::string> devices;  // serial devices (RS485 taps), each its own bus
+  SerialLine line;
+  std::string interface;     // a network interface with a gateway's TCP traffic (libpcap)
+  std::string filter;        // BPF filter for the interface, added to the --port filter
+  double duration = 0;       // seconds; 0 runs until SIGINT/SIGTERM
+  std::uint64_t count = 0;   // frames; 0 means no limit
+  bool status_line = false;  // a live status line on stderr
+  bool quiet = false;        // nothing on stdout (extcap: the frames go to the fifo)
+};
+
+// SniffOptions: `pvtap sniff` (and the extcap capture): live sources.
+struct SniffOptions : CommonOptions {
+  LiveOptions live;
+};
+
+}  // namespace pvtap::analyzer

@@ -1,0 +1,42 @@
+// The options `pvtap audit` and `pvtap sniff` share: protocol, register maps and output.
+#pragma once
+
+#include <cstdint>
+
+#include "cli/command_options.h"
+#include "output/run_output.h"
+#include "pipeline/pipeline.h"
+
+namespace CLI {
+class App;
+}
+
+namespace pvtap {
+class RegisterDecoder;
+}
+
+namespace pvtap::analyzer {
+
+// The range --baud accepts: any rate for audits; a serial tap takes what termios can set.
+struct BaudRange {
+  std::uint32_t min;
+  std::uint32_t max;
+};
+inline constexpr BaudRange kAnyBaud{300, 4000000};
+
+// --dialect, --baud, --timeout, --gsl-ids, --map.
+void add_protocol_options(CLI::App& command, CommonOptions& o, BaudRange baud_range);
+// --format, --summary-only, --write, --fail-on.
+void add_output_options(CLI::App& command, CommonOptions& o);
+
+// Turns the options as typed (dialect, format, ...) into their typed fields.
+void apply_choices(CommonOptions& o);
+
+// Loads the --map files into the decoder; false (after printing why) when one is bad.
+bool load_maps(const CommonOptions& o, RegisterDecoder& decoder);
+
+// What the options make of the pipeline and of the output.
+PipelineSettings pipeline_settings(const CommonOptions& o);
+OutputSettings output_settings(const CommonOptions& o);
+
+}  // namespace pvtap::analyzer

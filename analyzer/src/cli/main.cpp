@@ -1,0 +1,41 @@
+// pvtap: tools for the serial protocols of solar inverters on RS485 buses.
+#include <CLI/CLI.hpp>
+
+#include "cli/audit_command.h"
+#include "cli/exit_status.h"
+#include "cli/sniff_command.h"
+#include "extcap/extcap_command.h"
+
+namespace {
+
+// `pvtap --version`: this program's version, and the Wireshark its plugin was built for (a
+// plugin loads only into the Wireshark major.minor it was built against).
+#ifdef PVTAP_WIRESHARK_VERSION
+constexpr const char* kVersionText =
+    "pvtap " PVTAP_VERSION "\nWireshark plugin built for Wireshark " PVTAP_WIRESHARK_VERSION;
+#else
+constexpr const char* kVersionText = "pvtap " PVTAP_VERSION "\nWireshark plugin not built";
+#endif
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // Wireshark runs capture interfaces as `pvtap --extcap-interfaces`, `--capture ...`.
+  if (pvtap::analyzer::is_extcap_call(argc, argv)) return pvtap::analyzer::run_extcap(argc, argv);
+  CLI::App app{"pvtap: see what crosses the wire between a data logger and its inverters", "pvtap"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", kVersionText, "print the version and exit");
+  pvtap::analyzer::AuditOptions audit_options;
+  CLI::App* audit = pvtap::analyzer::add_audit_command(app, audit_options);
+  pvtap::analyzer::SniffCommandLine sniff_command;
+  CLI::App* sniff = pvtap::analyzer::add_sniff_command(app, sniff_command);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // Help is a success; every other parse problem is a usage error (exit 2).
+    return app.exit(e) == 0 ? pvtap::analyzer::kExitOk : pvtap::analyzer::kExitBadInput;
+  }
+  if (audit->parsed()) return pvtap::analyzer::run_audit(audit_options);
+  if (sniff->parsed()) return pvtap::analyzer::run_sniff(sniff_command);
+  return pvtap::analyzer::kExitBadInput;
+}

@@ -1,0 +1,183 @@
+#include "cli/sniff_command.h"
+
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <string>
+
+#include "cli/common_options.h"
+#include "cli/exit_status.h"
+#include "output/run_output.h"
+#include "pipeline/pipeline.h"
+#include "sources/interface_source.h"
+#include "sources/live_loop.h"
+#include "sources/serial_taps.h"
+#include "sources/stop_signal.h"
+
+namespace pvtap::analyzer {
+namespace {
+
+const char* const kDescription =
+    "Capture inverter bus traffic live and passively: from RS485 taps (serial adapters opened "
+    "read-only, never written to) or from a serial-to-TCP gateway's traffic on a network "
+    "interface. Frames, check verdicts, timeouts and noise are reported as they happen, in the "
+    "same formats as `pvtap audit`; the report follows when the capture stops (Ctrl-C, "
+    "SIGTERM, --duration or --count).";
+
+const char* const kFooter =
+    "\nSerial taps: the adapter must be set to the bus's baud rate, parity and stop bits.\n"
+    "Pass adapters by their /dev/serial/by-id/ name: after an unplug pvtap reopens the same\n"
+    "path (retrying with backoff) and reports the outage as a data-loss gap. On FTDI adapters\n"
+    "the USB latency timer is lowered to 1 ms when it is writable, so that timestamps can\n"
+    "judge the t1.5/t3.5 silences; the report says when they cannot.\n"
+    "\nGateway traffic: --interface captures with libpcap (needs root or CAP_NET_RAW and\n"
+    "CAP_NET_ADMIN); --port names the gateway's port(s), --filter adds a BPF filter.\n"
+    "\nOutput on stdout as frames complete; --write FILE keeps a pcap (link type 252) for\n"
+    "Wireshark, flushed record by record so an abrupt end loses nothing.\n"
+    "\nExit status: 0 stopped normally (also on SIGINT/SIGTERM); 1 findings with --fail-on\n"
+    "errors; 2 usage error, a device or interface that cannot be opened.\n"
+    "\nExamples:\n"
+    "  pvtap sniff --device /dev/serial/by-id/usb-FTDI_FT232R_USB_UART_A10K1234-if00-port0\n"
+    "  pvtap sniff --device /dev/ttyUSB0 --baud 19200 --parity even --format jsonl | jq .\n"
+    "  pvtap sniff --device /dev/ttyUSB0 --device /dev/ttyUSB1 --write site.pcap\n"
+    "  pvtap sniff --interface eth0 --port 4001 --duration 600 --summary-only\n"
+    "\nIn Wireshark, once pvtap is installed (its Debian package, or `cmake --install`), the\n"
+    "capture interfaces list \"RS485 tap\" for each serial port (pvtap answers Wireshark's\n"
+    "extcap calls).\n";
+
+void add_source_options(CLI::App& sniff, SniffCommandLine& c) {
+  LiveOptions& live = c.options.live;
+  sniff
+      .add_option("--device", live.devices,
+                  "serial device of an RS485 tap, opened read-only; repeat for several buses")
+      ->type_name("PATH")
+      ->allow_extra_args(false);
+  sniff.add_option("--parity", c.parity, "parity of the bus's characters: none, even or odd")
+      ->check(CLI::IsMember({"none", "even", "odd"}).description(""))
+      ->type_name("PARITY")
+      ->default_str("none");
+  sniff.add_option("--stop-bits", live.line.stop_bits, "stop bits per character: 1 or 2")
+      ->check(CLI::IsMember({1, 2}).description(""))
+      ->type_name("N")
+      ->default_str("1");
+  sniff
+      .add_option("--interface", live.interface,
+                  "network interface to capture a serial-to-TCP gateway's traffic on")
+      ->type_name("IFACE");
+  sniff
+      .add_option("--port", c.options.ports,
+                  "gateway TCP/UDP port(s), comma-separated or repeated (with --interface)")
+      ->type_name("PORT")
+      ->delimiter(',')
+      ->allow_extra_args(false);
+  sniff.add_option("--filter", live.filter, "BPF capture filter (with --interface)")
+      ->type_name("BPF");
+}
+
+void add_stop_options(CLI::App& sniff, LiveOptions& live) {
+  sniff.add_option("--duration", live.duration, "stop after this many seconds")
+      ->check(CLI::PositiveNumber.description(""))
+      ->type_name("SECONDS");
+  sniff.add_option("--count", live.count, "stop after this many frames")
+      ->check(CLI::PositiveNumber.description(""))
+      ->type_name("N");
+}
+
+// A one-line reason why the sources given cannot be captured from; empty when they can.
+std::string source_problem(const SniffOptions& o) {
+  const LiveOptions& live = o.live;
+  if (live.devices.empty() && live.interface.empty()) {
+    return "sniff needs --device PATH or --interface IFACE (see --help)";
+  }
+  if (!live.devices.empty() && !live.interface.empty()) {
+    return "give either --device or --interface, not both";
+  }
+  if (!live.devices.empty() && (!o.ports.empty() || !live.filter.empty())) {
+    return "--port and --filter select gateway traffic; they go with --interface";
+  }
+  return {};
+}
+
+// Opens the source the options name and captures from it until the loop says stop; false
+// when the source could not be opened (the reason is on stderr, nothing ran).
+template <typename Source>
+bool capture_from(Source& source, const SniffOptions& o, Pipeline& pipeline, OutputStream& out,
+                  LiveSources& live) {
+  if (!source.open()) return false;
+  LiveLoop loop(o.live, pipeline, out);
+  source.run(loop, live);
+  pipeline.finish(loop.last_time());
+  return true;
+}
+
+int capture(const SniffOptions& o, const RegisterDecoder& decoder, OutputStream& out) {
+  OutputSettings output_choice = output_settings(o);
+  // Each record reaches the --write file at once, so that an abrupt end loses nothing.
+  output_choice.flush_each_record = true;
+  RunOutput output(output_choice, out);
+  if (!output.open()) return kExitBadInput;
+  Pipeline pipeline(pipeline_settings(o), decoder, output.events());
+  LiveSources live;
+  bool opened = false;
+  if (!o.live.devices.empty()) {
+    SerialTaps taps(o, pipeline);
+    opened = capture_from(taps, o, pipeline, out, live);
+  } else {
+    InterfaceSource interface(o, pipeline);
+    opened = capture_from(interface, o, pipeline, out, live);
+  }
+  if (!opened) return kExitBadInput;
+  AuditReport report = pipeline.report();
+  report.written_records = output.written_records();
+  report.live = live;
+  output.write_summary(report);
+  out.flush();
+  if (!output.close()) return kExitBadInput;
+  return o.fail_on_errors && has_findings(report) ? kExitFindings : kExitOk;
+}
+
+}  // namespace
+
+CLI::App* add_sniff_command(CLI::App& app, SniffCommandLine& command) {
+  CLI::App* sniff = app.add_subcommand("sniff", kDescription);
+  sniff->footer(kFooter);
+  add_source_options(*sniff, command);
+  add_protocol_options(*sniff, command.options, BaudRange{2400, 115200});
+  add_stop_options(*sniff, command.options.live);
+  add_output_options(*sniff, command.options);
+  return sniff;
+}
+
+int run_sniff(SniffCommandLine& command) {
+  SniffOptions& o = command.options;
+  o.live.line.parity = SerialLine::parity_letter(command.parity);
+  o.live.status_line = ::isatty(STDERR_FILENO) == 1 && o.format_name == "text";
+  return run_live_capture(o);
+}
+
+int run_live_capture(SniffOptions& o) {
+  apply_choices(o);
+  if (const std::string problem = source_problem(o); !problem.empty()) {
+    std::fprintf(stderr, "pvtap: %s\n", problem.c_str());
+    return kExitBadInput;
+  }
+  RegisterDecoder decoder(DecoderOptions{o.gsl_ids, PairRule::Binary});
+  if (!load_maps(o, decoder)) return kExitBadInput;
+  install_stop_handlers();
+  std::FILE* sink = o.live.quiet ? std::fopen("/dev/null", "w") : stdout;
+  int status = kExitBadInput;
+  {
+    OutputStream out(sink);
+    status = capture(o, decoder, out);
+    out.flush();
+    if (out.failed()) {
+      std::fprintf(stderr, "pvtap: cannot write the output\n");
+      status = kExitBadInput;
+    }
+  }
+  if (sink != stdout) std::fclose(sink);
+  return status;
+}
+
+}  // namespace pvtap::analyzer

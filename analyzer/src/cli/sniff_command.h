@@ -1,0 +1,28 @@
+// The `sniff` subcommand: live capture from RS485 taps or from a gateway's TCP traffic.
+#pragma once
+
+#include "cli/command_options.h"
+
+namespace CLI {
+class App;
+}
+
+namespace pvtap::analyzer {
+
+// SniffCommandLine: `pvtap sniff` as typed; parity is a word until run_sniff() reads it.
+struct SniffCommandLine {
+  SniffOptions options;
+  std::string parity = "none";
+};
+
+// Adds `sniff` to the program's command line; parsed values land in `command`.
+CLI::App* add_sniff_command(CLI::App& app, SniffCommandLine& command);
+
+// Runs a live capture after parsing; returns the exit status.
+int run_sniff(SniffCommandLine& command);
+
+// Runs a live capture with options already complete (extcap builds them itself); `options`
+// must have live.devices or live.interface set. Returns the exit status.
+int run_live_capture(SniffOptions& options);
+
+}  // namespace pvtap::analyzer

@@ -1,0 +1,84 @@
+#include "extcap/extcap_capture.h"
+
+#include <algorithm>
+#include <csignal>
+#include <cstdio>
+#include <string>
+
+#include "cli/exit_status.h"
+#include "cli/sniff_command.h"
+#include "extcap/extcap_options.h"
+#include "sources/stop_signal.h"
+
+namespace pvtap::analyzer {
+namespace {
+
+// Set when a write to the fifo found Wireshark's end closed.
+volatile std::sig_atomic_t fifo_broken = 0;
+
+extern "C" void on_broken_fifo(int) {
+  fifo_broken = 1;
+  request_stop();  // only sets a flag: safe in a signal handler
+}
+
+// Wireshark gone (crashed, or closed the fifo before its SIGTERM reached us): the next write
+// raises SIGPIPE, whose default action would kill pvtap in mid-record. Instead the capture
+// stops as on SIGTERM, and the reading loop sees the request at its next wake-up.
+void stop_on_broken_fifo() {
+  struct sigaction action {};
+  action.sa_handler = on_broken_fifo;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = 0;
+  sigaction(SIGPIPE, &action, nullptr);
+}
+
+// Why the call cannot start a capture; empty when it can.
+std::string call_problem(const ExtcapCall& call, const DiscoveredPort* port) {
+  if (call.interface.empty()) return "--capture needs --extcap-interface";
+  if (call.fifo.empty()) return "--capture needs --fifo";
+  if (port == nullptr) {
+    return "no serial port for interface " + call.interface +
+           " (unplugged? ports that are not found by themselves go in " + kExtraPortsVariable + ")";
+  }
+  // The bytes of a serial line are no packets a BPF program could select; taking a filter
+  // and passing everything would show the user traffic they meant to leave out.
+  if (!call.capture_filter.empty()) {
+    return kNoCaptureFilter;
+  }
+  const std::vector<std::string> problems = settings_problems(call.settings);
+  return problems.empty() ? std::string() : problems.front();
+}
+
+}  // namespace
+
+SniffOptions capture_options(const DiscoveredPort& port, const ExtcapSettings& settings,
+                             const std::string& fifo) {
+  SniffOptions o;
+  o.live.devices = {port.path};
+  o.live.line.parity = SerialLine::parity_letter(settings.parity);
+  o.live.line.stop_bits = settings.stop_bits == "2" ? 2 : 1;
+  o.baud = static_cast<std::uint32_t>(std::stoul(settings.baud));
+  o.dialect = settings.dialect;
+  o.write_path = fifo;
+  o.live.quiet = true;
+  o.summary_only = true;
+  return o;
+}
+
+int run_extcap_capture(const ExtcapCall& call, const std::vector<DiscoveredPort>& ports) {
+  const auto named = std::find_if(ports.begin(), ports.end(), [&call](const DiscoveredPort& port) {
+    return port.interface == call.interface;
+  });
+  const DiscoveredPort* port = named == ports.end() ? nullptr : &*named;
+  if (const std::string problem = call_problem(call, port); !problem.empty()) {
+    std::fprintf(stderr, "pvtap: %s\n", problem.c_str());
+    return kExitBadInput;
+  }
+  SniffOptions options = capture_options(*port, call.settings, call.fifo);
+  stop_on_broken_fifo();
+  const int status = run_live_capture(options);
+  // Nobody reads the fifo any more, so the records it lost are no failure of the capture.
+  return fifo_broken != 0 ? kExitOk : status;
+}
+
+}  // namespace pvtap::analyzer

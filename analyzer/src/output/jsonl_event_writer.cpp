@@ -1,0 +1,160 @@
+// One JSON object per line: frames, timeouts, noise and gaps (the summary line is written by
+// json_summary.cpp).
+#include <string>
+#include <vector>
+
+#include "output/event_writer.h"
+#include "output/text_append.h"
+#include "output/value_json_cache.h"
+#include "report/frame_findings.h"
+
+namespace pvtap::analyzer {
+namespace {
+
+std::string_view direction_key(Direction d) {
+  switch (d) {
+    case Direction::ToSlave:
+      return "to_slave";
+    case Direction::FromSlave:
+      return "from_slave";
+    default:
+      return "unknown";
+  }
+}
+
+class JsonlEventWriter : public EventWriter {
+ public:
+  explicit JsonlEventWriter(OutputStream& out) : out_(out) {}
+
+  void frame(const EventContext& c, const SessionFrame& f) override {
+    std::string& o = out_.buffer();
+    begin_line(o, "frame", c, f.start_time);
+    o += ",\"dialect\":\"";
+    o += to_string(f.dialect);
+    o += "\",\"role\":\"";
+    o += to_string(f.role);
+    o += "\",\"station\":";
+    append_station_and_function(o, f);
+    o += ",\"length\":";
+    append_uint(o, f.bytes.size());
+    o += f.check.ok ? ",\"check\":\"ok\"" : ",\"check\":\"bad\",\"check_expected\":\"";
+    if (!f.check.ok) {
+      append_hex(o, check_wire_bytes(f.dialect, f.check.expected));
+      o += '"';
+    }
+    o += ",\"raw\":\"";
+    append_hex(o, f.bytes);
+    o += '"';
+    if (f.latency) {
+      o += ",\"latency_ms\":";
+      append_fixed(o, *f.latency * 1e3, 3);
+    }
+    o += ",\"values\":[";
+    for (std::size_t i = 0; i < f.values.size(); ++i) {
+      if (i > 0) o += ',';
+      values_.append(o, f.values[i], f.dialect);
+    }
+    o += "],\"issues\":[";
+    collect_issues(f, issues_);
+    for (std::size_t i = 0; i < issues_.size(); ++i) {
+      if (i > 0) o += ',';
+      append_json_string(o, issues_[i]);
+    }
+    o += ']';
+    end_line(o, c);
+  }
+
+  void timeout(const EventContext& c, const SessionTimeout& t) override {
+    std::string& o = out_.buffer();
+    begin_line(o, t.kind == UnansweredKind::Timeout ? "timeout" : "unanswered", c, t.time);
+    o += ",\"request_ts\":";
+    append_time(o, c, t.request_start);
+    o += ",\"dialect\":\"";
+    o += to_string(t.timeout.dialect);
+    o += "\",\"station\":";
+    append_uint(o, t.timeout.station);
+    o += ",\"function\":";
+    append_uint(o, t.timeout.function);
+    o += ",\"reason\":\"";
+    o += unanswered_reason(t);
+    o += '"';
+    if (c.has_timestamps) {
+      o += ",\"waited_ms\":";
+      append_fixed(o, t.timeout.waited * 1e3, 3);
+    }
+    end_line(o, c);
+  }
+
+  void noise(const EventContext& c, const SessionNoise& n) override {
+    std::string& o = out_.buffer();
+    begin_line(o, "noise", c, n.noise.start_time);
+    o += ",\"bytes\":";
+    append_uint(o, n.noise.bytes.size());
+    o += ",\"offset\":";
+    append_uint(o, n.noise.offset);
+    o += ",\"raw\":\"";
+    append_hex(o, n.noise.bytes);
+    o += '"';
+    end_line(o, c);
+  }
+
+  void gap(const EventContext& c, const SessionGap& g) override {
+    std::string& o = out_.buffer();
+    begin_line(o, "gap", c, g.time);
+    o += ",\"bytes\":";
+    if (g.lost_bytes) {
+      append_uint(o, *g.lost_bytes);
+    } else {
+      o += "null";
+    }
+    o += ",\"direction\":\"";
+    o += direction_key(g.direction);
+    o += '"';
+    end_line(o, c);
+  }
+
+ private:
+  static void append_time(std::string& o, const EventContext& c, double time) {
+    if (c.has_timestamps) {
+      append_fixed(o, time, 6);
+    } else {
+      o += "null";
+    }
+  }
+  static void begin_line(std::string& o, std::string_view type, const EventContext& c,
+                         double time) {
+    o += "{\"type\":\"";
+    o += type;
+    o += "\",\"ts\":";
+    append_time(o, c, time);
+  }
+  void end_line(std::string& o, const EventContext& c) {
+    if (!c.bus.empty()) {
+      o += ",\"bus\":";
+      append_json_string(o, c.bus);
+    }
+    o += "}\n";
+    out_.done();
+  }
+  static void append_station_and_function(std::string& o, const SessionFrame& f) {
+    if (f.frame == nullptr) {
+      o += "null,\"function\":null";
+      return;
+    }
+    append_uint(o, f.frame->station);
+    o += ",\"function\":";
+    append_uint(o, f.frame->function);
+  }
+
+  OutputStream& out_;
+  ValueJsonCache values_;
+  std::vector<std::string> issues_;
+};
+
+}  // namespace
+
+std::unique_ptr<EventWriter> make_jsonl_event_writer(OutputStream& out) {
+  return std::make_unique<JsonlEventWriter>(out);
+}
+
+}  // namespace pvtap::analyzer

@@ -1,0 +1,15 @@
+#include "output/pdu_capture_output.h"
+
+namespace pvtap::analyzer {
+
+bool PduCaptureOutput::open(const std::string& path, bool flush_each_record) {
+  if (!file_.open(path)) return false;
+  file_.flush_each_record(flush_each_record);
+  return true;
+}
+
+bool PduCaptureOutput::close() {
+  return file_.close();
+}
+
+}  // namespace pvtap::analyzer

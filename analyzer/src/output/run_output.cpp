@@ -1,0 +1,68 @@
+#include "output/run_output.h"
+
+#include <cstdio>
+
+#include "report/report_writers.h"
+
+namespace pvtap::analyzer {
+namespace {
+
+std::unique_ptr<EventWriter> make_event_writer(OutputFormat format, OutputStream& out) {
+  switch (format) {
+    case OutputFormat::Jsonl:
+      return make_jsonl_event_writer(out);
+    case OutputFormat::Csv:
+      return make_csv_event_writer(out);
+    case OutputFormat::Text:
+      break;
+  }
+  return make_text_event_writer(out);
+}
+
+}  // namespace
+
+RunOutput::RunOutput(const OutputSettings& settings, OutputStream& out)
+    : settings_(settings), out_(out) {}
+
+bool RunOutput::open() {
+  if (!settings_.write_path.empty()) {
+    pcap_.emplace();
+    if (!pcap_->open(settings_.write_path, settings_.flush_each_record)) {
+      std::fprintf(stderr, "pvtap: cannot write %s: %s\n", settings_.write_path.c_str(),
+                   pcap_->error().c_str());
+      return false;
+    }
+    fanout_.add(*pcap_);
+  }
+  if (!settings_.summary_only) {
+    format_ = make_event_writer(settings_.format, out_);
+    fanout_.add(*format_);
+  }
+  fanout_.begin();
+  return true;
+}
+
+void RunOutput::write_summary(const AuditReport& report) {
+  switch (settings_.format) {
+    case OutputFormat::Jsonl:
+      write_json_summary(report, out_);
+      return;
+    case OutputFormat::Csv:
+      if (settings_.summary_only) write_text_report(report, out_);
+      return;
+    case OutputFormat::Text:
+      write_text_report(report, out_);
+      return;
+  }
+}
+
+bool RunOutput::close() {
+  if (pcap_ && !pcap_->close()) {
+    std::fprintf(stderr, "pvtap: cannot write %s: %s\n", settings_.write_path.c_str(),
+                 pcap_->error().c_str());
+    return false;
+  }
+  return true;
+}
+
+}  // namespace pvtap::analyzer

@@ -1,0 +1,49 @@
+// RunOutput: where one run's events and its report go: the chosen format on stdout and the
+// --write pcap. Both commands open it before reading and close it after the report.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "output/event_writer.h"
+#include "output/output_stream.h"
+#include "output/pdu_capture_output.h"
+#include "pipeline/event_fanout.h"
+#include "report/audit_report.h"
+
+namespace pvtap::analyzer {
+
+// OutputSettings: what a run writes.
+struct OutputSettings {
+  OutputFormat format = OutputFormat::Text;
+  bool summary_only = false;  // no per-event lines, only the report
+  std::string write_path;     // --write; empty for none
+  bool flush_each_record = false;
+};
+
+class RunOutput {
+ public:
+  RunOutput(const OutputSettings& settings, OutputStream& out);
+
+  // Opens the --write file and begins the event output; false (after saying why on stderr)
+  // when the file cannot be written.
+  bool open();
+  // Where the pipeline sends its events.
+  EventWriter& events() { return fanout_; }
+  // The report in the chosen format (csv: only with --summary-only, a CSV holds rows).
+  void write_summary(const AuditReport& report);
+  // Closes the --write file; false (after saying why) when writing it failed.
+  bool close();
+  std::uint64_t written_records() const { return pcap_ ? pcap_->records() : 0; }
+
+ private:
+  OutputSettings settings_;
+  OutputStream& out_;
+  std::unique_ptr<EventWriter> format_;
+  std::optional<PduCaptureOutput> pcap_;
+  EventFanout fanout_;
+};
+
+}  // namespace pvtap::analyzer

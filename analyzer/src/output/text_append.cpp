@@ -1,0 +1,220 @@
+#include "output/text_append.h"
+
+#include <cstdarg>
+#include <cstdio>
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <ctime>
+
+namespace pvtap::analyzer {
+
+std::string report_line(const char* format, ...) {
+  char buf[512];
+  va_list args;
+  va_start(args, format);
+  std::vsnprintf(buf, sizeof buf, format, args);
+  va_end(args);
+  return std::string(buf) + "\n";
+}
+namespace {
+
+constexpr char kHexDigits[] = "0123456789abcdef";
+
+template <typename T>
+void append_integer(std::string& out, T value) {
+  std::array<char, 24> buf{};
+  const auto r = std::to_chars(buf.data(), buf.data() + buf.size(), value);
+  out.append(buf.data(), r.ptr);
+}
+
+// Splits epoch seconds into whole seconds and microseconds, rounding once. A capture's
+// timestamp can lie far beyond any date (pcapng has 64 bits of them): it is held to what
+// the microsecond count can represent (about the year 292,000) instead of overflowing it.
+void split_time(double epoch_seconds, std::time_t& seconds, long& micros) {
+  constexpr double kMaxMicros = 9.2e18;  // just under 2^63
+  const double rounded = std::round(epoch_seconds * 1e6);
+  const auto total = static_cast<long long>(
+      std::isnan(rounded) ? 0 : std::clamp(rounded, -kMaxMicros, kMaxMicros));
+  seconds = static_cast<std::time_t>(total / 1000000);
+  micros = static_cast<long>(total % 1000000);
+  if (micros < 0) {
+    micros += 1000000;
+    seconds -= 1;
+  }
+}
+
+// `scaled` with a decimal point `decimals` digits from the right ("523", 1 -> "52.3").
+void append_scaled(std::string& out, std::uint64_t scaled, int decimals) {
+  std::array<char, 24> digits{};
+  const auto r = std::to_chars(digits.data(), digits.data() + digits.size(), scaled);
+  auto n = static_cast<int>(r.ptr - digits.data());
+  if (decimals == 0) {
+    out.append(digits.data(), static_cast<std::size_t>(n));
+    return;
+  }
+  if (n <= decimals) {  // 0.0xy: leading zeros
+    out += "0.";
+    out.append(static_cast<std::size_t>(decimals - n), '0');
+    out.append(digits.data(), static_cast<std::size_t>(n));
+    return;
+  }
+  out.append(digits.data(), static_cast<std::size_t>(n - decimals));
+  out += '.';
+  out.append(digits.data() + n - decimals, static_cast<std::size_t>(decimals));
+}
+
+void append_two(std::string& out, int value) {
+  out += static_cast<char>('0' + value / 10);
+  out += static_cast<char>('0' + value % 10);
+}
+
+}  // namespace
+
+void append_uint(std::string& out, std::uint64_t value) {
+  append_integer(out, value);
+}
+
+void append_int(std::string& out, std::int64_t value) {
+  append_integer(out, value);
+}
+
+void append_fixed(std::string& out, double value, int decimals) {
+  static constexpr double kPowers[] = {1, 10, 100, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9};
+  if (!std::isfinite(value)) value = 0;
+  // Most readings are small scaled integers: integer arithmetic formats them far faster than
+  // to_chars, with the same rounding. Larger ones take the general path.
+  if (decimals >= 0 && decimals <= 9 && std::fabs(value) * kPowers[decimals] < 1e15) {
+    const auto scaled = std::llround(value * kPowers[decimals]);
+    if (scaled < 0) out += '-';  // a value that rounds to zero prints without a sign
+    append_scaled(out, static_cast<std::uint64_t>(scaled < 0 ? -scaled : scaled), decimals);
+    return;
+  }
+  std::array<char, 64> buf{};
+  const auto r =
+      std::to_chars(buf.data(), buf.data() + buf.size(), value, std::chars_format::fixed, decimals);
+  out.append(buf.data(), r.ptr);
+}
+
+void append_hex(std::string& out, std::span<const std::uint8_t> bytes) {
+  const std::size_t at = out.size();
+  out.resize(at + 2 * bytes.size());
+  char* p = out.data() + at;
+  for (const std::uint8_t b : bytes) {
+    *p++ = kHexDigits[b >> 4];
+    *p++ = kHexDigits[b & 0xF];
+  }
+}
+
+void append_spaced_hex(std::string& out, std::span<const std::uint8_t> bytes) {
+  for (std::size_t i = 0; i < bytes.size(); ++i) {
+    if (i > 0) out += ' ';
+    out += kHexDigits[bytes[i] >> 4];
+    out += kHexDigits[bytes[i] & 0xF];
+  }
+}
+
+void append_hex_byte(std::string& out, std::uint8_t value) {
+  static constexpr char kUpper[] = "0123456789ABCDEF";
+  out += "0x";
+  out += kUpper[value >> 4];
+  out += kUpper[value & 0xF];
+}
+
+void append_json_key(std::string& out, std::string_view name) {
+  out += ",\"";
+  out += name;
+  out += "\":";
+}
+
+void append_json_count(std::string& out, std::string_view name, std::uint64_t value) {
+  append_json_key(out, name);
+  append_uint(out, value);
+}
+
+void append_json_string(std::string& out, std::string_view text) {
+  out += '"';
+  // Names and units rarely need escapes: copy runs of plain characters at once.
+  std::size_t run = 0;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if (c >= 0x20 && c != '"' && c != '\\') continue;
+    out.append(text.data() + run, i - run);
+    run = i + 1;
+    switch (c) {
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      case '\r':
+        out += "\\r";
+        break;
+      case '\t':
+        out += "\\t";
+        break;
+      default:
+        out += "\\u00";
+        out += kHexDigits[c >> 4];
+        out += kHexDigits[c & 0xF];
+    }
+  }
+  out.append(text.data() + run, text.size() - run);
+  out += '"';
+}
+
+void append_csv_field(std::string& out, std::string_view text) {
+  if (text.find_first_of(",\"\r\n") == std::string_view::npos) {
+    out += text;
+    return;
+  }
+  out += '"';
+  for (const char c : text) {
+    if (c == '"') out += '"';
+    out += c;
+  }
+  out += '"';
+}
+
+void append_time_of_day(std::string& out, double epoch_seconds) {
+  std::time_t seconds = 0;
+  long micros = 0;
+  split_time(epoch_seconds, seconds, micros);
+  std::tm tm{};
+  gmtime_r(&seconds, &tm);
+  append_two(out, tm.tm_hour);
+  out += ':';
+  append_two(out, tm.tm_min);
+  out += ':';
+  append_two(out, tm.tm_sec);
+  out += '.';
+  std::array<char, 8> digits{};
+  for (int i = 5; i >= 0; --i) {
+    digits[static_cast<std::size_t>(i)] = static_cast<char>('0' + micros % 10);
+    micros /= 10;
+  }
+  out.append(digits.data(), 6);
+}
+
+void append_utc_date_time(std::string& out, double epoch_seconds) {
+  std::time_t seconds = 0;
+  long micros = 0;
+  split_time(epoch_seconds, seconds, micros);
+  std::tm tm{};
+  gmtime_r(&seconds, &tm);
+  append_integer(out, tm.tm_year + 1900);
+  out += '-';
+  append_two(out, tm.tm_mon + 1);
+  out += '-';
+  append_two(out, tm.tm_mday);
+  out += ' ';
+  append_time_of_day(out, epoch_seconds);
+}
+
+}  // namespace pvtap::analyzer

@@ -1,0 +1,78 @@
+#include "pipeline/bus_set.h"
+
+namespace pvtap::analyzer {
+namespace {
+
+// BusOutput: the sink of one bus session; it tags the events with the bus they came from.
+class BusOutput : public BusSessionSink {
+ public:
+  BusOutput(std::string name, bool has_timestamps, EventWriter& events)
+      : name_(std::move(name)), events_(events) {
+    context_.bus = name_;
+    context_.has_timestamps = has_timestamps;
+  }
+  void on_frame(const SessionFrame& f) override { events_.frame(context_, f); }
+  void on_timeout(const SessionTimeout& t) override { events_.timeout(context_, t); }
+  void on_noise(const SessionNoise& n) override { events_.noise(context_, n); }
+  void on_gap(const SessionGap& g) override { events_.gap(context_, g); }
+  const std::string& name() const { return name_; }
+
+ private:
+  std::string name_;
+  EventWriter& events_;
+  EventContext context_;
+};
+
+}  // namespace
+
+struct BusSet::Bus {
+  Bus(const std::string& name, const BusSessionOptions& options, const RegisterDecoder& decoder,
+      EventWriter& events)
+      : output(name, options.has_timestamps, events), session(options, decoder, output) {}
+  BusOutput output;
+  BusSession session;
+};
+
+BusSet::BusSet(const RegisterDecoder& decoder, EventWriter& events)
+    : decoder_(decoder), events_(events) {}
+
+BusSet::~BusSet() = default;
+
+BusSession* BusSet::find(const std::string& name) {
+  const auto it = by_name_.find(name);
+  return it == by_name_.end() ? nullptr : &it->second->session;
+}
+
+BusSession& BusSet::add(const std::string& name, const BusSessionOptions& options) {
+  buses_.push_back(std::make_unique<Bus>(name, options, decoder_, events_));
+  by_name_[name] = buses_.back().get();
+  return buses_.back()->session;
+}
+
+void BusSet::idle(double now) {
+  for (auto& bus : buses_) bus->session.idle(now);
+}
+
+void BusSet::finish() {
+  for (auto& bus : buses_) bus->session.finish();
+}
+
+std::vector<BusFindings> BusSet::findings() const {
+  std::vector<BusFindings> out;
+  for (const auto& bus : buses_)
+    out.push_back(BusFindings{bus->output.name(), bus->session.report()});
+  return out;
+}
+
+ReassemblerTotals BusSet::totals() const {
+  ReassemblerTotals sum;
+  for (const auto& bus : buses_) {
+    const ReassemblerTotals t = bus->session.totals();
+    sum.bytes_in += t.bytes_in;
+    sum.frames += t.frames;
+    sum.bad_frames += t.bad_frames;
+  }
+  return sum;
+}
+
+}  // namespace pvtap::analyzer

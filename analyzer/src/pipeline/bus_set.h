@@ -1,0 +1,43 @@
+// BusSet: the buses of a run, one BusSession each (one per gateway endpoint, one per serial
+// tap, one for a serial capture), and the sinks that tag their events with the bus's name.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "output/event_writer.h"
+#include "pvtap/bus_session.h"
+#include "report/audit_report.h"
+
+namespace pvtap::analyzer {
+
+class BusSet {
+ public:
+  // Every bus's events go to `events`.
+  BusSet(const RegisterDecoder& decoder, EventWriter& events);
+  ~BusSet();
+  BusSet(const BusSet&) = delete;
+  BusSet& operator=(const BusSet&) = delete;
+
+  // The bus of that name; nullptr before add().
+  BusSession* find(const std::string& name);
+  BusSession& add(const std::string& name, const BusSessionOptions& options);
+
+  // The bus has been silent until `now` on every bus (live capture).
+  void idle(double now);
+  void finish();
+  std::vector<BusFindings> findings() const;
+  ReassemblerTotals totals() const;  // over every bus
+
+ private:
+  struct Bus;
+  const RegisterDecoder& decoder_;
+  EventWriter& events_;
+  std::vector<std::unique_ptr<Bus>> buses_;
+  std::map<std::string, Bus*> by_name_;
+};
+
+}  // namespace pvtap::analyzer

@@ -1,0 +1,96 @@
+#include "pipeline/pipeline.h"
+
+namespace pvtap::analyzer {
+
+Pipeline::Pipeline(const PipelineSettings& settings, const RegisterDecoder& decoder,
+                   EventWriter& events)
+    : settings_(settings),
+      buses_(decoder, events_),
+      gateway_(GatewayOptions{settings.ports, settings.dialects, 2.0}, *this) {
+  events_.add(tally_);
+  events_.add(events);
+}
+
+Pipeline::~Pipeline() = default;
+
+void Pipeline::begin_input(int link_type, bool batched_serial) {
+  link_type_ = link_type;
+  kind_ = input_kind_of(link_type).value_or(InputKind::Serial);
+  // The first input decides how the one serial bus reads its timestamps.
+  if (kind_ == InputKind::Serial && buses_.find("") == nullptr) batched_serial_ = batched_serial;
+  network_ = network_ || kind_ == InputKind::Network;
+}
+
+BusSessionOptions Pipeline::bus_options(InputKind kind) const {
+  BusSessionOptions o;
+  o.reassembler.dialects = settings_.dialects;
+  o.reassembler.baud = settings_.baud;
+  o.matcher.timeout = settings_.timeout;
+  o.decode_values = settings_.decode_values;
+  if (kind == InputKind::Network) {
+    o.reassembler.timestamps = TimestampTrust::Untrusted;
+    o.reassembler.boundary_gap = settings_.gateway_gap_ms / 1000.0;
+    o.reassembler.segment_ends_pin = true;
+    o.timestamp_note =
+        "the timestamps are those of the gateway's TCP/UDP segments, not of bus characters";
+  }
+  if (kind == InputKind::Serial && batched_serial_) {
+    o.reassembler.timestamps = TimestampTrust::Untrusted;
+    o.timestamp_note =
+        "the capture's records are chunks read from a serial adapter: their timestamps are "
+        "batched (e.g. by a USB adapter's latency timer), not per character";
+  }
+  if (!settings_.has_timestamps) {
+    o.has_timestamps = false;
+    o.reassembler.timestamps = TimestampTrust::Untrusted;
+  }
+  return o;
+}
+
+BusSession& Pipeline::add_bus(const std::string& name, const BusSessionOptions& options) {
+  return buses_.add(name, options);
+}
+
+BusSession& Pipeline::serial_bus(InputKind kind) {
+  if (BusSession* bus = buses_.find("")) return *bus;
+  return buses_.add("", bus_options(kind));
+}
+
+BusSession& Pipeline::gateway_bus(const Endpoint& slave_side) {
+  const std::string name = slave_side.to_string();
+  if (BusSession* bus = buses_.find(name)) return *bus;
+  return buses_.add(name, bus_options(InputKind::Network));
+}
+
+void Pipeline::begin_raw_input() {
+  serial_bus(InputKind::Serial);
+}
+
+void Pipeline::raw_bytes(std::span<const std::uint8_t> bytes) {
+  serial_bus(InputKind::Serial).feed(BusChunk{bytes, 0.0, Direction::Unknown});
+}
+
+void Pipeline::idle(double now) {
+  buses_.idle(now);
+}
+
+void Pipeline::finish(double time) {
+  gateway_.finish(time);
+  buses_.finish();
+}
+
+AuditReport Pipeline::report() const {
+  AuditReport r;
+  r.settings.baud = settings_.baud;
+  r.settings.timeout = settings_.timeout;
+  r.settings.has_timestamps = settings_.has_timestamps;
+  r.settings.gsl_ids = settings_.gsl_ids;
+  r.buses = buses_.findings();
+  r.network = network_;
+  r.flows = gateway_.stats();
+  r.skipped = skipped_;
+  r.latency = tally_.latency();
+  return r;
+}
+
+}  // namespace pvtap::analyzer

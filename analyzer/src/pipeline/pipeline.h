@@ -1,0 +1,86 @@
+// Pipeline: a run's buses fed from any source: capture records of any link type pvtap reads,
+// plain byte dumps, live serial taps or a live interface. It does not know whether its source
+// is a file or a device: sources hand it records or chunks with their times, and every event
+// of every bus goes to the EventWriter it was given. At the end it reports what it found.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "gateway/gateway_traffic.h"
+#include "output/event_writer.h"
+#include "pipeline/bus_set.h"
+#include "pipeline/event_fanout.h"
+#include "pipeline/run_tally.h"
+#include "pvtap/bus_session.h"
+#include "pvtap/capture/capture_file.h"
+#include "pvtap/capture/link_types.h"
+#include "report/audit_report.h"
+
+namespace pvtap::analyzer {
+
+// PipelineSettings: what shapes every bus of a run.
+struct PipelineSettings {
+  DialectSet dialects = DialectSet::all();
+  std::uint32_t baud = 9600;
+  double timeout = 1.0;        // seconds a request waits for its reply
+  double gateway_gap_ms = 50;  // see ReassemblerOptions::boundary_gap
+  std::vector<std::uint16_t> ports;
+  bool decode_values = true;   // per-frame values for the output (not for --summary-only)
+  bool has_timestamps = true;  // false for plain dumps
+  GslIdReading gsl_ids = GslIdReading::Decimal;  // for the report's wording
+};
+
+class Pipeline : public BusDirectory {
+ public:
+  // Every event goes to `events` (after the run's own tally has seen it).
+  Pipeline(const PipelineSettings& settings, const RegisterDecoder& decoder, EventWriter& events);
+  ~Pipeline() override;
+
+  // Records of the next input have this link type; `batched_serial`: its serial records are
+  // read chunks (timestamps batched), not one character each.
+  void begin_input(int link_type, bool batched_serial);
+  void record(const CapturedPacket& packet);
+  // A plain dump of bus bytes follows (--raw): its bus is reported even when it is empty.
+  void begin_raw_input();
+  // Bus bytes without time (--raw).
+  void raw_bytes(std::span<const std::uint8_t> bytes);
+  // A bus fed by its source directly (a serial tap).
+  BusSession& add_bus(const std::string& name, const BusSessionOptions& options);
+  BusSessionOptions bus_options(InputKind kind) const;
+
+  // Live sources: every bus has been silent until `now`.
+  void idle(double now);
+  // End of input at `time`: every byte decided, every waiting request judged.
+  void finish(double time);
+
+  const RunTally& tally() const { return tally_; }
+  ReassemblerTotals totals() const { return buses_.totals(); }
+  // The report of what was found; the caller adds its inputs, --write and live sources.
+  AuditReport report() const;
+
+  BusSession& gateway_bus(const Endpoint& slave_side) override;
+
+ private:
+  BusSession& serial_bus(InputKind kind);
+  void on_network_packet(const CapturedPacket& packet);
+  void on_exported_pdu(const CapturedPacket& packet);
+  void on_serial_record(const CapturedPacket& packet);
+  void on_rtac_record(const CapturedPacket& packet);
+
+  PipelineSettings settings_;
+  RunTally tally_;
+  EventFanout events_;
+  BusSet buses_;
+  GatewayTraffic gateway_;
+  int link_type_ = -1;
+  InputKind kind_ = InputKind::Serial;
+  bool batched_serial_ = false;
+  bool network_ = false;
+  SkippedRecords skipped_;
+  Direction pdu_turn_ = Direction::Unknown;  // who spoke last in exported PDUs
+};
+
+}  // namespace pvtap::analyzer

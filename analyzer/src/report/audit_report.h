@@ -1,0 +1,68 @@
+// AuditReport: everything one `pvtap audit` run found, for the summary writers.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "gateway/gateway_traffic.h"
+#include "pvtap/bus_report.h"
+#include "pvtap/distribution_summary.h"
+#include "pvtap/register_decoder.h"
+#include "report/live_report.h"
+
+namespace pvtap::analyzer {
+
+// InputReport: how reading one file went.
+struct InputReport {
+  std::string path;
+  std::string link_type;      // "EN10MB (Ethernet)", or "raw bytes"
+  std::uint64_t records = 0;  // packets (or read chunks of a raw dump)
+  std::uint64_t file_bytes = 0;
+  std::uint64_t read_bytes = 0;  // how far reading got
+  bool truncated = false;
+  std::string error;  // why reading stopped early
+};
+
+// BusFindings: one bus and its report.
+struct BusFindings {
+  std::string name;  // the gateway's endpoint; empty for the one bus of a serial capture
+  BusReport report;
+};
+
+// SkippedRecords: records that carried no bus bytes, by reason.
+struct SkippedRecords {
+  std::uint64_t not_ip = 0;
+  std::uint64_t other_ip = 0;
+  std::uint64_t fragments = 0;
+  std::uint64_t malformed = 0;
+  std::uint64_t foreign_pdus = 0;  // link type 252 records for other dissectors
+};
+
+// AuditSettings: the options that shape the report's wording.
+struct AuditSettings {
+  std::uint32_t baud = 9600;
+  double timeout = 1.0;
+  bool has_timestamps = true;
+  GslIdReading gsl_ids = GslIdReading::Decimal;  // to write GSL addresses as the reference does
+};
+
+struct AuditReport {
+  AuditSettings settings;
+  std::vector<InputReport> inputs;
+  std::vector<BusFindings> buses;
+  bool network = false;  // gateway traffic was read
+  NetworkStats flows;
+  SkippedRecords skipped;
+  DistributionSummary latency;  // over every bus
+  std::uint64_t written_records = 0;
+  LiveSources live;  // pvtap sniff only
+
+  // Sums over all buses.
+  BusReport totals() const;
+};
+
+// Bad checks, timeouts or exceptions were found (--fail-on errors).
+bool has_findings(const AuditReport& report);
+
+}  // namespace pvtap::analyzer

@@ -1,0 +1,213 @@
+#include "report/frame_findings.h"
+
+#include "output/text_append.h"
+#include "pvtap/function_codes.h"
+#include "pvtap/register_format.h"
+
+namespace pvtap::analyzer {
+namespace {
+
+constexpr ValueWarning kAllWarnings[] = {
+    ValueWarning::NotInMap,         ValueWarning::Incomplete,       ValueWarning::LowPartOver9999,
+    ValueWarning::UnknownEnumValue, ValueWarning::UnnamedBitSet,    ValueWarning::InvalidBcd,
+    ValueWarning::InvalidDate,      ValueWarning::NonPrintableText, ValueWarning::NoWrittenAddress,
+};
+
+void add_count_mismatch(const ByteCountMismatch& m, std::vector<std::string>& out) {
+  std::string text = m.unit == CountUnit::Words ? "word count " : "byte count ";
+  append_uint(text, m.found);
+  text += ", the request asks for ";
+  append_uint(text, m.expected);
+  out.push_back(std::move(text));
+}
+
+void add_exception(const SessionFrame& f, std::vector<std::string>& out) {
+  if (f.reply_kind == ReplyKind::HybridError) {
+    out.emplace_back("error reply");
+    return;
+  }
+  if (f.reply_kind != ReplyKind::GslException || !f.frame->exception_code) return;
+  std::string text = "exception ";
+  append_hex_byte(text, *f.frame->exception_code);
+  text += ": ";
+  text += fc::exception_name(*f.frame->exception_code);
+  out.push_back(std::move(text));
+}
+
+void add_value_warnings(const SessionFrame& f, std::vector<std::string>& out) {
+  for (const DecodedValue& v : f.values) {
+    if (v.warnings == 0 || v.has(ValueWarning::NotInMap)) continue;
+    for (const ValueWarning w : kAllWarnings) {
+      if (!v.has(w)) continue;
+      std::string text(format_value_address(v, f.dialect).view());
+      text += ": ";
+      text += describe(w);
+      out.push_back(std::move(text));
+    }
+  }
+}
+
+void add_decode_notes(const SessionFrame& f, std::vector<std::string>& out) {
+  if (f.decode.status == DecodeStatus::StartUnknown) {
+    out.emplace_back("register words without a known start address (no matching request)");
+  } else if (f.decode.status == DecodeStatus::Decoded && f.decode.start_assumed) {
+    out.emplace_back("start address assumed (no matching request)");
+  }
+}
+
+// The value's text as a JSON string; `scratch` is reused so that no string is allocated per
+// value once it has grown.
+void append_text_json(std::string& out, const DecodedValue& v) {
+  static thread_local std::string scratch;
+  scratch.clear();
+  pvtap::append_value_text(v, scratch);
+  append_json_string(out, scratch);
+}
+
+void append_value_reading(std::string& out, const DecodedValue& v) {
+  const RegisterDef& def = *v.def;
+  switch (def.kind) {
+    case RegisterKind::Number:
+    case RegisterKind::Bcd:
+    case RegisterKind::BcdPhaseCapacity:
+      append_fixed(out, v.value, def.decimals);
+      return;
+    case RegisterKind::Raw:
+    case RegisterKind::Enum:
+    case RegisterKind::Bits:
+      append_uint(out, v.raw);
+      return;
+    case RegisterKind::Text:
+    case RegisterKind::BcdYearMonth:
+    case RegisterKind::DeviceNumber:
+      append_text_json(out, v);
+      return;
+  }
+}
+
+bool has_extra_text(const RegisterDef& def) {
+  switch (def.kind) {
+    case RegisterKind::Raw:
+    case RegisterKind::Enum:
+    case RegisterKind::Bits:
+    case RegisterKind::BcdPhaseCapacity:
+      return true;
+    default:
+      return false;
+  }
+}
+
+}  // namespace
+
+void collect_issues(const SessionFrame& f, std::vector<std::string>& out) {
+  out.clear();
+  if (!f.parse_error.empty()) out.push_back("malformed: " + std::string(f.parse_error));
+  if (f.frame == nullptr) return;
+  if (f.role_corrected) out.emplace_back("echo of a write, read as the reply");
+  if (!f.check.ok && f.role == Role::Response && f.request_id) {
+    out.emplace_back("damaged reply: the slave answered, the line damaged the answer");
+  }
+  if (f.unsolicited) {
+    if (f.late_by) {
+      std::string text = "late reply: ";
+      append_fixed(text, *f.late_by * 1e3, 1);
+      text += " ms after its request, which had timed out";
+      out.push_back(std::move(text));
+    } else {
+      out.emplace_back("unsolicited reply");
+    }
+  }
+  if (f.duplicate) out.emplace_back("duplicate reply");
+  if (f.count_mismatch) add_count_mismatch(*f.count_mismatch, out);
+  add_exception(f, out);
+  add_decode_notes(f, out);
+  add_value_warnings(f, out);
+}
+
+std::string_view unanswered_reason(const SessionTimeout& t) {
+  switch (t.kind) {
+    case UnansweredKind::InputEnded:
+      return "input_ended";
+    case UnansweredKind::AfterLoss:
+      return "data_lost";
+    case UnansweredKind::DamagedRequest:
+      return "damaged_request";
+    case UnansweredKind::Timeout:
+      break;
+  }
+  return t.timeout.reason == TimeoutReason::NextRequestFirst ? "next_request_first" : "no_reply";
+}
+
+void append_value_json_head(std::string& out, const DecodedValue& v, Dialect d) {
+  out += "{\"register\":";
+  append_json_string(out, format_value_address(v, d).view());
+  out += ",\"name\":";
+  if (v.def == nullptr) {
+    out += "null";
+  } else {
+    append_json_string(out, v.def->name);
+  }
+  out += ",\"value\":";
+}
+
+void append_value_json_unit(std::string& out, const DecodedValue& v) {
+  if (v.def == nullptr || v.def->unit.empty()) return;
+  out += ",\"unit\":";
+  append_json_string(out, v.def->unit);
+}
+
+void append_value_json_reading(std::string& out, const DecodedValue& v) {
+  if (v.def == nullptr) {
+    append_uint(out, v.raw);
+  } else if (v.complete()) {
+    append_value_reading(out, v);
+  } else {
+    out += "null";
+  }
+}
+
+void append_value_json_tail(std::string& out, const DecodedValue& v) {
+  if (v.def != nullptr && (!v.complete() || has_extra_text(*v.def))) {
+    out += ",\"text\":";
+    append_text_json(out, v);
+  }
+  if (v.def != nullptr && v.warnings != 0) {
+    out += ",\"warnings\":[";
+    bool first = true;
+    for (const ValueWarning w : kAllWarnings) {
+      if (!v.has(w)) continue;
+      if (!first) out += ',';
+      first = false;
+      append_json_string(out, describe(w));
+    }
+    out += ']';
+  }
+  out += '}';
+}
+
+void append_value_json(std::string& out, const DecodedValue& v, Dialect d) {
+  append_value_json_head(out, v, d);
+  append_value_json_reading(out, v);
+  append_value_json_unit(out, v);
+  append_value_json_tail(out, v);
+}
+
+void append_value_words(std::string& out, const DecodedValue& v, Dialect d) {
+  if (v.def == nullptr) {
+    out += format_value_address(v, d).view();
+    out += ' ';
+  } else {
+    out += v.def->name;
+    out += ' ';
+  }
+  pvtap::append_value_text(v, out);
+}
+
+void append_function(std::string& out, Dialect d, std::uint8_t function) {
+  out += fc::function_name(d, function);
+  out += " (";
+  append_hex_byte(out, function);
+  out += ')';
+}
+
+}  // namespace pvtap::analyzer

@@ -1,0 +1,223 @@
+// The last jsonl line: the summary fields first, then the details of each bus.
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "output/text_append.h"
+#include "report/frame_findings.h"
+#include "report/report_writers.h"
+
+namespace pvtap::analyzer {
+namespace {
+
+void milliseconds(std::string& o, double seconds) {
+  append_fixed(o, seconds * 1e3, 3);
+}
+
+// {"count":n,"min":..,"mean":..,"p50":..,"p95":..,"p99":..,"max":..} in ms; null values when
+// nothing was measured.
+void distribution(std::string& o, const DistributionSummary& d) {
+  o += "{\"count\":";
+  append_uint(o, d.count);
+  const std::pair<const char*, double> fields[] = {{"min", d.min}, {"mean", d.mean},
+                                                   {"p50", d.p50}, {"p95", d.p95},
+                                                   {"p99", d.p99}, {"max", d.max}};
+  for (const auto& [name, value] : fields) {
+    append_json_key(o, name);
+    if (d.count == 0) {
+      o += "null";
+    } else {
+      milliseconds(o, value);
+    }
+  }
+  o += '}';
+}
+
+void station_object(std::string& o, const StationSummary& s) {
+  o += "{\"requests\":";
+  append_uint(o, s.requests);
+  append_json_count(o, "responses", s.responses);
+  append_json_count(o, "bad_checks", s.bad_checks);
+  append_json_count(o, "timeouts", s.timeouts);
+  append_json_count(o, "damaged_replies", s.damaged_replies);
+  append_json_count(o, "unanswered_damaged_requests", s.unanswered_damaged_requests);
+  append_json_count(o, "exceptions", s.exceptions);
+  append_json_count(o, "unsolicited", s.unsolicited);
+  append_json_count(o, "duplicates", s.duplicates);
+  append_json_key(o, "latency_ms");
+  distribution(o, s.latency);
+  append_json_key(o, "values");
+  o += '[';
+  for (std::size_t i = 0; i < s.latest_values.size(); ++i) {
+    if (i > 0) o += ',';
+    append_value_json(o, s.latest_values[i].value, s.latest_values[i].dialect);
+  }
+  o += "]}";
+}
+
+void stations(std::string& o, const AuditReport& report) {
+  append_json_key(o, "stations");
+  o += '{';
+  bool first = true;
+  for (const BusFindings& bus : report.buses) {
+    for (const StationSummary& s : bus.report.stations) {
+      if (!first) o += ',';
+      first = false;
+      append_json_string(o, station_key(report, bus, s.station));
+      o += ':';
+      station_object(o, s);
+    }
+  }
+  o += '}';
+}
+
+void timing(std::string& o, const BusReport& r, const AuditSettings& settings) {
+  const BusGapReport& bus = r.timing.bus;
+  o += "{\"judged\":";
+  o += bus.measurable ? "true" : "false";
+  append_json_key(o, "reason");
+  if (bus.measurable) {
+    o += "null";
+  } else {
+    append_json_string(o, bus.not_measurable_reason);
+  }
+  append_json_count(o, "baud", settings.baud);
+  append_json_key(o, "t15_ms");
+  milliseconds(o, bus.t15);
+  append_json_key(o, "t35_ms");
+  milliseconds(o, bus.t35);
+  append_json_key(o, "gap_ms");
+  distribution(o, bus.gaps);
+  append_json_count(o, "t15_violations", bus.inner_gap_t15.count);
+  append_json_count(o, "t35_violations", bus.spacing_t35.count);
+  o += '}';
+}
+
+// A poll block's start or count: the wire number, or null where the request has none.
+void optional_count(std::string& o, std::string_view name, std::optional<std::uint16_t> value) {
+  if (value) {
+    append_json_count(o, name, *value);
+  } else {
+    append_json_key(o, name);
+    o += "null";
+  }
+}
+
+// A poll period figure in ms; null for a block requested once (no interval measured).
+void period_figure(std::string& o, std::string_view name, const PollPeriod& p, double seconds) {
+  append_json_key(o, name);
+  if (p.period.intervals == 0) {
+    o += "null";
+  } else {
+    milliseconds(o, seconds);
+  }
+}
+
+void polls(std::string& o, const BusReport& r) {
+  o += '[';
+  for (std::size_t i = 0; i < r.timing.poll_periods.size(); ++i) {
+    const PollPeriod& p = r.timing.poll_periods[i];
+    if (i > 0) o += ',';
+    o += "{\"station\":";
+    append_uint(o, p.block.station);
+    append_json_key(o, "dialect");
+    append_json_string(o, to_string(p.block.dialect));
+    append_json_count(o, "function", p.block.function);
+    optional_count(o, "start", p.block.start);
+    optional_count(o, "count", p.block.count);
+    append_json_count(o, "intervals", p.period.intervals);
+    period_figure(o, "period_ms", p, p.period.mean);
+    period_figure(o, "jitter_ms", p, p.period.stddev);
+    period_figure(o, "max_deviation_ms", p, p.period.max_deviation);
+    o += '}';
+  }
+  o += ']';
+}
+
+void buses(std::string& o, const AuditReport& report) {
+  append_json_key(o, "buses");
+  o += '[';
+  for (std::size_t i = 0; i < report.buses.size(); ++i) {
+    const BusFindings& bus = report.buses[i];
+    if (i > 0) o += ',';
+    o += "{\"bus\":";
+    if (bus.name.empty()) {
+      o += "null";
+    } else {
+      append_json_string(o, bus.name);
+    }
+    append_json_count(o, "bytes", bus.report.bytes.bytes_in);
+    append_json_count(o, "frames", bus.report.bytes.frames);
+    append_json_key(o, "timing");
+    timing(o, bus.report, report.settings);
+    append_json_key(o, "polls");
+    polls(o, bus.report);
+    append_json_count(o, "untracked_poll_requests", bus.report.timing.untracked_poll_requests);
+    o += '}';
+  }
+  o += ']';
+}
+
+void details(std::string& o, const AuditReport& report, const BusReport& t) {
+  append_json_count(o, "frame_bytes", t.bytes.frame_bytes);
+  append_json_count(o, "noise_runs", t.bytes.noise_runs);
+  append_json_count(o, "lost_bytes", t.gaps.lost_bytes);
+  append_json_count(o, "gaps", t.gaps.gaps);
+  append_json_count(o, "malformed_frames", t.malformed_frames);
+  append_json_count(o, "unsolicited", t.unsolicited);
+  append_json_count(o, "late_replies", t.late_replies);
+  append_json_count(o, "duplicates", t.duplicates);
+  append_json_count(o, "byte_count_mismatches", t.count_mismatches);
+  append_json_count(o, "unanswered_at_end", t.unanswered_at_end);
+  append_json_count(o, "unanswered_after_loss", t.unanswered_after_loss);
+  append_json_key(o, "exception_codes");
+  o += '{';
+  for (std::size_t i = 0; i < t.exception_codes.size(); ++i) {
+    if (i > 0) o += ',';
+    std::string name(to_string(t.exception_codes[i].dialect));
+    name += ' ';
+    append_hex_byte(name, t.exception_codes[i].code);
+    append_json_string(o, name);
+    o += ':';
+    append_uint(o, t.exception_codes[i].count);
+  }
+  o += '}';
+  if (report.network) {
+    append_json_key(o, "network");
+    o += "{\"flows_analyzed\":";
+    append_uint(o, report.flows.flows_analyzed);
+    append_json_count(o, "flows_ignored", report.flows.flows_ignored);
+    append_json_count(o, "ignored_bytes", report.flows.ignored_bytes);
+    append_json_count(o, "retransmitted_bytes", report.flows.retransmitted_bytes);
+    append_json_count(o, "out_of_order_segments", report.flows.out_of_order_segments);
+    o += '}';
+  }
+}
+
+}  // namespace
+
+void write_json_summary(const AuditReport& report, OutputStream& out) {
+  const BusReport t = report.totals();
+  std::string& o = out.buffer();
+  o += "{\"type\":\"summary\"";
+  append_json_count(o, "bytes", t.bytes.bytes_in);
+  append_json_count(o, "frames", t.bytes.frames);
+  append_json_count(o, "requests", t.requests);
+  append_json_count(o, "responses", t.responses);
+  append_json_count(o, "bad_checks", t.bytes.bad_frames);
+  append_json_count(o, "timeouts", t.timeouts);
+  append_json_count(o, "damaged_replies", t.damaged_replies);
+  append_json_count(o, "unanswered_damaged_requests", t.unanswered_damaged_requests);
+  append_json_count(o, "noise_bytes", t.bytes.noise_bytes);
+  append_json_count(o, "exceptions", t.exceptions);
+  append_json_key(o, "latency_ms");
+  distribution(o, report.latency);
+  stations(o, report);
+  details(o, report, t);
+  buses(o, report);
+  append_live_sources_json(report.live, o);
+  o += "}\n";
+  out.done();
+}
+
+}  // namespace pvtap::analyzer

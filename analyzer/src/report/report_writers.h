@@ -1,0 +1,23 @@
+// The end-of-run report: as text for people, as one JSON line for jq.
+#pragma once
+
+#include "output/output_stream.h"
+#include "report/audit_report.h"
+
+namespace pvtap::analyzer {
+
+// The jsonl summary line: {"type":"summary","bytes":...,"stations":{...},...}.
+void write_json_summary(const AuditReport& report, OutputStream& out);
+
+// The text report: totals, findings with examples, latency, polling, bus timing and the
+// latest value of every register per station.
+void write_text_report(const AuditReport& report, OutputStream& out);
+
+// The sources of a live capture (serial taps, interface) as report lines / JSON members.
+void append_live_sources_text(const LiveSources& live, std::string& o);
+void append_live_sources_json(const LiveSources& live, std::string& o);
+
+// Key of a station in the report: "1", or "10.0.0.5:4001/1" when there are several buses.
+std::string station_key(const AuditReport& report, const BusFindings& bus, std::uint8_t station);
+
+}  // namespace pvtap::analyzer

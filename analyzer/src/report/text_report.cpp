@@ -1,0 +1,311 @@
+// The text report: what a field engineer reads after an audit.
+#include <cstdio>
+#include <optional>
+#include <string>
+
+#include "output/text_append.h"
+#include "pvtap/function_codes.h"
+#include "pvtap/register_decoder.h"
+#include "pvtap/register_format.h"
+#include "pvtap/register_map.h"
+#include "pvtap/timing_statistics.h"
+#include "report/frame_findings.h"
+#include "report/report_writers.h"
+
+namespace pvtap::analyzer {
+namespace {
+
+unsigned long long u(std::uint64_t v) {
+  return static_cast<unsigned long long>(v);
+}
+
+double ms(double seconds) {
+  return seconds * 1e3;
+}
+
+std::string distribution_text(const DistributionSummary& d) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf,
+                "n=%llu  min %.1f  mean %.1f  p50 %.1f  p95 %.1f  p99 %.1f  max %.1f", u(d.count),
+                ms(d.min), ms(d.mean), ms(d.p50), ms(d.p95), ms(d.p99), ms(d.max));
+  return buf;
+}
+
+std::string when(const AuditReport& r, double time) {
+  std::string out;
+  if (r.settings.has_timestamps) append_time_of_day(out, time);
+  return out;
+}
+
+std::string function_text(Dialect d, std::uint8_t function) {
+  std::string out;
+  append_function(out, d, function);
+  return out;
+}
+
+void inputs(const AuditReport& r, std::string& o) {
+  for (const InputReport& in : r.inputs) {
+    o += report_line("input: %s (%s, %llu records)%s", in.path.c_str(), in.link_type.c_str(),
+                     u(in.records), in.truncated ? " TRUNCATED" : "");
+    if (in.truncated) {
+      o += report_line("  reading stopped at byte %llu of %llu: %s", u(in.read_bytes),
+                       u(in.file_bytes), in.error.c_str());
+    }
+  }
+}
+
+void span_of_time(const AuditReport& r, std::string& o) {
+  double first = 0, last = 0;
+  bool any = false;
+  for (const BusFindings& b : r.buses) {
+    if (b.report.bytes.bytes_in == 0) continue;
+    if (!any || b.report.first_time < first) first = b.report.first_time;
+    if (!any || b.report.last_time > last) last = b.report.last_time;
+    any = true;
+  }
+  if (!r.settings.has_timestamps || !any) return;
+  std::string a, b;
+  append_utc_date_time(a, first);
+  append_utc_date_time(b, last);
+  o += report_line("time: %s .. %s UTC (%.1f s)", a.c_str(), b.c_str(), last - first);
+}
+
+void network(const AuditReport& r, std::string& o) {
+  if (!r.network) return;
+  const NetworkStats& n = r.flows;
+  o += report_line(
+      "gateway flows: %llu analyzed, %llu ignored (%llu bytes of other traffic); "
+      "%llu bytes retransmitted, %llu segments out of order",
+      u(n.flows_analyzed), u(n.flows_ignored), u(n.ignored_bytes), u(n.retransmitted_bytes),
+      u(n.out_of_order_segments));
+  const SkippedRecords& s = r.skipped;
+  if (s.not_ip + s.other_ip + s.fragments + s.malformed > 0) {
+    o += report_line(
+        "packets skipped: %llu not IP, %llu neither TCP nor UDP, %llu IP fragments, "
+        "%llu malformed",
+        u(s.not_ip), u(s.other_ip), u(s.fragments), u(s.malformed));
+  }
+}
+
+void totals(const AuditReport& r, std::string& o) {
+  const BusReport t = r.totals();
+  o += report_line(
+      "bus bytes: %llu (%llu in frames, %llu noise in %llu runs; %llu lost in %llu gaps)",
+      u(t.bytes.bytes_in), u(t.bytes.frame_bytes), u(t.bytes.noise_bytes), u(t.bytes.noise_runs),
+      u(t.gaps.lost_bytes), u(t.gaps.gaps));
+  o += report_line("frames: %llu (%llu requests, %llu responses, %llu bad checks, %llu malformed)",
+                   u(t.bytes.frames), u(t.requests), u(t.responses), u(t.bytes.bad_frames),
+                   u(t.malformed_frames));
+  o += report_line("findings: %llu bad checks, %llu timeouts, %llu exceptions and error replies",
+                   u(t.bytes.bad_frames), u(t.timeouts), u(t.exceptions));
+  o += report_line(
+      "  of the bad checks: %llu damaged replies (the slave answered; the line damaged the "
+      "answer), %llu damaged requests left unanswered (the slave rightly ignored them)",
+      u(t.damaged_replies), u(t.unanswered_damaged_requests));
+  o += report_line("  %-8s %10s %10s", "dialect", "requests", "responses");
+  for (std::size_t d = 0; d < t.by_dialect.size(); ++d) {
+    const RoleCounts& c = t.by_dialect[d];
+    if (c.requests + c.responses == 0) continue;
+    o +=
+        report_line("  %-8s %10llu %10llu", std::string(to_string(static_cast<Dialect>(d))).c_str(),
+                    u(c.requests), u(c.responses));
+  }
+}
+
+void station_table(const AuditReport& r, const BusReport& b, std::string& o) {
+  if (b.stations.empty()) return;
+  o += report_line("stations:");
+  o += report_line("  %-8s %9s %9s %5s %8s %10s %11s %10s  %s", "station", "requests", "responses",
+                   "bad", "timeouts", "exceptions", "unsolicited", "duplicates",
+                   "latency ms mean / p95 / max");
+  for (const StationSummary& s : b.stations) {
+    std::string latency = "-";
+    if (s.latency.count > 0) {
+      char buf[96];
+      std::snprintf(buf, sizeof buf, "%.1f / %.1f / %.1f", ms(s.latency.mean), ms(s.latency.p95),
+                    ms(s.latency.max));
+      latency = buf;
+    }
+    o += report_line("  %-8u %9llu %9llu %5llu %8llu %10llu %11llu %10llu  %s", s.station,
+                     u(s.requests), u(s.responses), u(s.bad_checks), u(s.timeouts), u(s.exceptions),
+                     u(s.unsolicited), u(s.duplicates), latency.c_str());
+  }
+  (void)r;
+}
+
+void frame_example(const AuditReport& r, const FrameExample& e, std::string& o) {
+  std::string raw;
+  append_spaced_hex(raw, e.bytes);
+  std::string expected;
+  append_spaced_hex(expected, check_wire_bytes(e.dialect, e.check.expected));
+  o += report_line("  %s  st %u  %s %s  %s: check should be %s; raw %s", when(r, e.time).c_str(),
+                   e.station, std::string(to_string(e.dialect)).c_str(),
+                   std::string(to_string(e.role)).c_str(),
+                   function_text(e.dialect, e.function).c_str(), expected.c_str(), raw.c_str());
+}
+
+void findings(const AuditReport& r, const BusReport& b, std::string& o) {
+  o += report_line("bad checks: %llu", u(b.bytes.bad_frames));
+  for (const FrameExample& e : b.bad_check_examples) frame_example(r, e, o);
+  o += report_line(
+      "timeouts: %llu good requests the slave did not answer (no reply %llu, next request "
+      "first %llu)",
+      u(b.timeouts), u(b.timeouts_by_reason[0]), u(b.timeouts_by_reason[1]));
+  for (const TimeoutExample& e : b.timeout_examples) {
+    o += report_line("  %s  st %u  %s  %s", when(r, e.request_time).c_str(), e.timeout.station,
+                     std::string(to_string(e.timeout.dialect)).c_str(),
+                     function_text(e.timeout.dialect, e.timeout.function).c_str());
+  }
+  o += report_line("damaged replies: %llu (they answered their request: not timeouts)",
+                   u(b.damaged_replies));
+  o += report_line("damaged requests left unanswered: %llu (the slave rightly ignored them)",
+                   u(b.unanswered_damaged_requests));
+  if (b.unanswered_at_end + b.unanswered_after_loss > 0) {
+    o += report_line(
+        "not counted as timeouts: %llu still waiting when the input ended, %llu waiting "
+        "while capture data was lost",
+        u(b.unanswered_at_end), u(b.unanswered_after_loss));
+  }
+  o += report_line(
+      "unsolicited replies: %llu (%llu late for a timed-out request); duplicate replies: "
+      "%llu; byte count mismatches: %llu",
+      u(b.unsolicited), u(b.late_replies), u(b.duplicates), u(b.count_mismatches));
+  o += report_line("exceptions and error replies: %llu", u(b.exceptions));
+  for (const ExceptionTally& e : b.exception_codes) {
+    if (e.dialect == Dialect::Hybrid) {
+      o += report_line("  hybrid error reply (0xFF): %llu", u(e.count));
+    } else {
+      o +=
+          report_line("  %s exception 0x%02X (%s): %llu", std::string(to_string(e.dialect)).c_str(),
+                      e.code, std::string(fc::exception_name(e.code)).c_str(), u(e.count));
+    }
+  }
+  o += report_line("noise: %llu bytes in %llu runs", u(b.bytes.noise_bytes), u(b.bytes.noise_runs));
+  o += report_line("data-loss gaps: %llu (%llu bytes lost%s)", u(b.gaps.gaps), u(b.gaps.lost_bytes),
+                   b.gaps.gaps_of_unknown_size > 0 ? ", some gaps of unknown size" : "");
+}
+
+void latency(const AuditReport& r, const BusReport& b, std::string& o) {
+  if (!r.settings.has_timestamps) {
+    o += report_line("latency: not measured (the input has no timestamps)");
+    return;
+  }
+  o += report_line("latency, request end to reply start (ms):");
+  o += report_line("  %-12s %s", "all", distribution_text(b.timing.latency).c_str());
+  for (const StationLatency& s : b.timing.latency_by_station) {
+    o += report_line("  station %-4u %s", s.station, distribution_text(s.latency).c_str());
+  }
+}
+
+// A poll block's registers: "start 1050 count 7" with the start as the reference writes it
+// (GSL IDs by the --gsl-ids reading; a wire address with no such ID in hex); "-" for a field
+// the request does not have.
+std::string block_text(const AuditSettings& settings, const PollBlock& b) {
+  std::string start = "-";
+  if (b.start) {
+    const std::optional<std::uint16_t> written =
+        written_address_of(b.dialect, *b.start, settings.gsl_ids);
+    start = written ? format_register_address(b.dialect, *written).view()
+                    : format_register_address(Dialect::Hybrid, *b.start).view();
+  }
+  const std::string count = b.count ? std::to_string(*b.count) : "-";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "start %-6s count %-4s", start.c_str(), count.c_str());
+  return buf;
+}
+
+void polling(const AuditReport& r, const BusReport& b, std::string& o) {
+  if (!r.settings.has_timestamps || b.timing.poll_periods.empty()) return;
+  o += report_line("poll period and jitter per poll block (station, function, registers):");
+  for (const PollPeriod& p : b.timing.poll_periods) {
+    const PollBlock& k = p.block;
+    const std::string dialect(to_string(k.dialect));
+    const std::string function = function_text(k.dialect, k.function);
+    const std::string registers = block_text(r.settings, k);
+    if (p.period.intervals == 0) {
+      o += report_line("  %-7s st %-4u %-40s %s polled once", dialect.c_str(), k.station,
+                       function.c_str(), registers.c_str());
+      continue;
+    }
+    o += report_line(
+        "  %-7s st %-4u %-40s %s %llu intervals  period %.1f ms  jitter %.1f ms  "
+        "max deviation %.1f ms",
+        dialect.c_str(), k.station, function.c_str(), registers.c_str(), u(p.period.intervals),
+        ms(p.period.mean), ms(p.period.stddev), ms(p.period.max_deviation));
+  }
+  if (b.timing.untracked_poll_requests > 0) {
+    o += report_line("  %llu requests of further blocks not tracked (more than %zu blocks)",
+                     u(b.timing.untracked_poll_requests), TimingStatistics::kMaxPollBlocks);
+  }
+}
+
+void bus_timing(const AuditReport& r, const BusReport& b, std::string& o) {
+  const BusGapReport& g = b.timing.bus;
+  o += report_line("bus timing at %u baud (t1.5 = %.3f ms, t3.5 = %.3f ms):", r.settings.baud,
+                   ms(g.t15), ms(g.t35));
+  if (!g.measurable) {
+    o += report_line("  not judged: %s", g.not_measurable_reason.c_str());
+    return;
+  }
+  o += report_line("  silence between frames (ms): %s", distribution_text(g.gaps).c_str());
+  o += report_line("  RTU frames with a silence over t1.5 inside: %llu", u(g.inner_gap_t15.count));
+  o += report_line("  RTU frames starting less than t3.5 after the previous one: %llu",
+                   u(g.spacing_t35.count));
+}
+
+void latest_values(const AuditReport& r, const BusReport& b, std::string& o) {
+  bool any = false;
+  for (const StationSummary& s : b.stations) any = any || !s.latest_values.empty();
+  if (!any) return;
+  o += report_line("latest values (what each station last reported):");
+  for (const StationSummary& s : b.stations) {
+    if (s.latest_values.empty()) continue;
+    if (r.settings.has_timestamps) {
+      o += report_line("  station %u (as of %s)", s.station, when(r, s.last_report_time).c_str());
+    } else {
+      o += report_line("  station %u", s.station);
+    }
+    for (const LatestValue& v : s.latest_values) {
+      const std::string value = format_value(v.value);
+      o += report_line("    %-7s %-8s %-40s %s", std::string(to_string(v.dialect)).c_str(),
+                       std::string(format_value_address(v.value, v.dialect).view()).c_str(),
+                       std::string(v.value.name()).c_str(), value.c_str());
+    }
+  }
+}
+
+}  // namespace
+
+std::string station_key(const AuditReport& report, const BusFindings& bus, std::uint8_t station) {
+  std::string key = report.buses.size() > 1 && !bus.name.empty() ? bus.name + "/" : "";
+  append_uint(key, station);
+  return key;
+}
+
+void write_text_report(const AuditReport& report, OutputStream& out) {
+  std::string& o = out.buffer();
+  o += report.live.active() ? "\n== pvtap sniff report ==\n" : "\n== pvtap audit report ==\n";
+  inputs(report, o);
+  append_live_sources_text(report.live, o);
+  span_of_time(report, o);
+  network(report, o);
+  if (report.written_records > 0) {
+    o += report_line("written: %llu frames as link type 252", u(report.written_records));
+  }
+  totals(report, o);
+  for (const BusFindings& bus : report.buses) {
+    o += '\n';
+    if (report.buses.size() > 1 || !bus.name.empty()) {
+      o += report_line("-- bus %s --", bus.name.empty() ? "serial" : bus.name.c_str());
+    }
+    station_table(report, bus.report, o);
+    findings(report, bus.report, o);
+    latency(report, bus.report, o);
+    polling(report, bus.report, o);
+    bus_timing(report, bus.report, o);
+    latest_values(report, bus.report, o);
+  }
+  out.done();
+}
+
+}  // namespace pvtap::analyzer

@@ -1,0 +1,76 @@
+#include "sources/live_loop.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "sources/stop_signal.h"
+#include "sources/wall_clock.h"
+
+namespace pvtap::analyzer {
+namespace {
+
+// The longest sleep: the matcher's timeouts and the status line are judged this often.
+constexpr double kTick = 0.05;
+
+}  // namespace
+
+LiveLoop::LiveLoop(const LiveOptions& options, Pipeline& pipeline, OutputStream& out)
+    : options_(options),
+      pipeline_(pipeline),
+      out_(out),
+      status_(options.status_line),
+      started_(wall_clock_seconds()) {}
+
+bool LiveLoop::count_reached() const {
+  return options_.count > 0 && pipeline_.tally().frames() >= options_.count;
+}
+
+bool LiveLoop::should_stop() const {
+  if (stop_requested() || count_reached()) return true;
+  return options_.duration > 0 && wall_clock_seconds() - started_ >= options_.duration;
+}
+
+double LiveLoop::wake_at(double now) const {
+  double wake = now + kTick;
+  if (options_.duration > 0) wake = std::min(wake, started_ + options_.duration);
+  return wake;
+}
+
+void LiveLoop::after_wake(double now) {
+  // Events go out as they happen, not when the buffer fills.
+  if (!out_.buffer().empty()) {
+    status_.clear();
+    out_.flush();
+  }
+  if (status_.due(now)) show_status(now);
+}
+
+void LiveLoop::show_status(double now) {
+  const ReassemblerTotals sum = pipeline_.totals();
+  const RunTally& tally = pipeline_.tally();
+  const std::optional<double> latency = tally.last_latency();
+  char text[160];
+  std::snprintf(
+      text, sizeof text, "%llu bytes, %llu frames, %llu bad checks, %llu timeouts, last latency %s",
+      static_cast<unsigned long long>(sum.bytes_in), static_cast<unsigned long long>(sum.frames),
+      static_cast<unsigned long long>(sum.bad_frames),
+      static_cast<unsigned long long>(tally.timeouts()),
+      latency ? (std::to_string(std::lround(*latency * 1e3)) + " ms").c_str() : "-");
+  status_.show(now, text);
+}
+
+void LiveLoop::saw_time(double time) {
+  last_time_ = std::max(last_time_, time);
+}
+
+void LiveLoop::end(double now, LiveSources& live) {
+  status_.clear();
+  live.seconds = now - started_;
+  // --count is a stop the user asked for, not an interruption.
+  live.stopped_by_signal = stop_requested() && !count_reached();
+  saw_time(now);
+}
+
+}  // namespace pvtap::analyzer

@@ -1,0 +1,47 @@
+// LiveLoop: what the two live sources of pvtap sniff (serial taps and a network interface)
+// share: when to stop, the output as events happen, the status line, and how long to sleep.
+#pragma once
+
+#include <cstdint>
+
+#include "cli/command_options.h"
+#include "output/output_stream.h"
+#include "output/status_line.h"
+#include "pipeline/pipeline.h"
+#include "report/live_report.h"
+
+namespace pvtap::analyzer {
+
+class LiveLoop {
+ public:
+  // The clock starts now.
+  LiveLoop(const LiveOptions& options, Pipeline& pipeline, OutputStream& out);
+
+  // A stop signal came, --count frames were seen or --duration has passed.
+  bool should_stop() const;
+  bool count_reached() const;
+  // How long a source may sleep from `now`: until the first of the pipeline's next deadline,
+  // the status line and the end of --duration.
+  double wake_at(double now) const;
+  // Events go out as they happen; the status line is redrawn when due.
+  void after_wake(double now);
+  // A line is about to go to stderr: the status line makes room for it.
+  void make_room_on_stderr() { status_.clear(); }
+  // A record of this time was fed: the capture ends no earlier.
+  void saw_time(double time);
+  // Ends the capture at `now`: how long it ran and whether a signal stopped it.
+  void end(double now, LiveSources& live);
+  double last_time() const { return last_time_; }
+
+ private:
+  void show_status(double now);
+
+  const LiveOptions& options_;
+  Pipeline& pipeline_;
+  OutputStream& out_;
+  StatusLine status_;
+  double started_;
+  double last_time_ = 0;
+};
+
+}  // namespace pvtap::analyzer

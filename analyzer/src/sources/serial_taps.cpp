@@ -1,0 +1,179 @@
+#include "sources/serial_taps.h"
+
+#include <poll.h>
+
+#include <algorithm>
+#include <cstdio>
+
+#include "pvtap/bus_timing.h"
+#include "sources/device_tap.h"
+#include "sources/wall_clock.h"
+
+namespace pvtap::analyzer {
+
+struct SerialTaps::Tap {
+  Tap(const std::string& path, std::uint32_t baud, SerialLine line) : device(path, baud, line) {}
+  DeviceTap device;
+  BusSession* bus = nullptr;
+  std::string timestamp_note;  // outlives the session's view of it
+  double t35 = 0;
+  // The bus must be told of its silence t3.5 after the last byte (to decide a pending frame).
+  std::optional<double> silence_due;
+  // The bus is known silent up to this moment: when the last read that found nothing began.
+  // Not "now": bytes may have arrived since, unread while pvtap was scheduled out.
+  double quiet_until = 0;
+};
+
+namespace {
+
+constexpr std::size_t kReadBuffer = 64 * 1024;
+// Reads per tap per wake-up, so that one flooding tap cannot starve the others.
+constexpr int kReadsPerWake = 16;
+// Line error counters are sampled this often, so that an unplug loses little of them.
+constexpr double kLineErrorSampleEvery = 1.0;
+
+}  // namespace
+
+SerialTaps::SerialTaps(const SniffOptions& options, Pipeline& pipeline)
+    : options_(options), pipeline_(pipeline) {}
+
+SerialTaps::~SerialTaps() = default;
+
+BusSessionOptions SerialTaps::session_options(Tap& tap) const {
+  BusSessionOptions o = pipeline_.bus_options(InputKind::Serial);
+  o.reassembler.bits_per_char = options_.live.line.bits_per_char();
+  const BusTiming timing(options_.baud, o.reassembler.bits_per_char);
+  tap.t35 = timing.t35;
+  const LatencyTimerState& timer = tap.device.latency_timer();
+  // A read returns what the adapter held back for up to its latency timer: longer than t1.5
+  // and the stamps cannot tell the bus's silences apart.
+  if (timer.ms && *timer.ms * 1e-3 > timing.t15) {
+    tap.timestamp_note = "the adapter's USB latency timer is " + std::to_string(*timer.ms) +
+                         " ms: reads come in batches too coarse to judge t1.5/t3.5";
+    o.reassembler.timestamps = TimestampTrust::Untrusted;
+    // Bytes come late by at most the timer: a longer silence than that plus t3.5 was real.
+    o.reassembler.boundary_gap = *timer.ms * 1e-3 + timing.t35;
+    o.timestamp_note = tap.timestamp_note;
+  }
+  return o;
+}
+
+bool SerialTaps::open() {
+  const LiveOptions& live = options_.live;
+  for (const std::string& path : live.devices) {
+    taps_.push_back(std::make_unique<Tap>(path, options_.baud, live.line));
+    Tap& tap = *taps_.back();
+    if (!tap.device.open()) {
+      std::fprintf(stderr, "pvtap: cannot open %s: %s\n", path.c_str(), tap.device.error().c_str());
+      return false;
+    }
+    const std::string name = live.devices.size() > 1 ? path : "";
+    tap.bus = &pipeline_.add_bus(name, session_options(tap));
+    const LatencyTimerState& timer = tap.device.latency_timer();
+    // Only a timer left coarse is worth a line on stderr (Wireshark shows an extcap's stderr
+    // as an error); a lowered one is in the report.
+    if (timer.ms && *timer.ms > 1) {
+      std::fprintf(stderr, "pvtap: %s: USB latency timer %d ms (%s)\n", path.c_str(), *timer.ms,
+                   timer.note.c_str());
+    }
+  }
+  return true;
+}
+
+void SerialTaps::run(LiveLoop& loop, LiveSources& live) {
+  loop_ = &loop;
+  std::vector<std::uint8_t> buffer(kReadBuffer);
+  double now = wall_clock_seconds();
+  double next_sample = now + kLineErrorSampleEvery;
+  while (!loop.should_stop()) {
+    wait(next_wake(now));
+    for (auto& tap : taps_) {
+      if (tap->device.fd() >= 0) read(*tap, buffer);
+    }
+    now = wall_clock_seconds();
+    after_wake(now);
+    if (now >= next_sample) {
+      for (auto& tap : taps_) tap->device.sample_line_errors();
+      next_sample = now + kLineErrorSampleEvery;
+    }
+  }
+  now = wall_clock_seconds();
+  for (auto& tap : taps_) live.devices.push_back(tap->device.report(now));
+  loop.end(now, live);
+  loop_ = nullptr;
+}
+
+double SerialTaps::next_wake(double now) const {
+  double wake = loop_->wake_at(now);
+  for (const auto& tap : taps_) {
+    if (tap->silence_due) wake = std::min(wake, *tap->silence_due);
+    if (tap->device.gone()) wake = std::min(wake, tap->device.next_attempt());
+  }
+  return wake;
+}
+
+void SerialTaps::wait(double wake_at) {
+  std::vector<pollfd> fds;
+  for (const auto& tap : taps_) {
+    if (tap->device.fd() >= 0) fds.push_back(pollfd{tap->device.fd(), POLLIN, 0});
+  }
+  const timespec timeout = timeout_until(wake_at);
+  // EINTR (a stop signal) just ends the wait; the loop then sees the request.
+  ::ppoll(fds.data(), fds.size(), &timeout, nullptr);
+}
+
+void SerialTaps::read(Tap& tap, std::span<std::uint8_t> buffer) {
+  for (int k = 0; k < kReadsPerWake; ++k) {
+    std::size_t got = 0;
+    const double before = wall_clock_seconds();
+    const SerialPort::ReadResult result = tap.device.port().read(buffer, got);
+    // The capture clock right after the read: the time of the chunk's last byte.
+    const double time = wall_clock_seconds();
+    if (result == SerialPort::ReadResult::Empty) {
+      tap.quiet_until = before;
+      return;
+    }
+    if (result == SerialPort::ReadResult::Gone) {
+      lose(tap, time);
+      return;
+    }
+    tap.device.count_read(got);
+    tap.bus->feed(BusChunk{buffer.first(got), time, Direction::Unknown});
+    tap.silence_due = time + tap.t35;
+    // A read that did not fill the buffer emptied the driver's queue: no need for another
+    // read (a system call per wake-up) to learn that nothing else was waiting.
+    if (got < buffer.size()) return;
+  }
+}
+
+void SerialTaps::lose(Tap& tap, double now) {
+  tap.device.went_away(now);
+  tap.silence_due.reset();
+  tap.bus->data_lost(Direction::Unknown, now, std::nullopt);
+  loop_->make_room_on_stderr();
+  std::fprintf(stderr, "pvtap: %s: device gone (%s); reopening it as it comes back\n",
+               tap.device.path().c_str(), tap.device.error().c_str());
+}
+
+void SerialTaps::revive(double now) {
+  for (auto& tap : taps_) {
+    if (!tap->device.gone() || now < tap->device.next_attempt()) continue;
+    const double since = tap->device.outage_started();
+    if (!tap->device.try_reopen(now)) continue;
+    tap->quiet_until = now;
+    loop_->make_room_on_stderr();
+    std::fprintf(stderr, "pvtap: %s: back after %.1f s\n", tap->device.path().c_str(), now - since);
+  }
+}
+
+void SerialTaps::after_wake(double now) {
+  revive(now);
+  for (auto& tap : taps_) {
+    if (tap->silence_due && tap->quiet_until >= *tap->silence_due) tap->silence_due.reset();
+    // A tap that is gone has nothing unread: its timeouts run on the clock.
+    tap->bus->idle(tap->device.fd() >= 0 ? tap->quiet_until : now);
+  }
+  loop_->after_wake(now);
+}
+
+}  // namespace pvtap::analyzer

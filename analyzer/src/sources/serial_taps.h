@@ -1,0 +1,43 @@
+// SerialTaps: pvtap sniff --device: RS485 taps opened read-only, each its own bus of the
+// pipeline. A poll loop stamps each read with the capture clock, tells the buses when they
+// have been silent, and survives adapters that go away and come back.
+#pragma once
+
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "cli/command_options.h"
+#include "pipeline/pipeline.h"
+#include "report/live_report.h"
+#include "sources/live_loop.h"
+
+namespace pvtap::analyzer {
+
+class SerialTaps {
+ public:
+  SerialTaps(const SniffOptions& options, Pipeline& pipeline);
+  ~SerialTaps();
+
+  // Opens every device and adds its bus; false (after saying why) when one cannot be opened.
+  bool open();
+  // Reads until the loop says stop; the taps' reports go into `live`.
+  void run(LiveLoop& loop, LiveSources& live);
+
+ private:
+  struct Tap;
+  BusSessionOptions session_options(Tap& tap) const;
+  void wait(double wake_at);
+  void read(Tap& tap, std::span<std::uint8_t> buffer);
+  void lose(Tap& tap, double now);
+  void revive(double now);
+  double next_wake(double now) const;
+  void after_wake(double now);
+
+  const SniffOptions& options_;
+  Pipeline& pipeline_;
+  LiveLoop* loop_ = nullptr;  // while run() runs
+  std::vector<std::unique_ptr<Tap>> taps_;
+};
+
+}  // namespace pvtap::analyzer
