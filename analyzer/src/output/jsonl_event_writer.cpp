@@ -3,8 +3,9 @@
 #include <string>
 #include <vector>
 
+#include "formatting/json_text.h"
+#include "formatting/number_text.h"
 #include "output/event_writer.h"
-#include "output/text_append.h"
 #include "output/value_json_cache.h"
 #include "report/frame_findings.h"
 

@@ -2,8 +2,8 @@
 #include <string>
 #include <vector>
 
+#include "formatting/number_text.h"
 #include "output/event_writer.h"
-#include "output/text_append.h"
 #include "report/frame_findings.h"
 
 namespace pvtap::analyzer {

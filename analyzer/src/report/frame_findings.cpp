@@ -1,6 +1,7 @@
 #include "report/frame_findings.h"
 
-#include "output/text_append.h"
+#include "formatting/json_text.h"
+#include "formatting/number_text.h"
 #include "pvtap/function_codes.h"
 #include "pvtap/register_format.h"
 

@@ -3,7 +3,8 @@
 #include <string>
 #include <string_view>
 
-#include "output/text_append.h"
+#include "formatting/json_text.h"
+#include "formatting/number_text.h"
 #include "report/frame_findings.h"
 #include "report/report_writers.h"
 

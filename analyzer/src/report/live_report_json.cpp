@@ -1,5 +1,6 @@
 // The live sources in the jsonl summary line: "devices":[...] and "interface":{...}.
-#include "output/text_append.h"
+#include "formatting/json_text.h"
+#include "formatting/number_text.h"
 #include "report/report_writers.h"
 
 namespace pvtap::analyzer {

@@ -1,5 +1,5 @@
 // The live sources in the text report: what each tap and interface went through.
-#include "output/text_append.h"
+#include "report/report_line.h"
 #include "report/report_writers.h"
 
 namespace pvtap::analyzer {

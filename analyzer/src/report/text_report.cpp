@@ -3,13 +3,14 @@
 #include <optional>
 #include <string>
 
-#include "output/text_append.h"
+#include "formatting/number_text.h"
 #include "pvtap/function_codes.h"
 #include "pvtap/register_decoder.h"
 #include "pvtap/register_format.h"
 #include "pvtap/register_map.h"
 #include "pvtap/timing_statistics.h"
 #include "report/frame_findings.h"
+#include "report/report_line.h"
 #include "report/report_writers.h"
 
 namespace pvtap::analyzer {

@@ -1,5 +1,7 @@
 // Number, hex, JSON and CSV text as the output formats write it.
-#include "output/text_append.h"
+#include "formatting/csv_text.h"
+#include "formatting/json_text.h"
+#include "formatting/number_text.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,4 @@
-#include "output/text_append.h"
-
-#include <cstdarg>
-#include <cstdio>
+#include "formatting/number_text.h"
 
 #include <algorithm>
 #include <array>
@@ -10,15 +7,6 @@
 #include <ctime>
 
 namespace pvtap::analyzer {
-
-std::string report_line(const char* format, ...) {
-  char buf[512];
-  va_list args;
-  va_start(args, format);
-  std::vsnprintf(buf, sizeof buf, format, args);
-  va_end(args);
-  return std::string(buf) + "\n";
-}
 namespace {
 
 constexpr char kHexDigits[] = "0123456789abcdef";
@@ -121,65 +109,6 @@ void append_hex_byte(std::string& out, std::uint8_t value) {
   out += "0x";
   out += kUpper[value >> 4];
   out += kUpper[value & 0xF];
-}
-
-void append_json_key(std::string& out, std::string_view name) {
-  out += ",\"";
-  out += name;
-  out += "\":";
-}
-
-void append_json_count(std::string& out, std::string_view name, std::uint64_t value) {
-  append_json_key(out, name);
-  append_uint(out, value);
-}
-
-void append_json_string(std::string& out, std::string_view text) {
-  out += '"';
-  // Names and units rarely need escapes: copy runs of plain characters at once.
-  std::size_t run = 0;
-  for (std::size_t i = 0; i < text.size(); ++i) {
-    const auto c = static_cast<unsigned char>(text[i]);
-    if (c >= 0x20 && c != '"' && c != '\\') continue;
-    out.append(text.data() + run, i - run);
-    run = i + 1;
-    switch (c) {
-      case '"':
-        out += "\\\"";
-        break;
-      case '\\':
-        out += "\\\\";
-        break;
-      case '\n':
-        out += "\\n";
-        break;
-      case '\r':
-        out += "\\r";
-        break;
-      case '\t':
-        out += "\\t";
-        break;
-      default:
-        out += "\\u00";
-        out += kHexDigits[c >> 4];
-        out += kHexDigits[c & 0xF];
-    }
-  }
-  out.append(text.data() + run, text.size() - run);
-  out += '"';
-}
-
-void append_csv_field(std::string& out, std::string_view text) {
-  if (text.find_first_of(",\"\r\n") == std::string_view::npos) {
-    out += text;
-    return;
-  }
-  out += '"';
-  for (const char c : text) {
-    if (c == '"') out += '"';
-    out += c;
-  }
-  out += '"';
 }
 
 void append_time_of_day(std::string& out, double epoch_seconds) {
