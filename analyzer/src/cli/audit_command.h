@@ -2,7 +2,7 @@
 #pragma once
 
 #include "cli/command_options.h"
-#include "output/output_stream.h"
+#include "formatting/output_stream.h"
 
 namespace CLI {
 class App;

@@ -8,7 +8,7 @@
 #include "output/event_writer.h"
 #include "pvtap/dialect.h"
 #include "pvtap/register_decoder.h"
-#include "sources/serial_line.h"
+#include "sources/live_options.h"
 
 namespace pvtap::analyzer {
 
@@ -40,18 +40,6 @@ struct AuditOptions : CommonOptions {
   std::vector<std::string> captures;   // pcap/pcapng files, read in order as one capture
   std::vector<std::string> raw_dumps;  // plain bus byte dumps (--raw)
   bool progress = false;               // draw a progress bar on stderr
-};
-
-// LiveOptions: what `pvtap sniff` reads, and when it stops.
-struct LiveOptions {
-  std::vector<std::string> devices;  // serial devices (RS485 taps), each its own bus
-  SerialLine line;
-  std::string interface;     // a network interface with a gateway's TCP traffic (libpcap)
-  std::string filter;        // BPF filter for the interface, added to the --port filter
-  double duration = 0;       // seconds; 0 runs until SIGINT/SIGTERM
-  std::uint64_t count = 0;   // frames; 0 means no limit
-  bool status_line = false;  // a live status line on stderr
-  bool quiet = false;        // nothing on stdout (extcap: the frames go to the fifo)
 };
 
 // SniffOptions: `pvtap sniff` (and the extcap capture): live sources.

@@ -121,10 +121,10 @@ int capture(const SniffOptions& o, const RegisterDecoder& decoder, OutputStream&
   LiveSources live;
   bool opened = false;
   if (!o.live.devices.empty()) {
-    SerialTaps taps(o, pipeline);
+    SerialTaps taps(o.live, o.baud, pipeline);
     opened = capture_from(taps, o, pipeline, out, live);
   } else {
-    InterfaceSource interface(o, pipeline);
+    InterfaceSource interface(o.live, o.ports, pipeline);
     opened = capture_from(interface, o, pipeline, out, live);
   }
   if (!opened) return kExitBadInput;

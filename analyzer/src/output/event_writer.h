@@ -4,7 +4,7 @@
 #include <memory>
 #include <string_view>
 
-#include "output/output_stream.h"
+#include "formatting/output_stream.h"
 #include "pvtap/bus_session.h"
 
 namespace pvtap::analyzer {

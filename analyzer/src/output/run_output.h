@@ -7,10 +7,10 @@
 #include <optional>
 #include <string>
 
+#include "formatting/output_stream.h"
+#include "output/event_fanout.h"
 #include "output/event_writer.h"
-#include "output/output_stream.h"
 #include "output/pdu_capture_output.h"
-#include "pipeline/event_fanout.h"
 #include "report/audit_report.h"
 
 namespace pvtap::analyzer {

@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "gateway/gateway_traffic.h"
+#include "output/event_fanout.h"
 #include "output/event_writer.h"
 #include "pipeline/bus_set.h"
-#include "pipeline/event_fanout.h"
 #include "pipeline/run_tally.h"
 #include "pvtap/bus_session.h"
 #include "pvtap/capture/capture_file.h"

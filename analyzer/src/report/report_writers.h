@@ -1,7 +1,7 @@
 // The end-of-run report: as text for people, as one JSON line for jq.
 #pragma once
 
-#include "output/output_stream.h"
+#include "formatting/output_stream.h"
 #include "report/audit_report.h"
 
 namespace pvtap::analyzer {

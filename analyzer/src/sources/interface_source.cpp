@@ -36,9 +36,10 @@ InterfaceReport interface_report(const LiveCapture& capture, const std::string& 
 
 // Opens the capture and says so on stderr; once the line is there every packet is seen
 // (scripts wait for it, as they do for tcpdump's "listening on").
-bool open_capture(LiveCapture& capture, const SniffOptions& o) {
-  const std::string& name = o.live.interface;
-  if (!capture.open(LiveCaptureSettings{name, o.ports, o.live.filter})) {
+bool open_capture(LiveCapture& capture, const LiveOptions& live,
+                  const std::vector<std::uint16_t>& ports) {
+  const std::string& name = live.interface;
+  if (!capture.open(LiveCaptureSettings{name, ports, live.filter})) {
     std::fprintf(stderr, "pvtap: cannot capture on %s: %s\n", name.c_str(),
                  capture.error().c_str());
     return false;
@@ -61,18 +62,19 @@ void drain(LiveCapture& capture, const LiveCapture::PacketHandler& handler) {
 
 }  // namespace
 
-InterfaceSource::InterfaceSource(const SniffOptions& options, Pipeline& pipeline)
-    : options_(options), pipeline_(pipeline) {}
+InterfaceSource::InterfaceSource(const LiveOptions& live, const std::vector<std::uint16_t>& ports,
+                                 Pipeline& pipeline)
+    : live_(live), ports_(ports), pipeline_(pipeline) {}
 
 bool InterfaceSource::open() {
-  if (!open_capture(capture_, options_)) return false;
+  if (!open_capture(capture_, live_, ports_)) return false;
   // Records are decoded by the link type, as those of a capture file.
   pipeline_.begin_input(capture_.link_type(), false);
   return true;
 }
 
 void InterfaceSource::run(LiveLoop& loop, LiveSources& live) {
-  const std::string& name = options_.live.interface;
+  const std::string& name = live_.interface;
   const auto handler = [this, &loop](const CapturedPacket& packet) {
     loop.saw_time(packet.time);
     pipeline_.record(packet);

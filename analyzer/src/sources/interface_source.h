@@ -4,17 +4,22 @@
 // while the capture runs and not only when the next packet comes.
 #pragma once
 
-#include "cli/command_options.h"
+#include <cstdint>
+#include <vector>
+
 #include "pipeline/pipeline.h"
 #include "report/live_report.h"
 #include "sources/live_capture.h"
 #include "sources/live_loop.h"
+#include "sources/live_options.h"
 
 namespace pvtap::analyzer {
 
 class InterfaceSource {
  public:
-  InterfaceSource(const SniffOptions& options, Pipeline& pipeline);
+  // The interface of `live`, with a filter for the gateway `ports` (none: every port).
+  InterfaceSource(const LiveOptions& live, const std::vector<std::uint16_t>& ports,
+                  Pipeline& pipeline);
 
   // Opens the capture and says so on stderr; once the line is there every packet is seen
   // (scripts wait for it, as they do for tcpdump's "listening on"). False after saying why
@@ -24,7 +29,8 @@ class InterfaceSource {
   void run(LiveLoop& loop, LiveSources& live);
 
  private:
-  const SniffOptions& options_;
+  const LiveOptions& live_;
+  const std::vector<std::uint16_t>& ports_;
   Pipeline& pipeline_;
   LiveCapture capture_;
 };

@@ -4,11 +4,11 @@
 
 #include <cstdint>
 
-#include "cli/command_options.h"
-#include "output/output_stream.h"
+#include "formatting/output_stream.h"
 #include "output/status_line.h"
 #include "pipeline/pipeline.h"
 #include "report/live_report.h"
+#include "sources/live_options.h"
 
 namespace pvtap::analyzer {
 

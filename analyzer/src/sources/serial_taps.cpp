@@ -34,15 +34,15 @@ constexpr double kLineErrorSampleEvery = 1.0;
 
 }  // namespace
 
-SerialTaps::SerialTaps(const SniffOptions& options, Pipeline& pipeline)
-    : options_(options), pipeline_(pipeline) {}
+SerialTaps::SerialTaps(const LiveOptions& live, std::uint32_t baud, Pipeline& pipeline)
+    : live_(live), baud_(baud), pipeline_(pipeline) {}
 
 SerialTaps::~SerialTaps() = default;
 
 BusSessionOptions SerialTaps::session_options(Tap& tap) const {
   BusSessionOptions o = pipeline_.bus_options(InputKind::Serial);
-  o.reassembler.bits_per_char = options_.live.line.bits_per_char();
-  const BusTiming timing(options_.baud, o.reassembler.bits_per_char);
+  o.reassembler.bits_per_char = live_.line.bits_per_char();
+  const BusTiming timing(baud_, o.reassembler.bits_per_char);
   tap.t35 = timing.t35;
   const LatencyTimerState& timer = tap.device.latency_timer();
   // A read returns what the adapter held back for up to its latency timer: longer than t1.5
@@ -59,15 +59,14 @@ BusSessionOptions SerialTaps::session_options(Tap& tap) const {
 }
 
 bool SerialTaps::open() {
-  const LiveOptions& live = options_.live;
-  for (const std::string& path : live.devices) {
-    taps_.push_back(std::make_unique<Tap>(path, options_.baud, live.line));
+  for (const std::string& path : live_.devices) {
+    taps_.push_back(std::make_unique<Tap>(path, baud_, live_.line));
     Tap& tap = *taps_.back();
     if (!tap.device.open()) {
       std::fprintf(stderr, "pvtap: cannot open %s: %s\n", path.c_str(), tap.device.error().c_str());
       return false;
     }
-    const std::string name = live.devices.size() > 1 ? path : "";
+    const std::string name = live_.devices.size() > 1 ? path : "";
     tap.bus = &pipeline_.add_bus(name, session_options(tap));
     const LatencyTimerState& timer = tap.device.latency_timer();
     // Only a timer left coarse is worth a line on stderr (Wireshark shows an extcap's stderr

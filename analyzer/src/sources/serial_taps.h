@@ -7,16 +7,17 @@
 #include <span>
 #include <vector>
 
-#include "cli/command_options.h"
 #include "pipeline/pipeline.h"
 #include "report/live_report.h"
 #include "sources/live_loop.h"
+#include "sources/live_options.h"
 
 namespace pvtap::analyzer {
 
 class SerialTaps {
  public:
-  SerialTaps(const SniffOptions& options, Pipeline& pipeline);
+  // The taps of `live`, whose bus runs at `baud`.
+  SerialTaps(const LiveOptions& live, std::uint32_t baud, Pipeline& pipeline);
   ~SerialTaps();
 
   // Opens every device and adds its bus; false (after saying why) when one cannot be opened.
@@ -34,7 +35,8 @@ class SerialTaps {
   double next_wake(double now) const;
   void after_wake(double now);
 
-  const SniffOptions& options_;
+  const LiveOptions& live_;
+  std::uint32_t baud_;
   Pipeline& pipeline_;
   LiveLoop* loop_ = nullptr;  // while run() runs
   std::vector<std::unique_ptr<Tap>> taps_;

@@ -1,0 +1,23 @@
+// LiveOptions: what a live capture reads and when it stops, as pvtap sniff and the extcap set it.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "sources/serial_line.h"
+
+namespace pvtap::analyzer {
+
+struct LiveOptions {
+  std::vector<std::string> devices;  // serial devices (RS485 taps), each its own bus
+  SerialLine line;
+  std::string interface;     // a network interface with a gateway's TCP traffic (libpcap)
+  std::string filter;        // BPF filter for the interface, added to the --port filter
+  double duration = 0;       // seconds; 0 runs until SIGINT/SIGTERM
+  std::uint64_t count = 0;   // frames; 0 means no limit
+  bool status_line = false;  // a live status line on stderr
+  bool quiet = false;        // nothing on stdout (extcap: the frames go to the fifo)
+};
+
+}  // namespace pvtap::analyzer
