@@ -9,7 +9,9 @@ BusSessionOptions AuditRun::session_options(InputKind kind) const {
   o.reassembler.dialects = options_.dialects;
   o.reassembler.baud = options_.baud;
   o.matcher.timeout = options_.timeout;
-  o.decode_values = !options_.summary_only;
+  // --values and --html need the values of every frame even when stdout shows none.
+  o.decode_values =
+      !options_.summary_only || !options_.values_path.empty() || !options_.html_path.empty();
   if (kind == InputKind::Network) {
     o.reassembler.timestamps = TimestampTrust::Untrusted;
     o.reassembler.boundary_gap = options_.gateway_gap_ms / 1000.0;

@@ -45,6 +45,9 @@ struct LiveOptions {
   bool active() const { return !devices.empty() || !interface.empty(); }
 };
 
+// ValuesFormat: how --values writes its rows.
+enum class ValuesFormat { Csv, Jsonl, Influx };
+
 struct AuditOptions {
   std::vector<std::string> captures;   // pcap/pcapng files, read in order as one capture
   std::vector<std::string> raw_dumps;  // plain bus byte dumps (--raw)
@@ -69,6 +72,13 @@ struct AuditOptions {
   bool fail_on_errors = false;
   bool progress = false;  // draw a progress bar on stderr
   LiveOptions live;       // pvtap sniff: live sources instead of the files above
+  // --values: the decoded register values as a time series, one row per value.
+  std::string values_path;
+  std::string values_format_name = "csv";
+  ValuesFormat values_format = ValuesFormat::Csv;
+  // --html: the report as one self-contained page; --plot narrows its value charts.
+  std::string html_path;
+  std::vector<std::string> plot_keys;
 };
 
 }  // namespace pvtap::analyzer

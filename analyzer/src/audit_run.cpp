@@ -82,10 +82,14 @@ bool AuditRun::open_outputs() {
     }
     writer_->flush_each_record(options_.live.flush_each_record);
   }
-  if (!options_.summary_only) {
-    events_ = make_event_writer(options_.format, out_);
-    events_->begin();
+  files_ = std::make_unique<FileOutputs>(options_);
+  if (const auto error = files_->open()) {
+    std::fprintf(stderr, "pvtap: cannot write %s\n", error->c_str());
+    return false;
   }
+  events_ = files_->events_for(options_.summary_only ? nullptr
+                                                     : make_event_writer(options_.format, out_));
+  if (events_) events_->begin();
   return true;
 }
 
@@ -130,6 +134,10 @@ int AuditRun::run() {
   const AuditReport report = build_report();
   write_summary(report);
   out_.flush();
+  if (const auto error = files_->finish(report)) {
+    std::fprintf(stderr, "pvtap: cannot write %s\n", error->c_str());
+    return kExitBadInput;
+  }
   if (writer_ && !writer_->close()) {
     std::fprintf(stderr, "pvtap: cannot write %s: %s\n", options_.write_path.c_str(),
                  writer_->error().c_str());

@@ -13,6 +13,7 @@
 #include "capture_file.h"
 #include "event_writer.h"
 #include "exported_pdu_writer.h"
+#include "file_outputs.h"
 #include "gateway_traffic.h"
 #include "link_types.h"
 #include "output_stream.h"
@@ -102,6 +103,7 @@ class AuditRun : public BusDirectory {
   const RegisterDecoder& decoder_;
   OutputStream& out_;
   std::unique_ptr<EventWriter> events_;
+  std::unique_ptr<FileOutputs> files_;  // --values, --html
   std::optional<ExportedPduWriter> writer_;
   std::unique_ptr<ProgressBar> progress_;
   GatewayTraffic gateway_;

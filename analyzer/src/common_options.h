@@ -24,8 +24,12 @@ inline constexpr BaudRange kAnyBaud{300, 4000000};
 
 // --dialect, --baud, --timeout, --gsl-ids, --map.
 void add_protocol_options(CLI::App& command, AuditOptions& o, BaudRange baud_range);
-// --format, --summary-only, --write, --fail-on.
+// --format, --summary-only, --write, --fail-on, and the two below.
 void add_output_options(CLI::App& command, AuditOptions& o);
+// --values, --values-format.
+void add_values_options(CLI::App& command, AuditOptions& o);
+// --html, --plot.
+void add_html_options(CLI::App& command, AuditOptions& o);
 
 // Turns the options as typed (dialect, format, ...) into their typed fields.
 void apply_choices(AuditOptions& o);

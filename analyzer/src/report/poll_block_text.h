@@ -1,0 +1,17 @@
+// The registers of a poll block as the reference writes them, for every report rendering.
+#pragma once
+
+#include <string>
+
+#include "audit_report.h"
+#include "pvtap/timing_statistics.h"
+
+namespace pvtap::analyzer {
+
+// "start 1050   count 7   ": the start as the reference writes it (GSL IDs by the --gsl-ids
+// reading; a wire address with no such ID in hex); "-" for a field the request does not have.
+std::string block_text(const AuditSettings& settings, const PollBlock& b);
+// The start alone ("1050", "0x1006", "-").
+std::string block_start_text(const AuditSettings& settings, const PollBlock& b);
+
+}  // namespace pvtap::analyzer
