@@ -2,7 +2,6 @@
 // a day of polling is millions of values.
 #include "values_writer.h"
 
-#include <cmath>
 #include <string>
 
 #include "frame_findings.h"
@@ -120,9 +119,12 @@ void append_influx_row(std::string& o, const ValueRow& r) {
   o += " value=";
   append_value_number(o, r.value);
   if (r.context.has_timestamps) {
-    // Microseconds are what the capture holds; a double cannot carry nanoseconds of an epoch.
+    // The microseconds of the ts column, digit for digit (a double cannot carry nanoseconds
+    // of an epoch, and its product with 1e6 may round the other way than the printed ts).
     o += ' ';
-    append_int(o, std::llround(r.frame.start_time * 1e6));
+    const std::size_t at = o.size();
+    append_fixed(o, r.frame.start_time, 6);
+    o.erase(o.find('.', at), 1);
     o += "000";
   }
   o += '\n';
