@@ -48,8 +48,10 @@ PAGE_CHECK = r"""
       for (let row = v.chart.numRows() - 1; row >= 0; --row) {
         const value = v.chart.getValue(row, i + 1);
         if (value === null || value === undefined) continue;
+        // A banded chart's point is [min, last, max] of its bucket; a plain one's the last.
         last.push({label: s.label, lane: pvtap.data.lanes[s.lane].label, dialect: s.dialect,
-                   address: s.address, key: s.key, value: value[1]});
+                   address: s.address, key: s.key,
+                   value: Array.isArray(value) ? value[1] : value});
         break;
       }
     });

@@ -62,6 +62,19 @@ std::uint32_t TimelineCollector::station_lane(BusState& bus, std::uint8_t statio
   return lane;
 }
 
+// A damaged frame's station byte may be the damage: it joins its station's lane only when
+// that station has shown up in a good frame, else the bus lane (a day of line noise would
+// otherwise open a lane for every address). The same for damaged requests left unanswered.
+std::uint32_t TimelineCollector::lane_of(BusState& bus, const SessionFrame& f) {
+  if (f.frame == nullptr) return bus.bus_lane;
+  return f.check.ok ? station_lane(bus, f.frame->station) : known_lane(bus, f.frame->station);
+}
+
+std::uint32_t TimelineCollector::known_lane(const BusState& bus, std::uint8_t station) const {
+  const auto it = bus.station_lanes.find(station);
+  return it != bus.station_lanes.end() ? it->second : bus.bus_lane;
+}
+
 std::size_t TimelineCollector::bucket_of(double time) {
   int doublings = 0;
   const std::size_t index = grid_.index_of(time, doublings);
@@ -93,8 +106,7 @@ void TimelineCollector::add_mark(Mark mark) {
 
 void TimelineCollector::frame(const EventContext& c, const SessionFrame& f) {
   BusState& bus = bus_of(c);
-  const std::uint32_t lane =
-      f.frame != nullptr ? station_lane(bus, f.frame->station) : bus.bus_lane;
+  const std::uint32_t lane = lane_of(bus, f);
   const std::size_t bucket = bucket_of(f.start_time);
   count_frame(bus, lane, bucket, f);
   mark_frame(lane, f);
@@ -122,7 +134,11 @@ void TimelineCollector::count_frame(BusState& bus, std::uint32_t lane, std::size
 
 void TimelineCollector::mark_frame(std::uint32_t lane, const SessionFrame& f) {
   if (!f.check.ok) add_mark(frame_mark(lane, f, MarkKind::Damaged));
-  if (f.reply_kind != ReplyKind::Normal) add_mark(frame_mark(lane, f, MarkKind::Exception));
+  // The core counts an exception for a good reply of either error form (BusTally).
+  const bool exception = f.check.ok && f.role == Role::Response && f.frame != nullptr &&
+                         (f.reply_kind == ReplyKind::HybridError ||
+                          (f.reply_kind == ReplyKind::GslException && f.frame->exception_code));
+  if (exception) add_mark(frame_mark(lane, f, MarkKind::Exception));
   if (f.unsolicited) add_mark(frame_mark(lane, f, MarkKind::Unsolicited));
   if (f.duplicate) add_mark(frame_mark(lane, f, MarkKind::Duplicate));
 }
@@ -172,7 +188,8 @@ void TimelineCollector::timeout(const EventContext& c, const SessionTimeout& t) 
   BusState& bus = bus_of(c);
   Mark m;
   m.time = t.request_start;
-  m.lane = station_lane(bus, t.timeout.station);
+  m.lane = kind == MarkKind::Timeout ? station_lane(bus, t.timeout.station)
+                                     : known_lane(bus, t.timeout.station);
   m.kind = kind;
   m.dialect = t.timeout.dialect;
   m.has_function = true;

@@ -44,6 +44,8 @@ class TimelineCollector : public EventWriter {
 
   BusState& bus_of(const EventContext& c);
   std::uint32_t station_lane(BusState& bus, std::uint8_t station);
+  std::uint32_t lane_of(BusState& bus, const SessionFrame& f);
+  std::uint32_t known_lane(const BusState& bus, std::uint8_t station) const;
   std::size_t bucket_of(double time);
   void add_mark(Mark mark);
   void count_frame(BusState& bus, std::uint32_t lane, std::size_t bucket, const SessionFrame& f);

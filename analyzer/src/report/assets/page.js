@@ -5,7 +5,8 @@
   'use strict';
   const data = JSON.parse(document.getElementById('pvtap-data').textContent);
   const lanes = data.lanes;
-  const pvtap = { data: data, charts: {}, details: {}, ready: false };
+  const pvtap = { data: data, charts: {}, details: {}, ready: false,
+                  started: performance.now() };
   window.pvtap = pvtap;
 
   const KIND_COLORS = {
@@ -24,6 +25,12 @@
     requests: 0.3, replies: 0.18, damaged: 0.0, timeout: -0.06, unanswered_damaged: -0.12,
     exception: -0.18, unsolicited: -0.24, duplicate: -0.3, noise: 0.06, gap: -0.06
   };
+
+  // A chart of a few lines shows each bucket's min..max as a band around its line; with more
+  // lines the bands would only smear into each other (and cost the browser seconds to paint
+  // on a day of 16 stations), so the lines carry the bucket's last reading (latency: its mean)
+  // and a value chart's legend names the bucket's min and max.
+  const MAX_BANDED_SERIES = 8;
 
   const bucketTime = i => (data.start + (i + 0.5) * data.bucket) * 1000;
   const pad = n => (n < 10 ? '0' : '') + n;
@@ -88,41 +95,47 @@
     return parts.join(' · ');
   }
 
+  // One series per kind, every lane in it (y = lane): a chart's cost grows with series times
+  // rows, so kinds must not multiply by lanes. Points of one kind at the same moment on two
+  // lanes are kept apart by a microsecond per lane, far below what the axis can show.
+  const laneX = (ms, lane) => ms + lane * 1e-3;
+
   function timelineSeries() {
     const names = [], points = [], colors = [];
-    const add = (name, kind, list) => {
+    const add = (kind, list, details) => {
       if (list.length === 0) return;
-      names.push(name);
+      names.push(kind);
       points.push(list);
       colors.push(KIND_COLORS[kind]);
+      pvtap.details[kind] = details;
     };
-    lanes.forEach((lane, l) => {
-      ['requests', 'replies'].forEach(kind => {
-        const name = kind + '|' + l;
-        const details = pvtap.details[name] = new Map();
-        add(name, kind, lane[kind].map(([i, n]) => {
-          const x = bucketTime(i);
-          details.set(x, timeText(x, true) + ' · ' + lane.label + ' · ' + n + ' ' + kind +
-                         ' in ' + data.bucket.toFixed(2) + ' s');
-          return [x, l + KIND_OFFSET[kind]];
-        }));
-        details.counts = new Map(lane[kind].map(([i, n]) => [bucketTime(i), n]));
+    // The tooltip's words are made when a point is hovered; only what they need is kept.
+    ['requests', 'replies'].forEach(kind => {
+      const details = new Map(), list = [];
+      details.counts = new Map();
+      details.text = x => {
+        const [l, n] = details.get(x);
+        return timeText(x, true) + ' · ' + lanes[l].label + ' · ' + n + ' ' + kind + ' in ' +
+               data.bucket.toFixed(2) + ' s';
+      };
+      lanes.forEach((lane, l) => {
+        lane[kind].forEach(([i, n]) => {
+          const x = laneX(bucketTime(i), l);
+          details.set(x, [l, n]);
+          details.counts.set(x, n);
+          list.push([x, l + KIND_OFFSET[kind]]);
+        });
       });
+      add(kind, list, details);
     });
     Object.keys(data.marks).forEach(kind => {
-      const byLane = new Map();
-      data.marks[kind].forEach(m => {
-        if (!byLane.has(m[1])) byLane.set(m[1], []);
-        byLane.get(m[1]).push(m);
-      });
-      byLane.forEach((list, l) => {
-        const name = kind + '|' + l;
-        const details = pvtap.details[name] = new Map();
-        add(name, kind, list.map(m => {
-          details.set(m[0] * 1000, markText(kind, m));
-          return [m[0] * 1000, l + KIND_OFFSET[kind]];
-        }));
-      });
+      const details = new Map();
+      details.text = x => markText(kind, details.get(x));
+      add(kind, data.marks[kind].map(m => {
+        const x = laneX(m[0] * 1000, m[1]);
+        details.set(x, m);
+        return [x, m[1] + KIND_OFFSET[kind]];
+      }), details);
     });
     return { names, points, colors };
   }
@@ -161,7 +174,7 @@
       highlightSeriesOpts: { highlightCircleSize: 6 },
       highlightCallback: (event, x, points, row, seriesName) => {
         const details = pvtap.details[seriesName];
-        tooltip.textContent = details && details.has(x) ? details.get(x) : '';
+        tooltip.textContent = details && details.has(x) ? details.text(x) : '';
         tooltip.style.display = tooltip.textContent ? 'block' : 'none';
       },
       unhighlightCallback: () => { tooltip.style.display = 'none'; }
@@ -187,16 +200,15 @@
   }
 
   function buildLatency() {
-    const names = [], points = [];
-    lanes.forEach(lane => {
-      if (lane.latency.length === 0) return;
-      names.push(lane.label + ' (ms)');
-      points.push(lane.latency.map(([i, lo, mean, hi]) => [bucketTime(i), [lo, mean, hi]]));
-    });
-    if (names.length === 0) return null;
+    const timed = lanes.filter(lane => lane.latency.length > 0);
+    if (timed.length === 0) return null;
+    const banded = timed.length <= MAX_BANDED_SERIES;
+    const points = timed.map(lane => lane.latency.map(([i, lo, mean, hi]) =>
+      [bucketTime(i), banded ? [lo, mean, hi] : mean]));
     return new Dygraph(element('latency-chart'), rowsOf(points), {
-      labels: ['time'].concat(names), customBars: true, legend: 'follow',
-      labelsSeparateLines: true, axes: { x: xAxis }, ylabel: 'ms, min / mean / max'
+      labels: ['time'].concat(timed.map(lane => lane.label + ' (ms)')), customBars: banded,
+      legend: 'follow', labelsSeparateLines: true, axes: { x: xAxis },
+      ylabel: banded ? 'ms, min / mean / max' : 'ms, mean per bucket', connectSeparatedPoints: true
     });
   }
 
@@ -230,14 +242,25 @@
     div.className = 'chart';
     box.append(title, div, legend);
     container.appendChild(box);
-    const points = group.series.map(s => s.points.map(([i, lo, last, hi]) =>
-      [bucketTime(i), [lo, last, hi]]));
-    const step = group.series.some(s => s.step);
+    const banded = group.series.length <= MAX_BANDED_SERIES;
+    const ranges = group.series.map(() => new Map());
+    const points = group.series.map((s, k) => s.points.map(([i, lo, last, hi]) => {
+      const x = bucketTime(i);
+      ranges[k].set(x, [lo, hi]);
+      return [x, banded ? [lo, last, hi] : last];
+    }));
+    const labels = group.series.map(s => s.label);
+    const valueFormatter = (y, opts, seriesName, g, row) => {
+      const k = labels.indexOf(seriesName);
+      const range = k >= 0 ? ranges[k].get(g.getValue(row, 0)) : undefined;
+      const text = Array.isArray(y) ? String(y[1]) : String(y);
+      return range && range[0] !== range[1] ? text + ' (' + range[0] + '..' + range[1] + ')' : text;
+    };
     return new Dygraph(div, rowsOf(points), {
-      labels: ['time'].concat(group.series.map(s => s.label)), customBars: true,
-      stepPlot: step, labelsDiv: legend, labelsSeparateLines: false, legend: 'always',
-      axes: { x: xAxis }, ylabel: group.group === 'states' ? 'value' : group.group,
-      connectSeparatedPoints: true
+      labels: ['time'].concat(labels), customBars: banded,
+      stepPlot: group.series.some(s => s.step), labelsDiv: legend, labelsSeparateLines: false,
+      legend: 'always', axes: { x: xAxis, y: { valueFormatter: valueFormatter } },
+      ylabel: group.group === 'states' ? 'value' : group.group, connectSeparatedPoints: true
     });
   }
 
@@ -257,13 +280,23 @@
     pvtap.ready = true;
     return;
   }
-  pvtap.charts.timeline = buildTimeline();
-  pvtap.charts.load = buildLoad();
-  pvtap.charts.latency = buildLatency();
-  pvtap.charts.histogram = buildHistogram();
-  pvtap.charts.values = buildValues();
+  // How long each chart took to build, for bench/html_report_bench.py.
+  pvtap.timings = {};
+  const timed_build = (name, build) => {
+    const t0 = performance.now();
+    pvtap.charts[name] = build();
+    pvtap.timings[name] = performance.now() - t0;
+  };
+  timed_build('timeline', buildTimeline);
+  timed_build('load', buildLoad);
+  timed_build('latency', buildLatency);
+  timed_build('histogram', buildHistogram);
+  timed_build('values', buildValues);
   const timed = [pvtap.charts.timeline, pvtap.charts.load, pvtap.charts.latency]
     .concat(pvtap.charts.values.map(v => v.chart)).filter(g => g);
+  const t0 = performance.now();
   if (timed.length > 1) Dygraph.synchronize(timed, { zoom: true, selection: false, range: false });
+  pvtap.timings.synchronize = performance.now() - t0;
+  pvtap.timings.script_end = performance.now();
   pvtap.ready = true;
 })();
