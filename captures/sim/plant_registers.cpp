@@ -104,6 +104,13 @@ void fill_hybrid(const PlantModel& p, RegisterImage& r) {
   r.set_value("pv_charging_current", s.pv_kw * 1000 / battery_v);
   r.set_value("pv_charging_power", s.pv_kw * 1000);
   r.set_raw("device_number", 0x32000000u | (1000u + p.station()));
+  // On and feeding while the sun carries it; the PV charger tracks the maximum power point.
+  r.set_raw("inverter_on_off_state", s.producing ? 1 : 0);
+  r.set_raw("pv_controller_on_off_state", s.producing ? 1 : 0);
+  r.set_raw("pv_charging_state", s.producing ? 1 : 0);
+  r.set_raw("pv_controller_fan", s.temperature_c > 40 ? 1 : 0);
+  r.set_raw("inverter_on_off", 1);
+  r.set_raw("pv_charging_on_off", 1);
   fill_hybrid_settings(p, r);
 }
 

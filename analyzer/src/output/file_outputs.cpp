@@ -19,7 +19,10 @@ std::optional<std::string> FileOutputs::open() {
     if (auto error = values_file_.open(options_.values_path)) return error;
     values_ = make_values_writer(options_.values_format, values_file_.stream());
   }
-  if (!options_.html_path.empty()) timeline_ = std::make_unique<TimelineCollector>();
+  if (!options_.html_path.empty()) {
+    if (auto error = html_file_.open(options_.html_path)) return error;
+    timeline_ = std::make_unique<TimelineCollector>();
+  }
   return std::nullopt;
 }
 
@@ -35,10 +38,9 @@ std::unique_ptr<EventWriter> FileOutputs::events_for(std::unique_ptr<EventWriter
 std::optional<std::string> FileOutputs::finish(const AuditReport& report) {
   std::optional<std::string> error = values_file_.close();
   if (timeline_) {
-    OutputFile html;
-    if (auto failed = html.open(options_.html_path)) return failed;
-    write_html_report(report, timeline_->finish(), HtmlOptions{options_.plot_keys}, html.stream());
-    if (auto failed = html.close()) return failed;
+    write_html_report(report, timeline_->finish(), HtmlOptions{options_.plot_keys},
+                      html_file_.stream());
+    if (auto failed = html_file_.close()) return failed;
   }
   return error;
 }

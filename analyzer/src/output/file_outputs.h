@@ -31,6 +31,7 @@ class FileOutputs {
  private:
   const AuditOptions& options_;
   OutputFile values_file_;
+  OutputFile html_file_;  // opened at the start, so that a bad path fails before reading
   std::unique_ptr<EventWriter> values_;
   std::unique_ptr<TimelineCollector> timeline_;
   std::unique_ptr<EventWriter> format_;
