@@ -29,7 +29,8 @@ const char* const kFooter =
     "\nGateway traffic: --interface captures with libpcap (needs root or CAP_NET_RAW and\n"
     "CAP_NET_ADMIN); --port names the gateway's port(s), --filter adds a BPF filter.\n"
     "\nOutput on stdout as frames complete; --write FILE keeps a pcap (link type 252) for\n"
-    "Wireshark, flushed record by record so an abrupt end loses nothing.\n"
+    "Wireshark, flushed record by record so an abrupt end loses nothing. --values FILE\n"
+    "writes the register values as they arrive; --html FILE the report page when it stops.\n"
     "\nExit status: 0 stopped normally (also on SIGINT/SIGTERM); 1 findings with --fail-on\n"
     "errors; 2 usage error, a device or interface that cannot be opened.\n"
     "\nExamples:\n"
@@ -37,6 +38,7 @@ const char* const kFooter =
     "  pvtap sniff --device /dev/ttyUSB0 --baud 19200 --parity even --format jsonl | jq .\n"
     "  pvtap sniff --device /dev/ttyUSB0 --device /dev/ttyUSB1 --write site.pcap\n"
     "  pvtap sniff --interface eth0 --port 4001 --duration 600 --summary-only\n"
+    "  pvtap sniff --device /dev/ttyUSB0 --duration 3600 --html hour.html --values hour.csv\n"
     "\nIn Wireshark, once pvtap is installed (its Debian package, or `cmake --install`), the\n"
     "capture interfaces list \"RS485 tap\" for each serial port (pvtap answers Wireshark's\n"
     "extcap calls).\n";
