@@ -76,6 +76,7 @@ void write_html_report(const AuditReport& report, const Timeline& timeline,
   append_chart_sections(o);
   append_html_polling(o, report, timeline);
   append_html_findings(o, report);
+  append_html_latest_values(o, report);
   o += "</main>\n";
   append_scripts(o, report, timeline, options);
   o += "</body>\n</html>\n";

@@ -8,6 +8,7 @@
 #include "html_text.h"
 #include "poll_block_text.h"
 #include "pvtap/function_codes.h"
+#include "pvtap/register_format.h"
 #include "summary_writers.h"
 #include "text_append.h"
 
@@ -40,6 +41,11 @@ void count_cell(std::string& o, std::uint64_t n) {
   o += "<td class=\"n\">";
   append_uint(o, n);
   o += "</td>";
+}
+
+// The tiles link to the first bus's findings: ids are given once.
+std::string id_attr(bool first, const char* id) {
+  return first ? std::string(" id=\"") + id + "\"" : std::string();
 }
 
 // Tile: one health counter of the overview, linking to where it is explained.
@@ -111,11 +117,11 @@ void examples_table(std::string& o, const AuditReport& r, const std::vector<Fram
   o += "</table>\n";
 }
 
-void timeouts_list(std::string& o, const AuditReport& r, const BusReport& b) {
+void timeouts_list(std::string& o, const AuditReport& r, const BusReport& b, bool first) {
   o += report_line(
-      "<h4 id=\"findings-timeouts\">Timeouts: %llu</h4><p>good requests the slave did not "
+      "<h4%s>Timeouts: %llu</h4><p>good requests the slave did not "
       "answer (no reply %llu, next request first %llu)</p>\n",
-      static_cast<unsigned long long>(b.timeouts),
+      id_attr(first, "findings-timeouts").c_str(), static_cast<unsigned long long>(b.timeouts),
       static_cast<unsigned long long>(b.timeouts_by_reason[0]),
       static_cast<unsigned long long>(b.timeouts_by_reason[1]));
   if (b.timeout_examples.empty()) return;
@@ -133,8 +139,9 @@ void timeouts_list(std::string& o, const AuditReport& r, const BusReport& b) {
   o += "</table>\n";
 }
 
-void exception_list(std::string& o, const BusReport& b) {
-  o += report_line("<h4 id=\"findings-exceptions\">Exceptions and error replies: %llu</h4>\n",
+void exception_list(std::string& o, const BusReport& b, bool first) {
+  o += report_line("<h4%s>Exceptions and error replies: %llu</h4>\n",
+                   id_attr(first, "findings-exceptions").c_str(),
                    static_cast<unsigned long long>(b.exceptions));
   if (b.exception_codes.empty()) return;
   o += "<ul>";
@@ -153,29 +160,32 @@ void exception_list(std::string& o, const BusReport& b) {
   o += "</ul>\n";
 }
 
-void bus_findings(std::string& o, const AuditReport& r, const BusFindings& bus) {
+void bus_findings(std::string& o, const AuditReport& r, const BusFindings& bus, bool first) {
   const BusReport& b = bus.report;
   const auto u = [](std::uint64_t v) { return static_cast<unsigned long long>(v); };
   o += "<h3>";
   append_html_escaped(o, bus_title(bus));
   o += "</h3>\n";
   o += report_line(
-      "<h4 id=\"findings-bad\">Bad checks: %llu</h4><p>%llu damaged replies (the slave "
+      "<h4%s>Bad checks: %llu</h4><p>%llu damaged replies (the slave "
       "answered; the line damaged the answer), %llu damaged requests left unanswered (the slave "
       "rightly ignored them)</p>\n",
-      u(b.bytes.bad_frames), u(b.damaged_replies), u(b.unanswered_damaged_requests));
+      id_attr(first, "findings-bad").c_str(), u(b.bytes.bad_frames), u(b.damaged_replies),
+      u(b.unanswered_damaged_requests));
   examples_table(o, r, b.bad_check_examples, "check should be");
-  timeouts_list(o, r, b);
+  timeouts_list(o, r, b, first);
   o += report_line(
-      "<h4 id=\"findings-replies\">Unsolicited replies: %llu</h4><p>%llu late for a timed-out "
+      "<h4%s>Unsolicited replies: %llu</h4><p>%llu late for a timed-out "
       "request; duplicate replies: %llu; byte count mismatches: %llu</p>\n",
-      u(b.unsolicited), u(b.late_replies), u(b.duplicates), u(b.count_mismatches));
+      id_attr(first, "findings-replies").c_str(), u(b.unsolicited), u(b.late_replies),
+      u(b.duplicates), u(b.count_mismatches));
   examples_table(o, r, b.unsolicited_examples, "check");
-  exception_list(o, b);
-  o += report_line("<h4 id=\"findings-noise\">Noise: %llu bytes in %llu runs</h4>\n",
-                   u(b.bytes.noise_bytes), u(b.bytes.noise_runs));
-  o += report_line("<h4 id=\"findings-gaps\">Data-loss gaps: %llu</h4><p>%llu bytes lost%s</p>\n",
-                   u(b.gaps.gaps), u(b.gaps.lost_bytes),
+  exception_list(o, b, first);
+  o += report_line("<h4%s>Noise: %llu bytes in %llu runs</h4>\n",
+                   id_attr(first, "findings-noise").c_str(), u(b.bytes.noise_bytes),
+                   u(b.bytes.noise_runs));
+  o += report_line("<h4%s>Data-loss gaps: %llu</h4><p>%llu bytes lost%s</p>\n",
+                   id_attr(first, "findings-gaps").c_str(), u(b.gaps.gaps), u(b.gaps.lost_bytes),
                    b.gaps.gaps_of_unknown_size > 0 ? ", some gaps of unknown size" : "");
 }
 
@@ -297,9 +307,33 @@ void append_html_polling(std::string& o, const AuditReport& r, const Timeline& t
   o += "</section>\n";
 }
 
+void append_html_latest_values(std::string& o, const AuditReport& r) {
+  o += "<section id=\"latest\"><h2>Latest values</h2>\n"
+       "<p class=\"hint\">What each station last reported, text registers included.</p>\n";
+  for (const BusFindings& bus : r.buses) {
+    for (const StationSummary& s : bus.report.stations) {
+      if (s.latest_values.empty()) continue;
+      o += "<details><summary>station ";
+      append_html_escaped(o, station_key(r, bus, s.station));
+      if (r.settings.has_timestamps) o += ", as of " + time_text(r, s.last_report_time);
+      o += "</summary>\n<table class=\"latest\">";
+      for (const LatestValue& v : s.latest_values) {
+        o += "<tr>";
+        cell(o, to_string(v.dialect));
+        cell(o, format_value_address(v.value, v.dialect).view());
+        cell(o, v.value.name());
+        cell(o, format_value(v.value));
+        o += "</tr>\n";
+      }
+      o += "</table></details>\n";
+    }
+  }
+  o += "</section>\n";
+}
+
 void append_html_findings(std::string& o, const AuditReport& r) {
   o += "<section id=\"findings\"><h2>Findings</h2>\n";
-  for (const BusFindings& bus : r.buses) bus_findings(o, r, bus);
+  for (std::size_t i = 0; i < r.buses.size(); ++i) bus_findings(o, r, r.buses[i], i == 0);
   o += "</section>\n";
 }
 
