@@ -61,6 +61,24 @@ PAGE_CHECK = r"""
 })()
 """
 
+# Where the first mark of a kind is on the screen, after scrolling the timeline into view.
+MARK_POSITION = r"""
+((kind) => {
+  const g = pvtap.charts.timeline, details = pvtap.details[kind];
+  if (!details || details.size === 0) return null;
+  const labels = g.getLabels(), col = labels.indexOf(kind);
+  document.getElementById('timeline-chart').scrollIntoView();
+  for (let row = 0; row < g.numRows(); ++row) {
+    const y = g.getValue(row, col);
+    if (y === null) continue;
+    const x = g.getValue(row, 0), [cx, cy] = g.toDomCoords(x, y);
+    const box = document.getElementById('timeline-chart').getBoundingClientRect();
+    return JSON.stringify({x: box.left + cx, y: box.top + cy, mark: details.get(x)});
+  }
+  return null;
+})
+"""
+
 TILE_FIELDS = ["frames", "bad_checks", "timeouts", "unanswered_damaged_requests", "exceptions",
                "noise_bytes", "gaps"]
 MARK_FIELDS = {"damaged": "bad_checks", "timeout": "timeouts",
@@ -81,6 +99,19 @@ def latest_values(text_report):
         if m and station is not None:
             values[(station, m.group(1), m.group(2))] = float(m.group(3))
     return values
+
+
+def hover_tooltip(browser, kind):
+    """The tooltip shown with the mouse on the first mark of `kind` (None without such marks):
+    (its text, the mark's fields)."""
+    found = browser.evaluate(MARK_POSITION + "(%s)" % json.dumps(kind))
+    if found is None:
+        return None
+    where = json.loads(found)
+    browser.send("Input.dispatchMouseEvent",
+                 {"type": "mouseMoved", "x": where["x"], "y": where["y"]})
+    text = browser.evaluate("document.getElementById('timeline-tooltip').textContent")
+    return text, where["mark"]
 
 
 def run(args):
@@ -115,6 +146,7 @@ def main():
             time.sleep(0.05)
         loaded = time.monotonic() - started
         page = json.loads(browser.evaluate(PAGE_CHECK))
+        tooltip = hover_tooltip(browser, "timeout")
         shot = os.path.join(out_dir, name + ".png")
         browser.screenshot(shot)
         events = browser.drain()
@@ -143,6 +175,18 @@ def main():
             failures.append("timeline has %s %s marks, the summary counts %s %s"
                             % (page["marks"].get(kind, 0), kind, summary[field], field))
 
+    # The tooltip of a timeout names the request: its time, station lane, verdict, function.
+    if summary["timeouts"] > 0:
+        if tooltip is None:
+            failures.append("no timeout mark to hover")
+        else:
+            shown, mark = tooltip
+            t, dialect, function = mark[0], mark[2], mark[3]
+            stamp = time.strftime("%H:%M:%S", time.gmtime(t))
+            for word in (stamp, "timeout", dialect + " request", "(0x%02x)" % function):
+                if word not in shown:
+                    failures.append("the timeout's tooltip %r does not name %r" % (shown, word))
+
     latest = latest_values(text)
     if not page["last"]:
         failures.append("no value chart drawn")
@@ -155,6 +199,8 @@ def main():
             failures.append("%s: chart ends at %s, the text report's latest value is %s"
                             % (point["label"], point["value"], latest[key]))
 
+    if tooltip:
+        print("tooltip of the first timeout: " + tooltip[0])
     print("%s: %d tiles, %d mark kinds, %d value series checked; page ready in %.2f s; "
           "network %s; screenshot %s"
           % (name, len(TILE_FIELDS), len(MARK_FIELDS), len(page["last"]), loaded,

@@ -111,7 +111,13 @@ void TimelineCollector::frame(const EventContext& c, const SessionFrame& f) {
   count_frame(bus, lane, bucket, f);
   mark_frame(lane, f);
   if (frame_feeds_values(f)) add_values(lane, bucket, f);
-  if (f.role == Role::Request) note_request(bus, f.start_time);
+  if (f.role == Role::Request) {
+    note_request(bus, f.start_time);
+    if (f.frame != nullptr) {
+      recent_requests_[f.id % recent_requests_.size()] = {f.id, &bus, f.frame->start,
+                                                          f.frame->count};
+    }
+  }
 }
 
 void TimelineCollector::count_frame(BusState& bus, std::uint32_t lane, std::size_t bucket,
@@ -195,6 +201,11 @@ void TimelineCollector::timeout(const EventContext& c, const SessionTimeout& t) 
   m.has_function = true;
   m.function = t.timeout.function;
   m.is_request = true;
+  const RequestBlock& r = recent_requests_[t.timeout.request_id % recent_requests_.size()];
+  if (r.id == t.timeout.request_id && r.bus == &bus) {
+    m.start = r.start;
+    m.count = r.count;
+  }
   add_mark(m);
 }
 

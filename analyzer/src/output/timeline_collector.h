@@ -2,8 +2,10 @@
 // timeline.h), in memory bounded by stations, registers and buckets, not by the input's length.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <unordered_map>
 
@@ -52,6 +54,15 @@ class TimelineCollector : public EventWriter {
   void mark_frame(std::uint32_t lane, const SessionFrame& f);
   void add_values(std::uint32_t lane, std::size_t bucket, const SessionFrame& f);
   void note_request(BusState& bus, double time);
+
+  // The blocks of recent requests by frame id, so that a timeout's tooltip can name the block
+  // its request asked for (a request is given up within the timeout, long before 64 more).
+  struct RequestBlock {
+    std::uint64_t id = ~std::uint64_t{0};
+    const void* bus = nullptr;
+    std::optional<std::uint16_t> start, count;
+  };
+  std::array<RequestBlock, 64> recent_requests_{};
 
   Timeline timeline_;
   TimeGrid grid_;

@@ -8,6 +8,7 @@
 
 #include "frame_findings.h"
 #include "html_sections.h"
+#include "poll_block_text.h"
 #include "pvtap/function_codes.h"
 #include "text_append.h"
 
@@ -122,7 +123,7 @@ void lanes(std::string& o, const AuditReport& r, const Timeline& t) {
   o += ']';
 }
 
-void marks(std::string& o, const Timeline& t) {
+void marks(std::string& o, const AuditReport& r, const Timeline& t) {
   o += ",\"marks\":{";
   for (std::size_t k = 0; k < kMarkKinds; ++k) {
     if (k > 0) o += ',';
@@ -146,7 +147,11 @@ void marks(std::string& o, const Timeline& t) {
         o += "null";
       }
       o += m.is_request ? ",1," : ",0,";
-      optional_number(o, m.start);
+      if (m.start) {
+        append_json_string(o, start_address_text(r.settings, m.dialect, m.start));
+      } else {
+        o += "null";
+      }
       o += ',';
       optional_number(o, m.count);
       o += ',';
@@ -289,7 +294,7 @@ void append_chart_data_json(std::string& o, const AuditReport& r, const Timeline
   o += ",\"bucket\":";
   append_fixed(o, t.bucket_width, 6);
   lanes(o, r, t);
-  marks(o, t);
+  marks(o, r, t);
   function_names(o, t);
   loads(o, t);
   values(o, r, t, options);

@@ -9,12 +9,16 @@
 
 namespace pvtap::analyzer {
 
+std::string start_address_text(const AuditSettings& settings, Dialect d,
+                               std::optional<std::uint16_t> wire_start) {
+  if (!wire_start) return "-";
+  const std::optional<std::uint16_t> written = written_address_of(d, *wire_start, settings.gsl_ids);
+  return std::string(written ? format_register_address(d, *written).view()
+                             : format_register_address(Dialect::Hybrid, *wire_start).view());
+}
+
 std::string block_start_text(const AuditSettings& settings, const PollBlock& b) {
-  if (!b.start) return "-";
-  const std::optional<std::uint16_t> written =
-      written_address_of(b.dialect, *b.start, settings.gsl_ids);
-  return std::string(written ? format_register_address(b.dialect, *written).view()
-                             : format_register_address(Dialect::Hybrid, *b.start).view());
+  return start_address_text(settings, b.dialect, b.start);
 }
 
 std::string block_text(const AuditSettings& settings, const PollBlock& b) {

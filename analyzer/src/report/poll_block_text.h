@@ -1,6 +1,8 @@
 // The registers of a poll block as the reference writes them, for every report rendering.
 #pragma once
 
+#include <cstdint>
+#include <optional>
 #include <string>
 
 #include "audit_report.h"
@@ -13,5 +15,8 @@ namespace pvtap::analyzer {
 std::string block_text(const AuditSettings& settings, const PollBlock& b);
 // The start alone ("1050", "0x1006", "-").
 std::string block_start_text(const AuditSettings& settings, const PollBlock& b);
+// The same for a start address on the wire of a dialect.
+std::string start_address_text(const AuditSettings& settings, Dialect d,
+                               std::optional<std::uint16_t> wire_start);
 
 }  // namespace pvtap::analyzer
