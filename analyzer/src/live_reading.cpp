@@ -26,6 +26,7 @@ void AuditRun::flush_live_output(double now) {
     status_->clear();
     out_.flush();
   }
+  files_->flush();  // --values rows too, for a reader tailing the file
   if (status_->due(now)) show_status(now);
 }
 

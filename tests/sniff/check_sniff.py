@@ -434,6 +434,11 @@ def check_files(args):
                        "--html", html, "--timeout", str(truth["timeout_s"])])
     sniffer.wait_open(pty.path)
     play_truth(pty, truth)
+    # Rows reach the file while the capture runs (a Telegraf tail would read them then).
+    deadline = time.monotonic() + 5
+    while time.monotonic() < deadline and os.path.getsize(values) < 200:
+        time.sleep(0.05)
+    bad.check(os.path.getsize(values) >= 200, "no --values rows written before the stop")
     bad.check(sniffer.stop() == 0, f"exit status {sniffer.proc.returncode}: {sniffer.stderr()}")
     pty.close()
     events = sniffer.events()

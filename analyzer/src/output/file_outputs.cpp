@@ -35,6 +35,10 @@ std::unique_ptr<EventWriter> FileOutputs::events_for(std::unique_ptr<EventWriter
   return std::make_unique<EventFanOut>(std::move(writers));
 }
 
+void FileOutputs::flush() {
+  if (values_) values_file_.flush();
+}
+
 std::optional<std::string> FileOutputs::finish(const AuditReport& report) {
   std::optional<std::string> error = values_file_.close();
   if (timeline_) {

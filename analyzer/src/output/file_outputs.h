@@ -25,6 +25,8 @@ class FileOutputs {
   // The writer the bus sessions' events go to: `format` (stdout, may be null) alone when no
   // file output was asked for, so that the plain run is unchanged; else a fan-out to all.
   std::unique_ptr<EventWriter> events_for(std::unique_ptr<EventWriter> format);
+  // Hands what --values has buffered to the file (live capture: rows as they happen).
+  void flush();
   // Writes the HTML report and closes the files; nullopt when all went well.
   std::optional<std::string> finish(const AuditReport& report);
 

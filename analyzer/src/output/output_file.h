@@ -21,6 +21,10 @@ class OutputFile {
   // Creates (or truncates) `path`; nullopt when it worked, else "PATH: reason".
   std::optional<std::string> open(const std::string& path);
   OutputStream& stream() { return *stream_; }
+  // Writes what is buffered (only when something is: a live capture calls it often).
+  void flush() {
+    if (stream_ && !stream_->buffer().empty()) stream_->flush();
+  }
   // Flushes and closes; nullopt when every byte reached the file, else "PATH: reason".
   std::optional<std::string> close();
 
