@@ -15,7 +15,7 @@
 #include "cli/common_options.h"
 #include "cli/exit_status.h"
 #include "fuzz_input.h"
-#include "output/output_stream.h"
+#include "formatting/output_stream.h"
 #include "pvtap/register_decoder.h"
 #include "sources/capture_reader.h"
 

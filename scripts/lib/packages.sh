@@ -37,6 +37,10 @@ PVTAP_PACKAGES=(
   ser2net
   socat
   tcpdump
+  # pvtap --html inlines Debian's dygraphs at build time; its test opens the page in a real
+  # browser (headless chromium, driven over the DevTools pipe).
+  libjs-dygraphs
+  chromium
 )
 
 # Prints the packages of PVTAP_PACKAGES that are not installed, one per line.

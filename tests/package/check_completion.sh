@@ -63,6 +63,10 @@ for subcommand in audit sniff; do
 done
 expect_same "--format values" "$(printf '%s\n' csv jsonl text)" \
     "$(complete_line "$pvtap" audit --format '')"
+expect_same "--values-format values" "$(printf '%s\n' csv influx jsonl)" \
+    "$(complete_line "$pvtap" audit --values-format '')"
+expect_same "sniff --values-format values" "$(printf '%s\n' csv influx jsonl)" \
+    "$(complete_line "$pvtap" sniff --values-format '')"
 expect_same "--dialect values" "$(printf '%s\n' ascii auto gsl hybrid)" \
     "$(complete_line "$pvtap" sniff --dialect '')"
 expect_same "--gsl-ids values" "$(printf '%s\n' decimal hex)" \

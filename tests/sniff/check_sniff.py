@@ -11,6 +11,7 @@ checks: truth passive killed unplug two_buses stop_conditions status_line bad_de
 import argparse
 import json
 import os
+import re
 import signal
 import subprocess
 import sys
@@ -419,6 +420,47 @@ def check_stop_conditions(args):
     return bad.exit_status("stop_conditions")
 
 
+def check_files(args):
+    """--values and --html on a live tap stopped by SIGTERM: the values file holds a row per
+    value of every good reply, the HTML page is written at the stop and its tiles show the
+    summary's numbers."""
+    bad = Failures()
+    truth = simulate(args, "files", "--dialect", "gsl,hybrid", "--inverters", "2", "--duration",
+                     "3", "--seed", "12", "--faults", "corrupt=10,missing=10")
+    values, html = os.path.join(args.scratch, "values.csv"), os.path.join(args.scratch, "bus.html")
+    pty = pty_bus.Pty()
+    sniffer = Sniffer(args.pvtap, args.scratch, "files",
+                      ["--device", pty.path, "--format", "jsonl", "--values", values,
+                       "--html", html, "--timeout", str(truth["timeout_s"])])
+    sniffer.wait_open(pty.path)
+    play_truth(pty, truth)
+    # Rows reach the file while the capture runs (a Telegraf tail would read them then).
+    deadline = time.monotonic() + 5
+    while time.monotonic() < deadline and os.path.getsize(values) < 200:
+        time.sleep(0.05)
+    bad.check(os.path.getsize(values) >= 200, "no --values rows written before the stop")
+    bad.check(sniffer.stop() == 0, f"exit status {sniffer.proc.returncode}: {sniffer.stderr()}")
+    pty.close()
+    events = sniffer.events()
+    expected = sum(len(e["values"]) for e in frames_of(events)
+                   if e["role"] == "response" and e["check"] == "ok")
+    with open(values, encoding="utf-8") as f:
+        rows = f.read().splitlines()
+    bad.check(rows and rows[0] == "ts,bus,station,dialect,register,key,name,value,unit",
+              f"values header {rows[:1]}")
+    bad.check(expected > 0 and len(rows) - 1 == expected,
+              f"{len(rows) - 1} value rows, the frames carry {expected} values")
+    with open(html, encoding="utf-8") as f:
+        page = f.read()
+    tiles = dict(re.findall(r'data-key="([a-z_]+)"><span class="value">(\d+)<', page))
+    summary = events[-1]
+    for key in ("frames", "bad_checks", "timeouts", "exceptions", "noise_bytes"):
+        bad.check(tiles.get(key) == str(summary[key]),
+                  f"HTML tile {key} {tiles.get(key)}, summary {summary[key]}")
+    bad.check("pvtap sniff report" in page, "the page is not titled as a sniff report")
+    return bad.exit_status("files")
+
+
 def check_status_line(args):
     """Text output with stderr on a terminal redraws a status line there; with stderr not a
     terminal there is none."""
@@ -487,6 +529,7 @@ CHECKS = {
     "stop_conditions": check_stop_conditions,
     "status_line": check_status_line,
     "bad_devices": check_bad_devices,
+    "files": check_files,
 }
 
 

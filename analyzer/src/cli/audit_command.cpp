@@ -35,6 +35,9 @@ std::string footer_text() {
          "\nOutput on stdout: frames (and timeouts, noise, gaps) in the chosen format, then the\n"
          "report. jsonl ends with a {\"type\":\"summary\",...} line; csv holds rows only (use\n"
          "--summary-only for the report).\n"
+         "\nFiles besides stdout: --values FILE writes every decoded register value of a good\n"
+         "reply as a time series (csv, jsonl or InfluxDB line protocol); --html FILE writes the\n"
+         "report as one self-contained page with zoomable charts (open it from disk, no network).\n"
          "\nExit status: 0 done; 1 findings (bad checks, timeouts, exceptions) with\n"
          "--fail-on errors; 2 usage error or unreadable input (a truncated capture still\n"
          "prints what was read before it).\n"
@@ -44,6 +47,8 @@ std::string footer_text() {
          "  pvtap audit --summary-only --fail-on errors --timeout 0.5 bus.pcap\n"
          "  pvtap audit --raw ttyUSB0.bin --dialect gsl --baud 4800\n"
          "  pvtap audit --write frames.pcap capture.pcap   (open frames.pcap in Wireshark)\n"
+         "  pvtap audit --summary-only --html day.html --values day.csv site.pcap\n"
+         "  pvtap audit --summary-only --values site.lp --values-format influx site.pcap\n"
          "\nSupported link types: " +
          supported_link_types_text() + "\n";
 }
@@ -116,7 +121,7 @@ int audit(const AuditOptions& options, const RegisterDecoder& decoder, OutputStr
   report.written_records = output.written_records();
   output.write_summary(report);
   out.flush();
-  if (!output.close()) return kExitBadInput;
+  if (!output.close(report)) return kExitBadInput;
   if (!complete) {
     reader.report_truncation();
     return kExitBadInput;

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "output/event_writer.h"
+#include "output/values_writer.h"
 #include "pvtap/dialect.h"
 #include "pvtap/register_decoder.h"
 #include "sources/live_options.h"
@@ -33,6 +34,13 @@ struct CommonOptions {
   bool summary_only = false;
   std::string write_path;
   bool fail_on_errors = false;
+  // --values: the decoded register values as a time series, one row per value.
+  std::string values_path;
+  std::string values_format_name = "csv";
+  ValuesFormat values_format = ValuesFormat::Csv;
+  // --html: the report as one self-contained page; --plot narrows its value charts.
+  std::string html_path;
+  std::vector<std::string> plot_keys;
 };
 
 // AuditOptions: `pvtap audit`: capture files or plain dumps.

@@ -79,6 +79,41 @@ void add_output_options(CLI::App& audit, CommonOptions& o) {
                   "(without it, findings never change the exit status)")
       ->check(CLI::IsMember({"errors"}).description(""))
       ->type_name("errors");
+  add_values_options(audit, o);
+  add_html_options(audit, o);
+}
+
+void add_values_options(CLI::App& command, CommonOptions& o) {
+  command
+      .add_option("--values", o.values_path,
+                  "also write every register value of a good reply to a good request to FILE, "
+                  "one row per value (ts, bus, station, dialect, register, key, name, value, "
+                  "unit), for duckdb, pandas, a spreadsheet or Telegraf")
+      ->type_name("FILE");
+  command
+      .add_option("--values-format", o.values_format_name,
+                  "format of --values: csv (with a header), jsonl, or influx (InfluxDB line "
+                  "protocol: measurement pvtap, tags bus/station/dialect/key, field value, "
+                  "nanosecond time; numeric registers only)")
+      ->check(CLI::IsMember({"csv", "jsonl", "influx"}).description(""))
+      ->type_name("FORMAT")
+      ->default_str("csv");
+}
+
+void add_html_options(CLI::App& command, CommonOptions& o) {
+  command
+      .add_option("--html", o.html_path,
+                  "also write the report to FILE as one self-contained HTML page (no network "
+                  "needed): health tiles, stations, a timeline of every request, reply and "
+                  "finding, bus load, latency, polling and register values as zoomable charts")
+      ->type_name("FILE");
+  command
+      .add_option("--plot", o.plot_keys,
+                  "register keys (e.g. pv_power,energy_today) the --html page charts; default: "
+                  "every numeric register that changed")
+      ->type_name("KEY,...")
+      ->delimiter(',')
+      ->allow_extra_args(false);
 }
 
 bool load_maps(const CommonOptions& o, RegisterDecoder& decoder) {
@@ -109,6 +144,9 @@ void apply_choices(CommonOptions& o) {
              : o.format_name == "csv" ? OutputFormat::Csv
                                       : OutputFormat::Text;
   o.fail_on_errors = o.fail_on == "errors";
+  o.values_format = o.values_format_name == "jsonl"    ? ValuesFormat::Jsonl
+                    : o.values_format_name == "influx" ? ValuesFormat::Influx
+                                                       : ValuesFormat::Csv;
 }
 
 PipelineSettings pipeline_settings(const CommonOptions& o) {
@@ -118,7 +156,8 @@ PipelineSettings pipeline_settings(const CommonOptions& o) {
   s.timeout = o.timeout;
   s.gateway_gap_ms = o.gateway_gap_ms;
   s.ports = o.ports;
-  s.decode_values = !o.summary_only;
+  // --values and --html need the values of every frame even when stdout shows none.
+  s.decode_values = !o.summary_only || !o.values_path.empty() || !o.html_path.empty();
   s.gsl_ids = o.gsl_ids;
   return s;
 }
@@ -128,6 +167,7 @@ OutputSettings output_settings(const CommonOptions& o) {
   s.format = o.format;
   s.summary_only = o.summary_only;
   s.write_path = o.write_path;
+  s.files = FileOutputSettings{o.values_path, o.values_format, o.html_path, o.plot_keys};
   return s;
 }
 

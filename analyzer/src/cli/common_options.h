@@ -28,6 +28,10 @@ inline constexpr BaudRange kAnyBaud{300, 4000000};
 void add_protocol_options(CLI::App& command, CommonOptions& o, BaudRange baud_range);
 // --format, --summary-only, --write, --fail-on.
 void add_output_options(CLI::App& command, CommonOptions& o);
+// --values, --values-format.
+void add_values_options(CLI::App& command, CommonOptions& o);
+// --html, --plot.
+void add_html_options(CLI::App& command, CommonOptions& o);
 
 // Turns the options as typed (dialect, format, ...) into their typed fields.
 void apply_choices(CommonOptions& o);

@@ -34,7 +34,8 @@ const char* const kFooter =
     "\nGateway traffic: --interface captures with libpcap (needs root or CAP_NET_RAW and\n"
     "CAP_NET_ADMIN); --port names the gateway's port(s), --filter adds a BPF filter.\n"
     "\nOutput on stdout as frames complete; --write FILE keeps a pcap (link type 252) for\n"
-    "Wireshark, flushed record by record so an abrupt end loses nothing.\n"
+    "Wireshark, flushed record by record so an abrupt end loses nothing. --values FILE\n"
+    "writes the register values as they arrive; --html FILE the report page when it stops.\n"
     "\nExit status: 0 stopped normally (also on SIGINT/SIGTERM); 1 findings with --fail-on\n"
     "errors; 2 usage error, a device or interface that cannot be opened.\n"
     "\nExamples:\n"
@@ -42,6 +43,7 @@ const char* const kFooter =
     "  pvtap sniff --device /dev/ttyUSB0 --baud 19200 --parity even --format jsonl | jq .\n"
     "  pvtap sniff --device /dev/ttyUSB0 --device /dev/ttyUSB1 --write site.pcap\n"
     "  pvtap sniff --interface eth0 --port 4001 --duration 600 --summary-only\n"
+    "  pvtap sniff --device /dev/ttyUSB0 --duration 3600 --html hour.html --values hour.csv\n"
     "\nIn Wireshark, once pvtap is installed (its Debian package, or `cmake --install`), the\n"
     "capture interfaces list \"RS485 tap\" for each serial port (pvtap answers Wireshark's\n"
     "extcap calls).\n";
@@ -102,10 +104,10 @@ std::string source_problem(const SniffOptions& o) {
 // Opens the source the options name and captures from it until the loop says stop; false
 // when the source could not be opened (the reason is on stderr, nothing ran).
 template <typename Source>
-bool capture_from(Source& source, const SniffOptions& o, Pipeline& pipeline, OutputStream& out,
+bool capture_from(Source& source, const SniffOptions& o, Pipeline& pipeline, RunOutput& output,
                   LiveSources& live) {
   if (!source.open()) return false;
-  LiveLoop loop(o.live, pipeline, out);
+  LiveLoop loop(o.live, pipeline, output);
   source.run(loop, live);
   pipeline.finish(loop.last_time());
   return true;
@@ -122,10 +124,10 @@ int capture(const SniffOptions& o, const RegisterDecoder& decoder, OutputStream&
   bool opened = false;
   if (!o.live.devices.empty()) {
     SerialTaps taps(o.live, o.baud, pipeline);
-    opened = capture_from(taps, o, pipeline, out, live);
+    opened = capture_from(taps, o, pipeline, output, live);
   } else {
     InterfaceSource interface(o.live, o.ports, pipeline);
-    opened = capture_from(interface, o, pipeline, out, live);
+    opened = capture_from(interface, o, pipeline, output, live);
   }
   if (!opened) return kExitBadInput;
   AuditReport report = pipeline.report();
@@ -133,7 +135,7 @@ int capture(const SniffOptions& o, const RegisterDecoder& decoder, OutputStream&
   report.live = live;
   output.write_summary(report);
   out.flush();
-  if (!output.close()) return kExitBadInput;
+  if (!output.close(report)) return kExitBadInput;
   return o.fail_on_errors && has_findings(report) ? kExitFindings : kExitOk;
 }
 

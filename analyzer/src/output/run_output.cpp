@@ -22,7 +22,7 @@ std::unique_ptr<EventWriter> make_event_writer(OutputFormat format, OutputStream
 }  // namespace
 
 RunOutput::RunOutput(const OutputSettings& settings, OutputStream& out)
-    : settings_(settings), out_(out) {}
+    : settings_(settings), out_(out), files_(settings.files) {}
 
 bool RunOutput::open() {
   if (!settings_.write_path.empty()) {
@@ -34,10 +34,15 @@ bool RunOutput::open() {
     }
     fanout_.add(*pcap_);
   }
+  if (const auto error = files_.open()) {
+    std::fprintf(stderr, "pvtap: cannot write %s\n", error->c_str());
+    return false;
+  }
   if (!settings_.summary_only) {
     format_ = make_event_writer(settings_.format, out_);
     fanout_.add(*format_);
   }
+  files_.add_to(fanout_);
   fanout_.begin();
   return true;
 }
@@ -56,7 +61,16 @@ void RunOutput::write_summary(const AuditReport& report) {
   }
 }
 
-bool RunOutput::close() {
+void RunOutput::flush() {
+  if (!out_.buffer().empty()) out_.flush();
+  files_.flush();
+}
+
+bool RunOutput::close(const AuditReport& report) {
+  if (const auto error = files_.finish(report)) {
+    std::fprintf(stderr, "pvtap: cannot write %s\n", error->c_str());
+    return false;
+  }
   if (pcap_ && !pcap_->close()) {
     std::fprintf(stderr, "pvtap: cannot write %s: %s\n", settings_.write_path.c_str(),
                  pcap_->error().c_str());

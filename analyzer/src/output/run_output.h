@@ -10,6 +10,7 @@
 #include "formatting/output_stream.h"
 #include "output/event_fanout.h"
 #include "output/event_writer.h"
+#include "output/file_outputs.h"
 #include "output/pdu_capture_output.h"
 #include "report/audit_report.h"
 
@@ -21,6 +22,7 @@ struct OutputSettings {
   bool summary_only = false;  // no per-event lines, only the report
   std::string write_path;     // --write; empty for none
   bool flush_each_record = false;
+  FileOutputSettings files;  // --values, --html
 };
 
 class RunOutput {
@@ -34,8 +36,12 @@ class RunOutput {
   EventWriter& events() { return fanout_; }
   // The report in the chosen format (csv: only with --summary-only, a CSV holds rows).
   void write_summary(const AuditReport& report);
-  // Closes the --write file; false (after saying why) when writing it failed.
-  bool close();
+  // Live capture: what is buffered for stdout and --values goes out now.
+  void flush();
+  bool stdout_pending() const { return !out_.buffer().empty(); }
+  // Writes the HTML report and closes the files; false (after saying why) when writing one
+  // of them failed.
+  bool close(const AuditReport& report);
   std::uint64_t written_records() const { return pcap_ ? pcap_->records() : 0; }
 
  private:
@@ -43,6 +49,7 @@ class RunOutput {
   OutputStream& out_;
   std::unique_ptr<EventWriter> format_;
   std::optional<PduCaptureOutput> pcap_;
+  FileOutputs files_;
   EventFanout fanout_;
 };
 

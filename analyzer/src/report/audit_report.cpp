@@ -1,5 +1,6 @@
 #include "report/audit_report.h"
 
+#include <algorithm>
 #include <map>
 #include <utility>
 
@@ -51,6 +52,18 @@ BusReport AuditReport::totals() const {
 bool has_findings(const AuditReport& report) {
   const BusReport t = report.totals();
   return t.bytes.bad_frames > 0 || t.timeouts > 0 || t.exceptions > 0;
+}
+
+std::optional<TimeSpan> AuditReport::time_span() const {
+  std::optional<TimeSpan> span;
+  for (const BusFindings& b : buses) {
+    if (b.report.bytes.bytes_in == 0) continue;
+    if (!span) span = TimeSpan{b.report.first_time, b.report.last_time};
+    span->first = std::min(span->first, b.report.first_time);
+    span->last = std::max(span->last, b.report.last_time);
+  }
+  if (!settings.has_timestamps) return std::nullopt;
+  return span;
 }
 
 }  // namespace pvtap::analyzer

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -47,6 +48,13 @@ struct AuditSettings {
   GslIdReading gsl_ids = GslIdReading::Decimal;  // to write GSL addresses as the reference does
 };
 
+// TimeSpan: from the first to the last byte of the input.
+struct TimeSpan {
+  double first = 0;
+  double last = 0;
+  double seconds() const { return last - first; }
+};
+
 struct AuditReport {
   AuditSettings settings;
   std::vector<InputReport> inputs;
@@ -60,6 +68,8 @@ struct AuditReport {
 
   // Sums over all buses.
   BusReport totals() const;
+  // The time the buses' bytes span; nullopt without timestamps or bytes.
+  std::optional<TimeSpan> time_span() const;
 };
 
 // Bad checks, timeouts or exceptions were found (--fail-on errors).

@@ -66,22 +66,15 @@ void append_text_json(std::string& out, const DecodedValue& v) {
 }
 
 void append_value_reading(std::string& out, const DecodedValue& v) {
-  const RegisterDef& def = *v.def;
-  switch (def.kind) {
-    case RegisterKind::Number:
-    case RegisterKind::Bcd:
-    case RegisterKind::BcdPhaseCapacity:
-      append_fixed(out, v.value, def.decimals);
+  switch (reading_kind(v)) {
+    case ReadingKind::Number:
+      append_value_number(out, v);
       return;
-    case RegisterKind::Raw:
-    case RegisterKind::Enum:
-    case RegisterKind::Bits:
-      append_uint(out, v.raw);
-      return;
-    case RegisterKind::Text:
-    case RegisterKind::BcdYearMonth:
-    case RegisterKind::DeviceNumber:
+    case ReadingKind::Text:
       append_text_json(out, v);
+      return;
+    case ReadingKind::None:
+      out += "null";
       return;
   }
 }
@@ -157,14 +150,38 @@ void append_value_json_unit(std::string& out, const DecodedValue& v) {
   append_json_string(out, v.def->unit);
 }
 
-void append_value_json_reading(std::string& out, const DecodedValue& v) {
+ReadingKind reading_kind(const DecodedValue& v) {
+  if (v.def == nullptr) return ReadingKind::Number;  // the word itself
+  if (!v.complete()) return ReadingKind::None;
+  switch (v.def->kind) {
+    case RegisterKind::Text:
+    case RegisterKind::BcdYearMonth:
+    case RegisterKind::DeviceNumber:
+      return ReadingKind::Text;
+    default:
+      return ReadingKind::Number;
+  }
+}
+
+void append_value_number(std::string& out, const DecodedValue& v) {
   if (v.def == nullptr) {
     append_uint(out, v.raw);
-  } else if (v.complete()) {
-    append_value_reading(out, v);
-  } else {
-    out += "null";
+    return;
   }
+  switch (v.def->kind) {
+    case RegisterKind::Number:
+    case RegisterKind::Bcd:
+    case RegisterKind::BcdPhaseCapacity:
+      append_fixed(out, v.value, v.def->decimals);
+      return;
+    default:
+      append_uint(out, v.raw);
+      return;
+  }
+}
+
+void append_value_json_reading(std::string& out, const DecodedValue& v) {
+  append_value_reading(out, v);
 }
 
 void append_value_json_tail(std::string& out, const DecodedValue& v) {

@@ -30,6 +30,14 @@ void append_value_json_unit(std::string& out, const DecodedValue& v);
 void append_value_json_reading(std::string& out, const DecodedValue& v);
 void append_value_json_tail(std::string& out, const DecodedValue& v);
 
+// ReadingKind: how a value's reading is written: a number (scaled numbers and BCD; the raw
+// word of enums, bits, raw registers and words outside the map), a text (text registers,
+// year-month, device numbers) or nothing (part of it is outside the frame).
+enum class ReadingKind { Number, Text, None };
+ReadingKind reading_kind(const DecodedValue& v);
+// The reading of a value whose reading_kind is Number, as a JSON number ("52.3", "3").
+void append_value_number(std::string& out, const DecodedValue& v);
+
 // "battery voltage 52.3 V" (or "0x1099 0x00AB" for a word outside the map).
 void append_value_words(std::string& out, const DecodedValue& v, Dialect d);
 

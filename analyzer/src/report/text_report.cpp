@@ -4,6 +4,8 @@
 #include <string>
 
 #include "formatting/number_text.h"
+#include "report/frame_findings.h"
+#include "report/poll_block_text.h"
 #include "pvtap/function_codes.h"
 #include "pvtap/register_decoder.h"
 #include "pvtap/register_format.h"
@@ -56,19 +58,12 @@ void inputs(const AuditReport& r, std::string& o) {
 }
 
 void span_of_time(const AuditReport& r, std::string& o) {
-  double first = 0, last = 0;
-  bool any = false;
-  for (const BusFindings& b : r.buses) {
-    if (b.report.bytes.bytes_in == 0) continue;
-    if (!any || b.report.first_time < first) first = b.report.first_time;
-    if (!any || b.report.last_time > last) last = b.report.last_time;
-    any = true;
-  }
-  if (!r.settings.has_timestamps || !any) return;
+  const std::optional<TimeSpan> span = r.time_span();
+  if (!span) return;
   std::string a, b;
-  append_utc_date_time(a, first);
-  append_utc_date_time(b, last);
-  o += report_line("time: %s .. %s UTC (%.1f s)", a.c_str(), b.c_str(), last - first);
+  append_utc_date_time(a, span->first);
+  append_utc_date_time(b, span->last);
+  o += report_line("time: %s .. %s UTC (%.1f s)", a.c_str(), b.c_str(), span->seconds());
 }
 
 void network(const AuditReport& r, std::string& o) {
@@ -196,23 +191,6 @@ void latency(const AuditReport& r, const BusReport& b, std::string& o) {
   for (const StationLatency& s : b.timing.latency_by_station) {
     o += report_line("  station %-4u %s", s.station, distribution_text(s.latency).c_str());
   }
-}
-
-// A poll block's registers: "start 1050 count 7" with the start as the reference writes it
-// (GSL IDs by the --gsl-ids reading; a wire address with no such ID in hex); "-" for a field
-// the request does not have.
-std::string block_text(const AuditSettings& settings, const PollBlock& b) {
-  std::string start = "-";
-  if (b.start) {
-    const std::optional<std::uint16_t> written =
-        written_address_of(b.dialect, *b.start, settings.gsl_ids);
-    start = written ? format_register_address(b.dialect, *written).view()
-                    : format_register_address(Dialect::Hybrid, *b.start).view();
-  }
-  const std::string count = b.count ? std::to_string(*b.count) : "-";
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "start %-6s count %-4s", start.c_str(), count.c_str());
-  return buf;
 }
 
 void polling(const AuditReport& r, const BusReport& b, std::string& o) {

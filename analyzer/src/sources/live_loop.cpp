@@ -16,10 +16,10 @@ constexpr double kTick = 0.05;
 
 }  // namespace
 
-LiveLoop::LiveLoop(const LiveOptions& options, Pipeline& pipeline, OutputStream& out)
+LiveLoop::LiveLoop(const LiveOptions& options, Pipeline& pipeline, RunOutput& output)
     : options_(options),
       pipeline_(pipeline),
-      out_(out),
+      output_(output),
       status_(options.status_line),
       started_(wall_clock_seconds()) {}
 
@@ -40,10 +40,8 @@ double LiveLoop::wake_at(double now) const {
 
 void LiveLoop::after_wake(double now) {
   // Events go out as they happen, not when the buffer fills.
-  if (!out_.buffer().empty()) {
-    status_.clear();
-    out_.flush();
-  }
+  if (output_.stdout_pending()) status_.clear();
+  output_.flush();
   if (status_.due(now)) show_status(now);
 }
 

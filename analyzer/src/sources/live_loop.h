@@ -4,7 +4,7 @@
 
 #include <cstdint>
 
-#include "formatting/output_stream.h"
+#include "output/run_output.h"
 #include "output/status_line.h"
 #include "pipeline/pipeline.h"
 #include "report/live_report.h"
@@ -15,7 +15,7 @@ namespace pvtap::analyzer {
 class LiveLoop {
  public:
   // The clock starts now.
-  LiveLoop(const LiveOptions& options, Pipeline& pipeline, OutputStream& out);
+  LiveLoop(const LiveOptions& options, Pipeline& pipeline, RunOutput& output);
 
   // A stop signal came, --count frames were seen or --duration has passed.
   bool should_stop() const;
@@ -23,7 +23,7 @@ class LiveLoop {
   // How long a source may sleep from `now`: until the first of the pipeline's next deadline,
   // the status line and the end of --duration.
   double wake_at(double now) const;
-  // Events go out as they happen; the status line is redrawn when due.
+  // Events (and --values rows) go out as they happen; the status line is redrawn when due.
   void after_wake(double now);
   // A line is about to go to stderr: the status line makes room for it.
   void make_room_on_stderr() { status_.clear(); }
@@ -38,7 +38,7 @@ class LiveLoop {
 
   const LiveOptions& options_;
   Pipeline& pipeline_;
-  OutputStream& out_;
+  RunOutput& output_;
   StatusLine status_;
   double started_;
   double last_time_ = 0;

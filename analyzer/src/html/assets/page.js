@@ -1,0 +1,302 @@
+// pvtap HTML report: builds the charts from the JSON in #pvtap-data with dygraphs (inlined
+// before this script). Times are epoch milliseconds as plain numbers, so that frames less than
+// a millisecond apart stay apart; the axes print them as UTC.
+(function () {
+  'use strict';
+  const data = JSON.parse(document.getElementById('pvtap-data').textContent);
+  const lanes = data.lanes;
+  const pvtap = { data: data, charts: {}, details: {}, ready: false,
+                  started: performance.now() };
+  window.pvtap = pvtap;
+
+  const KIND_COLORS = {
+    requests: '#8aa4c8', replies: '#7fbf8f', damaged: '#d62728', timeout: '#ff7f0e',
+    unanswered_damaged: '#9467bd', exception: '#e377c2', unsolicited: '#8c564b',
+    duplicate: '#17becf', noise: '#7f7f7f', gap: '#000000'
+  };
+  const KIND_TEXT = {
+    requests: 'requests', replies: 'replies', damaged: 'damaged frame (bad check)',
+    timeout: 'timeout', unanswered_damaged: 'damaged request, rightly unanswered',
+    exception: 'exception / error reply', unsolicited: 'unsolicited reply',
+    duplicate: 'duplicate reply', noise: 'noise', gap: 'data-loss gap'
+  };
+  // Where a kind sits within its lane, so that kinds at one moment do not hide each other.
+  const KIND_OFFSET = {
+    requests: 0.3, replies: 0.18, damaged: 0.0, timeout: -0.06, unanswered_damaged: -0.12,
+    exception: -0.18, unsolicited: -0.24, duplicate: -0.3, noise: 0.06, gap: -0.06
+  };
+
+  // A chart of a few lines shows each bucket's min..max as a band around its line; with more
+  // lines the bands would only smear into each other (and cost the browser seconds to paint
+  // on a day of 16 stations), so the lines carry the bucket's last reading (latency: its mean)
+  // and a value chart's legend names the bucket's min and max.
+  const MAX_BANDED_SERIES = 8;
+
+  const bucketTime = i => (data.start + (i + 0.5) * data.bucket) * 1000;
+  const pad = n => (n < 10 ? '0' : '') + n;
+  function timeText(ms, withMillis) {
+    const d = new Date(ms);
+    let t = pad(d.getUTCHours()) + ':' + pad(d.getUTCMinutes()) + ':' + pad(d.getUTCSeconds());
+    if (withMillis) t += '.' + String(d.getUTCMilliseconds()).padStart(3, '0');
+    return t;
+  }
+  function axisTime(v) {
+    return timeText(v instanceof Date ? v.getTime() : v, false);
+  }
+  const xAxis = {
+    valueFormatter: v => timeText(v, true) + ' UTC',
+    axisLabelFormatter: axisTime,
+    ticker: Dygraph.dateTicker,
+    pixelsPerLabel: 70
+  };
+
+  // Rows for dygraphs from several series of [x, y] points: one row per distinct x, null
+  // where a series has no point.
+  function rowsOf(seriesPoints) {
+    const rows = new Map();
+    seriesPoints.forEach((points, s) => {
+      points.forEach(([x, y]) => {
+        let row = rows.get(x);
+        if (!row) {
+          row = new Array(seriesPoints.length + 1).fill(null);
+          row[0] = x;
+          rows.set(x, row);
+        }
+        row[s + 1] = y;
+      });
+    });
+    return Array.from(rows.values()).sort((a, b) => a[0] - b[0]);
+  }
+
+  function element(id) {
+    return document.getElementById(id);
+  }
+
+  function note(container, text) {
+    const p = document.createElement('p');
+    p.className = 'hint';
+    p.textContent = text;
+    container.replaceWith(p);
+  }
+
+  function functionName(dialect, fn) {
+    if (fn === null) return '';
+    return data.functions[dialect + ' ' + fn] || ('function ' + fn);
+  }
+
+  function markText(kind, m) {
+    const [t, lane, dialect, fn, isRequest, start, count, detail] = m;
+    const parts = [timeText(t * 1000, true), lanes[lane].label, KIND_TEXT[kind]];
+    if (fn !== null) parts.push(dialect + ' ' + (isRequest ? 'request ' : 'reply ') + functionName(dialect, fn));
+    if (start !== null) parts.push('block start ' + start + (count !== null ? ' count ' + count : ''));
+    if (kind === 'noise') parts.push(detail + ' bytes');
+    if (kind === 'gap') parts.push(detail > 0 ? detail + ' bytes lost' : 'size unknown');
+    if (kind === 'exception' && detail > 0) parts.push('code 0x' + detail.toString(16).padStart(2, '0'));
+    return parts.join(' · ');
+  }
+
+  // One series per kind, every lane in it (y = lane): a chart's cost grows with series times
+  // rows, so kinds must not multiply by lanes. Points of one kind at the same moment on two
+  // lanes are kept apart by a microsecond per lane, far below what the axis can show.
+  const laneX = (ms, lane) => ms + lane * 1e-3;
+
+  function timelineSeries() {
+    const names = [], points = [], colors = [];
+    const add = (kind, list, details) => {
+      if (list.length === 0) return;
+      names.push(kind);
+      points.push(list);
+      colors.push(KIND_COLORS[kind]);
+      pvtap.details[kind] = details;
+    };
+    // The tooltip's words are made when a point is hovered; only what they need is kept.
+    ['requests', 'replies'].forEach(kind => {
+      const details = new Map(), list = [];
+      details.counts = new Map();
+      details.text = x => {
+        const [l, n] = details.get(x);
+        return timeText(x, true) + ' · ' + lanes[l].label + ' · ' + n + ' ' + kind + ' in ' +
+               data.bucket.toFixed(2) + ' s';
+      };
+      lanes.forEach((lane, l) => {
+        lane[kind].forEach(([i, n]) => {
+          const x = laneX(bucketTime(i), l);
+          details.set(x, [l, n]);
+          details.counts.set(x, n);
+          list.push([x, l + KIND_OFFSET[kind]]);
+        });
+      });
+      add(kind, list, details);
+    });
+    Object.keys(data.marks).forEach(kind => {
+      const details = new Map();
+      details.text = x => markText(kind, details.get(x));
+      add(kind, data.marks[kind].map(m => {
+        const x = laneX(m[0] * 1000, m[1]);
+        details.set(x, m);
+        return [x, m[1] + KIND_OFFSET[kind]];
+      }), details);
+    });
+    return { names, points, colors };
+  }
+
+  function laneTicker() {
+    return lanes.map((lane, l) => ({ v: l, label: lane.label }));
+  }
+
+  function timelineLegend() {
+    const legend = element('timeline-legend');
+    Object.keys(KIND_COLORS).forEach(kind => {
+      const span = document.createElement('span');
+      span.innerHTML = '<i style="background:' + KIND_COLORS[kind] + '"></i>';
+      span.appendChild(document.createTextNode(KIND_TEXT[kind]));
+      legend.appendChild(span);
+    });
+  }
+
+  function buildTimeline() {
+    const s = timelineSeries();
+    const tooltip = element('timeline-tooltip');
+    timelineLegend();
+    const chart = element('timeline-chart');
+    chart.style.height = Math.max(220, 36 * lanes.length + 60) + 'px';
+    return new Dygraph(chart, rowsOf(s.points), {
+      labels: ['time'].concat(s.names),
+      colors: s.colors,
+      strokeWidth: 0,
+      drawPoints: true,
+      pointSize: 2.5,
+      highlightCircleSize: 5,
+      connectSeparatedPoints: false,
+      legend: 'never',
+      valueRange: [-0.6, lanes.length - 0.4],
+      axes: { x: xAxis, y: { ticker: laneTicker, axisLabelWidth: 110, drawGrid: true } },
+      highlightSeriesOpts: { highlightCircleSize: 6 },
+      highlightCallback: (event, x, points, row, seriesName) => {
+        const details = pvtap.details[seriesName];
+        tooltip.textContent = details && details.has(x) ? details.text(x) : '';
+        tooltip.style.display = tooltip.textContent ? 'block' : 'none';
+      },
+      unhighlightCallback: () => { tooltip.style.display = 'none'; }
+    });
+  }
+
+  function buildLoad() {
+    const names = [], points = [];
+    data.loads.forEach(load => {
+      const bus = data.loads.length > 1 ? (load.bus || 'serial') + ' ' : '';
+      [['to_slave', 'to the slaves'], ['from_slave', 'from the slaves'],
+       ['unknown', 'noise, direction unknown']].forEach(([key, text]) => {
+        if (load[key].length === 0) return;
+        names.push(bus + text + ' (B/s)');
+        points.push(load[key].map(([i, sum]) => [bucketTime(i), sum / data.bucket]));
+      });
+    });
+    if (names.length === 0) return null;
+    return new Dygraph(element('load-chart'), rowsOf(points), {
+      labels: ['time'].concat(names), stepPlot: true, fillGraph: true,
+      labelsSeparateLines: true, legend: 'follow', axes: { x: xAxis }, ylabel: 'bytes/s'
+    });
+  }
+
+  function buildLatency() {
+    const timed = lanes.filter(lane => lane.latency.length > 0);
+    if (timed.length === 0) return null;
+    const banded = timed.length <= MAX_BANDED_SERIES;
+    const points = timed.map(lane => lane.latency.map(([i, lo, mean, hi]) =>
+      [bucketTime(i), banded ? [lo, mean, hi] : mean]));
+    return new Dygraph(element('latency-chart'), rowsOf(points), {
+      labels: ['time'].concat(timed.map(lane => lane.label + ' (ms)')), customBars: banded,
+      legend: 'follow', labelsSeparateLines: true, axes: { x: xAxis },
+      ylabel: banded ? 'ms, min / mean / max' : 'ms, mean per bucket', connectSeparatedPoints: true
+    });
+  }
+
+  function buildHistogram() {
+    const names = [], columns = [];
+    lanes.forEach(lane => {
+      if (lane.histogram.every(n => n === 0)) return;
+      names.push(lane.label);
+      columns.push(lane.histogram);
+    });
+    if (names.length === 0) return null;
+    const rows = [];
+    for (let b = 0; b < columns[0].length; ++b) {
+      rows.push([Math.pow(10, b / 10)].concat(columns.map(c => c[b])));
+    }
+    return new Dygraph(element('histogram-chart'), rows, {
+      labels: ['ms'].concat(names), stepPlot: true, fillGraph: true, legend: 'follow',
+      labelsSeparateLines: true, xlabel: 'latency, ms (log scale)', ylabel: 'replies',
+      axes: { x: { logscale: true } }
+    });
+  }
+
+  function buildValueChart(group, container) {
+    const box = document.createElement('div');
+    box.className = 'value-group';
+    const title = document.createElement('h3');
+    title.textContent = group.group === 'states' ? 'States (enumerations, bits, raw words)' : group.group;
+    const legend = document.createElement('div');
+    legend.className = 'legend values-legend';
+    const div = document.createElement('div');
+    div.className = 'chart';
+    box.append(title, div, legend);
+    container.appendChild(box);
+    const banded = group.series.length <= MAX_BANDED_SERIES;
+    const ranges = group.series.map(() => new Map());
+    const points = group.series.map((s, k) => s.points.map(([i, lo, last, hi]) => {
+      const x = bucketTime(i);
+      ranges[k].set(x, [lo, hi]);
+      return [x, banded ? [lo, last, hi] : last];
+    }));
+    const labels = group.series.map(s => s.label);
+    const valueFormatter = (y, opts, seriesName, g, row) => {
+      const k = labels.indexOf(seriesName);
+      const range = k >= 0 ? ranges[k].get(g.getValue(row, 0)) : undefined;
+      const text = Array.isArray(y) ? String(y[1]) : String(y);
+      return range && range[0] !== range[1] ? text + ' (' + range[0] + '..' + range[1] + ')' : text;
+    };
+    return new Dygraph(div, rowsOf(points), {
+      labels: ['time'].concat(labels), customBars: banded,
+      stepPlot: group.series.some(s => s.step), labelsDiv: legend, labelsSeparateLines: false,
+      legend: 'always', axes: { x: xAxis, y: { valueFormatter: valueFormatter } },
+      ylabel: group.group === 'states' ? 'value' : group.group, connectSeparatedPoints: true
+    });
+  }
+
+  function buildValues() {
+    const container = element('value-charts');
+    if (data.values.length === 0) {
+      container.textContent = 'No numeric register changed its value.';
+      return [];
+    }
+    return data.values.map(group => ({ group: group.group, series: group.series,
+                                       chart: buildValueChart(group, container) }));
+  }
+
+  if (!data.has_timestamps) {
+    ['timeline-chart', 'load-chart', 'latency-chart', 'histogram-chart'].forEach(id =>
+      note(element(id), 'Not drawn: the input has no timestamps.'));
+    pvtap.ready = true;
+    return;
+  }
+  // How long each chart took to build, for bench/html_report_bench.py.
+  pvtap.timings = {};
+  const timed_build = (name, build) => {
+    const t0 = performance.now();
+    pvtap.charts[name] = build();
+    pvtap.timings[name] = performance.now() - t0;
+  };
+  timed_build('timeline', buildTimeline);
+  timed_build('load', buildLoad);
+  timed_build('latency', buildLatency);
+  timed_build('histogram', buildHistogram);
+  timed_build('values', buildValues);
+  const timed = [pvtap.charts.timeline, pvtap.charts.load, pvtap.charts.latency]
+    .concat(pvtap.charts.values.map(v => v.chart)).filter(g => g);
+  const t0 = performance.now();
+  if (timed.length > 1) Dygraph.synchronize(timed, { zoom: true, selection: false, range: false });
+  pvtap.timings.synchronize = performance.now() - t0;
+  pvtap.timings.script_end = performance.now();
+  pvtap.ready = true;
+})();

@@ -1,0 +1,343 @@
+// The HTML report's tables: overview tiles, stations, polling and findings.
+#include "html/html_sections.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "report/frame_findings.h"
+#include "html/html_text.h"
+#include "report/poll_block_text.h"
+#include "pvtap/function_codes.h"
+#include "pvtap/register_format.h"
+#include "report/report_writers.h"
+#include "formatting/number_text.h"
+#include "formatting/json_text.h"
+#include "formatting/csv_text.h"
+#include "report/report_line.h"
+
+namespace pvtap::analyzer {
+namespace {
+
+std::string ms_text(double seconds) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.1f", seconds * 1e3);
+  return buf;
+}
+
+std::string time_text(const AuditReport& r, double time) {
+  std::string out;
+  if (r.settings.has_timestamps) append_time_of_day(out, time);
+  return out;
+}
+
+void cell(std::string& o, std::string_view text, const char* tag = "td") {
+  o += '<';
+  o += tag;
+  o += '>';
+  append_html_escaped(o, text);
+  o += "</";
+  o += tag;
+  o += '>';
+}
+
+void count_cell(std::string& o, std::uint64_t n) {
+  o += "<td class=\"n\">";
+  append_uint(o, n);
+  o += "</td>";
+}
+
+// The tiles link to the first bus's findings: ids are given once.
+std::string id_attr(bool first, const char* id) {
+  return first ? std::string(" id=\"") + id + "\"" : std::string();
+}
+
+// Tile: one health counter of the overview, linking to where it is explained.
+struct Tile {
+  const char* key;  // the summary field it shows
+  const char* label;
+  std::uint64_t value;
+  const char* section;
+};
+
+void tile(std::string& o, const Tile& t) {
+  o += "<a class=\"tile";
+  if (t.value > 0 && std::string_view(t.key) != "frames") o += " finding";
+  o += "\" href=\"#";
+  o += t.section;
+  o += "\" data-key=\"";
+  o += t.key;
+  o += "\"><span class=\"value\">";
+  append_uint(o, t.value);
+  o += "</span><span class=\"label\">";
+  o += t.label;
+  o += "</span></a>";
+}
+
+std::string bus_title(const BusFindings& bus) {
+  return bus.name.empty() ? "serial bus" : "bus " + bus.name;
+}
+
+void station_row(std::string& o, const AuditReport& r, const BusFindings& bus,
+                 const StationSummary& s) {
+  o += "<tr>";
+  cell(o, station_key(r, bus, s.station));
+  count_cell(o, s.requests);
+  count_cell(o, s.responses);
+  count_cell(o, s.bad_checks);
+  count_cell(o, s.timeouts);
+  count_cell(o, s.exceptions);
+  for (const double v : {s.latency.p50, s.latency.p95, s.latency.max}) {
+    o += "<td class=\"n\">";
+    o += s.latency.count > 0 ? ms_text(v) : "-";
+    o += "</td>";
+  }
+  o += "</tr>\n";
+}
+
+void frame_example(std::string& o, const AuditReport& r, const FrameExample& e) {
+  std::string raw, expected, function;
+  append_spaced_hex(raw, e.bytes);
+  append_spaced_hex(expected, check_wire_bytes(e.dialect, e.check.expected));
+  append_function(function, e.dialect, e.function);
+  o += "<tr>";
+  cell(o, time_text(r, e.time));
+  cell(o, std::to_string(e.station));
+  cell(o, std::string(to_string(e.dialect)) + " " + std::string(to_string(e.role)));
+  cell(o, function);
+  cell(o, expected);
+  o += "<td class=\"hex\">";
+  append_html_escaped(o, raw);
+  o += "</td></tr>\n";
+}
+
+void examples_table(std::string& o, const AuditReport& r, const std::vector<FrameExample>& list,
+                    const char* check_header) {
+  if (list.empty()) return;
+  o += "<table><tr><th>time</th><th>station</th><th>frame</th><th>function</th><th>";
+  o += check_header;
+  o += "</th><th>raw</th></tr>\n";
+  for (const FrameExample& e : list) frame_example(o, r, e);
+  o += "</table>\n";
+}
+
+void timeouts_list(std::string& o, const AuditReport& r, const BusReport& b, bool first) {
+  o += report_line(
+      "<h4%s>Timeouts: %llu</h4><p>good requests the slave did not "
+      "answer (no reply %llu, next request first %llu)</p>\n",
+      id_attr(first, "findings-timeouts").c_str(), static_cast<unsigned long long>(b.timeouts),
+      static_cast<unsigned long long>(b.timeouts_by_reason[0]),
+      static_cast<unsigned long long>(b.timeouts_by_reason[1]));
+  if (b.timeout_examples.empty()) return;
+  o += "<table><tr><th>request time</th><th>station</th><th>dialect</th><th>function</th></tr>\n";
+  for (const TimeoutExample& e : b.timeout_examples) {
+    std::string function;
+    append_function(function, e.timeout.dialect, e.timeout.function);
+    o += "<tr>";
+    cell(o, time_text(r, e.request_time));
+    cell(o, std::to_string(e.timeout.station));
+    cell(o, to_string(e.timeout.dialect));
+    cell(o, function);
+    o += "</tr>\n";
+  }
+  o += "</table>\n";
+}
+
+void exception_list(std::string& o, const BusReport& b, bool first) {
+  o += report_line("<h4%s>Exceptions and error replies: %llu</h4>\n",
+                   id_attr(first, "findings-exceptions").c_str(),
+                   static_cast<unsigned long long>(b.exceptions));
+  if (b.exception_codes.empty()) return;
+  o += "<ul>";
+  for (const ExceptionTally& e : b.exception_codes) {
+    std::string line;
+    if (e.dialect == Dialect::Hybrid) {
+      line = "hybrid error reply (0xFF)";
+    } else {
+      line = std::string(to_string(e.dialect)) + " exception ";
+      append_hex_byte(line, e.code);
+      line += " (" + std::string(fc::exception_name(e.code)) + ")";
+    }
+    line += ": " + std::to_string(e.count);
+    cell(o, line, "li");
+  }
+  o += "</ul>\n";
+}
+
+void bus_findings(std::string& o, const AuditReport& r, const BusFindings& bus, bool first) {
+  const BusReport& b = bus.report;
+  const auto u = [](std::uint64_t v) { return static_cast<unsigned long long>(v); };
+  o += "<h3>";
+  append_html_escaped(o, bus_title(bus));
+  o += "</h3>\n";
+  o += report_line(
+      "<h4%s>Bad checks: %llu</h4><p>%llu damaged replies (the slave "
+      "answered; the line damaged the answer), %llu damaged requests left unanswered (the slave "
+      "rightly ignored them)</p>\n",
+      id_attr(first, "findings-bad").c_str(), u(b.bytes.bad_frames), u(b.damaged_replies),
+      u(b.unanswered_damaged_requests));
+  examples_table(o, r, b.bad_check_examples, "check should be");
+  timeouts_list(o, r, b, first);
+  o += report_line(
+      "<h4%s>Unsolicited replies: %llu</h4><p>%llu late for a timed-out "
+      "request; duplicate replies: %llu; byte count mismatches: %llu</p>\n",
+      id_attr(first, "findings-replies").c_str(), u(b.unsolicited), u(b.late_replies),
+      u(b.duplicates), u(b.count_mismatches));
+  examples_table(o, r, b.unsolicited_examples, "check");
+  exception_list(o, b, first);
+  o += report_line("<h4%s>Noise: %llu bytes in %llu runs</h4>\n",
+                   id_attr(first, "findings-noise").c_str(), u(b.bytes.noise_bytes),
+                   u(b.bytes.noise_runs));
+  o += report_line("<h4%s>Data-loss gaps: %llu</h4><p>%llu bytes lost%s</p>\n",
+                   id_attr(first, "findings-gaps").c_str(), u(b.gaps.gaps), u(b.gaps.lost_bytes),
+                   b.gaps.gaps_of_unknown_size > 0 ? ", some gaps of unknown size" : "");
+}
+
+double longest_poll_period(const BusReport& bus) {
+  double longest = 0;
+  for (const PollPeriod& p : bus.timing.poll_periods) {
+    if (p.period.intervals > 0) longest = std::max(longest, p.period.mean);
+  }
+  return longest;
+}
+
+void poll_table(std::string& o, const AuditReport& r, const BusReport& b) {
+  o += "<table><tr><th>station</th><th>dialect</th><th>function</th><th>start</th>"
+       "<th>count</th><th>intervals</th><th>period ms</th><th>jitter ms</th>"
+       "<th>max deviation ms</th></tr>\n";
+  for (const PollPeriod& p : b.timing.poll_periods) {
+    std::string function;
+    append_function(function, p.block.dialect, p.block.function);
+    o += "<tr>";
+    cell(o, std::to_string(p.block.station));
+    cell(o, to_string(p.block.dialect));
+    cell(o, function);
+    cell(o, block_start_text(r.settings, p.block));
+    cell(o, p.block.count ? std::to_string(*p.block.count) : "-");
+    count_cell(o, p.period.intervals);
+    for (const double v : {p.period.mean, p.period.stddev, p.period.max_deviation}) {
+      o += "<td class=\"n\">";
+      o += p.period.intervals > 0 ? ms_text(v) : "-";
+      o += "</td>";
+    }
+    o += "</tr>\n";
+  }
+  o += "</table>\n";
+}
+
+void silence_list(std::string& o, const AuditReport& r, const BusFindings& bus, const Timeline& t) {
+  std::string items;
+  std::size_t n = 0;
+  for (const PollSilence& s : t.silences) {
+    if (s.bus != bus.name || !silence_is_finding(bus.report, s)) continue;
+    ++n;
+    items += "<li>";
+    append_html_escaped(items, time_text(r, s.from) + " .. " + time_text(r, s.to));
+    items += report_line(" (%.1f s)</li>", s.to - s.from);
+  }
+  o += report_line("<h4>Gaps in polling: %zu</h4>\n", n);
+  o += "<p class=\"hint\">Stretches with no request longer than twice the longest poll period: "
+       "the logger stopped asking.</p>\n";
+  if (n > 0) o += "<ul class=\"silences\">" + items + "</ul>\n";
+}
+
+}  // namespace
+
+bool silence_is_finding(const BusReport& bus, const PollSilence& s) {
+  return s.to - s.from > std::max(Timeline::kMinSilence, 2 * longest_poll_period(bus));
+}
+
+void append_html_overview(std::string& o, const AuditReport& r) {
+  o += "<ul class=\"inputs\">";
+  for (const InputReport& in : r.inputs) {
+    std::string line = in.path + " (" + in.link_type + ", " + std::to_string(in.records) +
+                       " records)" + (in.truncated ? " TRUNCATED: " + in.error : "");
+    cell(o, line, "li");
+  }
+  o += "</ul>\n";
+  if (const auto span = r.time_span()) {
+    std::string a, b;
+    append_utc_date_time(a, span->first);
+    append_utc_date_time(b, span->last);
+    o += report_line("<p class=\"span\" id=\"time-span\">%s .. %s UTC (%.1f s)</p>\n", a.c_str(),
+                     b.c_str(), span->seconds());
+  }
+  std::string live;
+  append_live_sources_text(r.live, live);
+  if (!live.empty()) cell(o, live, "pre");
+  const BusReport t = r.totals();
+  o += "<nav class=\"tiles\">";
+  const Tile tiles[] = {
+      {"frames", "frames", t.bytes.frames, "stations"},
+      {"bad_checks", "damaged frames", t.bytes.bad_frames, "findings-bad"},
+      {"timeouts", "timeouts", t.timeouts, "findings-timeouts"},
+      {"unanswered_damaged_requests", "unanswered damaged requests", t.unanswered_damaged_requests,
+       "findings-bad"},
+      {"exceptions", "exceptions", t.exceptions, "findings-exceptions"},
+      {"noise_bytes", "noise bytes", t.bytes.noise_bytes, "findings-noise"},
+      {"gaps", "data-loss gaps", t.gaps.gaps, "findings-gaps"},
+  };
+  for (const Tile& x : tiles) tile(o, x);
+  o += "</nav>\n";
+}
+
+void append_html_stations(std::string& o, const AuditReport& r) {
+  o += "<section id=\"stations\"><h2>Stations</h2>\n";
+  for (const BusFindings& bus : r.buses) {
+    o += "<h3>";
+    append_html_escaped(o, bus_title(bus));
+    o += "</h3>\n<table class=\"stations\"><tr><th>station</th><th>requests</th>"
+         "<th>replies</th><th>damaged</th><th>timeouts</th><th>exceptions</th>"
+         "<th>latency p50 ms</th><th>p95</th><th>max</th></tr>\n";
+    for (const StationSummary& s : bus.report.stations) station_row(o, r, bus, s);
+    o += "</table>\n";
+  }
+  o += "</section>\n";
+}
+
+void append_html_polling(std::string& o, const AuditReport& r, const Timeline& t) {
+  o += "<section id=\"polling\"><h2>Polling</h2>\n";
+  if (!r.settings.has_timestamps) {
+    o += "<p>Not measured: the input has no timestamps.</p></section>\n";
+    return;
+  }
+  for (const BusFindings& bus : r.buses) {
+    o += "<h3>";
+    append_html_escaped(o, bus_title(bus));
+    o += "</h3>\n";
+    poll_table(o, r, bus.report);
+    silence_list(o, r, bus, t);
+  }
+  o += "</section>\n";
+}
+
+void append_html_latest_values(std::string& o, const AuditReport& r) {
+  o += "<section id=\"latest\"><h2>Latest values</h2>\n"
+       "<p class=\"hint\">What each station last reported, text registers included.</p>\n";
+  for (const BusFindings& bus : r.buses) {
+    for (const StationSummary& s : bus.report.stations) {
+      if (s.latest_values.empty()) continue;
+      o += "<details><summary>station ";
+      append_html_escaped(o, station_key(r, bus, s.station));
+      if (r.settings.has_timestamps) o += ", as of " + time_text(r, s.last_report_time);
+      o += "</summary>\n<table class=\"latest\">";
+      for (const LatestValue& v : s.latest_values) {
+        o += "<tr>";
+        cell(o, to_string(v.dialect));
+        cell(o, format_value_address(v.value, v.dialect).view());
+        cell(o, v.value.name());
+        cell(o, format_value(v.value));
+        o += "</tr>\n";
+      }
+      o += "</table></details>\n";
+    }
+  }
+  o += "</section>\n";
+}
+
+void append_html_findings(std::string& o, const AuditReport& r) {
+  o += "<section id=\"findings\"><h2>Findings</h2>\n";
+  for (std::size_t i = 0; i < r.buses.size(); ++i) bus_findings(o, r, r.buses[i], i == 0);
+  o += "</section>\n";
+}
+
+}  // namespace pvtap::analyzer

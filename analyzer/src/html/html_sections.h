@@ -1,0 +1,23 @@
+// The parts of the HTML report that are tables and text, rendered from AuditReport (the
+// numbers the text report prints, from the same fields).
+#pragma once
+
+#include <string>
+
+#include "report/audit_report.h"
+#include "html/timeline.h"
+
+namespace pvtap::analyzer {
+
+void append_html_overview(std::string& o, const AuditReport& r);
+void append_html_stations(std::string& o, const AuditReport& r);
+void append_html_polling(std::string& o, const AuditReport& r, const Timeline& t);
+void append_html_findings(std::string& o, const AuditReport& r);
+// What each station last reported: the text report's "latest values".
+void append_html_latest_values(std::string& o, const AuditReport& r);
+
+// A poll silence is a finding when it lasts more than twice the bus's longest poll period
+// (or kMinSilence when no block was polled twice).
+bool silence_is_finding(const BusReport& bus, const PollSilence& s);
+
+}  // namespace pvtap::analyzer

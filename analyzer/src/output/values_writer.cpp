@@ -1,0 +1,183 @@
+// The --values rows in their three formats. Rows are built straight into the output buffer:
+// a day of polling is millions of values.
+#include "output/values_writer.h"
+
+#include <string>
+
+#include "report/frame_findings.h"
+#include "pvtap/register_format.h"
+#include "formatting/number_text.h"
+#include "formatting/json_text.h"
+#include "formatting/csv_text.h"
+#include "report/report_line.h"
+
+namespace pvtap::analyzer {
+namespace {
+
+constexpr std::string_view kCsvHeader = "ts,bus,station,dialect,register,key,name,value,unit\n";
+
+// ValueRow: what every row names besides the reading itself.
+struct ValueRow {
+  const EventContext& context;
+  const SessionFrame& frame;
+  const DecodedValue& value;
+  std::uint8_t station() const { return frame.frame != nullptr ? frame.frame->station : 0; }
+};
+
+void append_csv_row(std::string& o, const ValueRow& r, std::string& scratch) {
+  if (r.context.has_timestamps) append_fixed(o, r.frame.start_time, 6);
+  o += ',';
+  append_csv_field(o, r.context.bus);
+  o += ',';
+  append_uint(o, r.station());
+  o += ',';
+  o += to_string(r.frame.dialect);
+  o += ',';
+  o += format_value_address(r.value, r.frame.dialect).view();
+  o += ',';
+  append_csv_field(o, r.value.key());
+  o += ',';
+  append_csv_field(o, r.value.name());
+  o += ',';
+  switch (reading_kind(r.value)) {
+    case ReadingKind::Number:
+      append_value_number(o, r.value);
+      break;
+    case ReadingKind::Text:
+      scratch.clear();
+      append_value_text(r.value, scratch);
+      append_csv_field(o, scratch);
+      break;
+    case ReadingKind::None:
+      break;
+  }
+  o += ',';
+  append_csv_field(o, r.value.unit());
+  o += '\n';
+}
+
+void append_json_or_null(std::string& o, std::string_view text) {
+  if (text.empty()) {
+    o += "null";
+  } else {
+    append_json_string(o, text);
+  }
+}
+
+void append_jsonl_row(std::string& o, const ValueRow& r, std::string& scratch) {
+  o += "{\"ts\":";
+  if (r.context.has_timestamps) {
+    append_fixed(o, r.frame.start_time, 6);
+  } else {
+    o += "null";
+  }
+  o += ",\"bus\":";
+  append_json_or_null(o, r.context.bus);
+  append_json_count(o, "station", r.station());
+  o += ",\"dialect\":\"";
+  o += to_string(r.frame.dialect);
+  o += "\",\"register\":\"";
+  o += format_value_address(r.value, r.frame.dialect).view();
+  o += "\",\"key\":";
+  append_json_or_null(o, r.value.key());
+  o += ",\"name\":";
+  append_json_or_null(o, r.value.name());
+  o += ",\"value\":";
+  if (reading_kind(r.value) == ReadingKind::Number) {
+    append_value_number(o, r.value);
+  } else if (reading_kind(r.value) == ReadingKind::Text) {
+    scratch.clear();
+    append_value_text(r.value, scratch);
+    append_json_string(o, scratch);
+  } else {
+    o += "null";
+  }
+  o += ",\"unit\":";
+  append_json_or_null(o, r.value.unit());
+  o += "}\n";
+}
+
+// Line protocol escapes commas, equals signs and spaces in tag values with a backslash.
+void append_influx_tag(std::string& o, std::string_view name, std::string_view value) {
+  o += ',';
+  o += name;
+  o += '=';
+  for (const char ch : value) {
+    if (ch == ',' || ch == '=' || ch == ' ' || ch == '\\') o += '\\';
+    o += ch;
+  }
+}
+
+void append_influx_row(std::string& o, const ValueRow& r) {
+  // Line protocol fields are numbers here; a tag needs a value, so a word outside the map
+  // (no key) has no line either.
+  if (reading_kind(r.value) != ReadingKind::Number || r.value.key().empty()) return;
+  o += "pvtap";
+  if (!r.context.bus.empty()) append_influx_tag(o, "bus", r.context.bus);
+  o += ",station=";
+  append_uint(o, r.station());
+  o += ",dialect=";
+  o += to_string(r.frame.dialect);
+  append_influx_tag(o, "key", r.value.key());
+  o += " value=";
+  append_value_number(o, r.value);
+  if (r.context.has_timestamps) {
+    // The microseconds of the ts column, digit for digit (a double cannot carry nanoseconds
+    // of an epoch, and its product with 1e6 may round the other way than the printed ts).
+    o += ' ';
+    const std::size_t at = o.size();
+    append_fixed(o, r.frame.start_time, 6);
+    o.erase(o.find('.', at), 1);
+    o += "000";
+  }
+  o += '\n';
+}
+
+class ValuesWriter : public EventWriter {
+ public:
+  ValuesWriter(ValuesFormat format, OutputStream& out) : format_(format), out_(out) {}
+
+  void begin() override {
+    if (format_ == ValuesFormat::Csv) out_.write(kCsvHeader);
+  }
+
+  void frame(const EventContext& c, const SessionFrame& f) override {
+    if (!frame_feeds_values(f)) return;
+    std::string& o = out_.buffer();
+    for (const DecodedValue& v : f.values) {
+      const ValueRow row{c, f, v};
+      switch (format_) {
+        case ValuesFormat::Csv:
+          append_csv_row(o, row, scratch_);
+          break;
+        case ValuesFormat::Jsonl:
+          append_jsonl_row(o, row, scratch_);
+          break;
+        case ValuesFormat::Influx:
+          append_influx_row(o, row);
+          break;
+      }
+    }
+    out_.done();
+  }
+  void timeout(const EventContext&, const SessionTimeout&) override {}
+  void noise(const EventContext&, const SessionNoise&) override {}
+  void gap(const EventContext&, const SessionGap&) override {}
+
+ private:
+  ValuesFormat format_;
+  OutputStream& out_;
+  std::string scratch_;
+};
+
+}  // namespace
+
+bool frame_feeds_values(const SessionFrame& f) {
+  return f.role == Role::Response && f.check.ok && f.values_trusted && f.placed_by.has_value();
+}
+
+std::unique_ptr<EventWriter> make_values_writer(ValuesFormat format, OutputStream& out) {
+  return std::make_unique<ValuesWriter>(format, out);
+}
+
+}  // namespace pvtap::analyzer
