@@ -19,10 +19,12 @@ class AuditRun::BusOutput : public BusSessionSink {
   void on_timeout(const SessionTimeout& t) override {
     if (t.kind == UnansweredKind::Timeout) ++run_.timeouts_seen_;
     if (run_.events_) run_.events_->timeout(context_, t);
+    if (run_.mqtt_) run_.mqtt_->timeout(context_, t);
   }
   void on_noise(const SessionNoise& n) override { run_.on_noise(context_, n); }
   void on_gap(const SessionGap& g) override {
     if (run_.events_) run_.events_->gap(context_, g);
+    if (run_.mqtt_) run_.mqtt_->gap(context_, g);
   }
   const std::string& name() const { return name_; }
 

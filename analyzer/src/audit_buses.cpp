@@ -9,7 +9,7 @@ BusSessionOptions AuditRun::session_options(InputKind kind) const {
   o.reassembler.dialects = options_.dialects;
   o.reassembler.baud = options_.baud;
   o.matcher.timeout = options_.timeout;
-  o.decode_values = !options_.summary_only;
+  o.decode_values = !options_.summary_only || options_.mqtt.active();
   if (kind == InputKind::Network) {
     o.reassembler.timestamps = TimestampTrust::Untrusted;
     o.reassembler.boundary_gap = options_.gateway_gap_ms / 1000.0;
@@ -58,11 +58,13 @@ void AuditRun::on_frame(const EventContext& c, const SessionFrame& f) {
   }
   if (writer_) writer_->write_frame(f.end_time, f.role, f.bytes);
   if (events_) events_->frame(c, f);
+  if (mqtt_) mqtt_->frame(c, f);
 }
 
 void AuditRun::on_noise(const EventContext& c, const SessionNoise& n) {
   if (writer_) writer_->write_noise(n.noise.end_time, n.direction, n.noise.bytes);
   if (events_) events_->noise(c, n);
+  if (mqtt_) mqtt_->noise(c, n);
 }
 
 void AuditRun::finish_all(double time) {

@@ -8,6 +8,7 @@
 
 #include "audit_run.h"
 #include "common_options.h"
+#include "mqtt/mqtt_command_options.h"
 #include "link_types.h"
 
 namespace pvtap::analyzer {
@@ -40,6 +41,8 @@ std::string footer_text() {
          "  pvtap audit --summary-only --fail-on errors --timeout 0.5 bus.pcap\n"
          "  pvtap audit --raw ttyUSB0.bin --dialect gsl --baud 4800\n"
          "  pvtap audit --write frames.pcap capture.pcap   (open frames.pcap in Wireshark)\n"
+         "  pvtap audit --summary-only --mqtt mqtt://broker.lan day.pcapng  (back-fill a broker\n"
+         "      with the day's values and events, stamped with their capture times)\n"
          "\nSupported link types: " +
          supported_link_types_text() + "\n";
 }
@@ -62,10 +65,11 @@ void add_input_options(CLI::App& audit, AuditOptions& o) {
 
 CLI::App* add_audit_command(CLI::App& app, AuditOptions& options) {
   CLI::App* audit = app.add_subcommand("audit", kDescription);
-  audit->footer(footer_text());
+  audit->footer(footer_text() + kMqttHelpFooter);
   add_input_options(*audit, options);
   add_protocol_options(*audit, options, kAnyBaud);
   add_output_options(*audit, options);
+  add_mqtt_options(*audit, options.mqtt);
   return audit;
 }
 

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "event_writer.h"
+#include "mqtt/mqtt_options.h"
 #include "pvtap/dialect.h"
 #include "pvtap/register_decoder.h"
 
@@ -69,6 +70,7 @@ struct AuditOptions {
   bool fail_on_errors = false;
   bool progress = false;  // draw a progress bar on stderr
   LiveOptions live;       // pvtap sniff: live sources instead of the files above
+  MqttOptions mqtt;       // --mqtt: also publish to a broker
 };
 
 }  // namespace pvtap::analyzer

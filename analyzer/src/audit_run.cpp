@@ -86,7 +86,15 @@ bool AuditRun::open_outputs() {
     events_ = make_event_writer(options_.format, out_);
     events_->begin();
   }
-  return true;
+  return open_mqtt();
+}
+
+bool AuditRun::open_mqtt() {
+  if (!options_.mqtt.active()) return true;
+  std::string error;
+  mqtt_ = MqttPublisher::open(options_.mqtt, options_.live.active(), error);
+  if (!mqtt_) std::fprintf(stderr, "pvtap: %s\n", error.c_str());
+  return mqtt_ != nullptr;
 }
 
 bool AuditRun::read_inputs() {
@@ -126,6 +134,7 @@ int AuditRun::run() {
   // A live source that could not be opened at the start: the reason is printed, nothing ran.
   if (!complete && options_.live.active()) return kExitBadInput;
   finish_all(last_time_);
+  if (mqtt_) mqtt_->finish(last_time_);
   if (progress_) progress_->clear();
   const AuditReport report = build_report();
   write_summary(report);

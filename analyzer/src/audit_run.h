@@ -15,6 +15,7 @@
 #include "exported_pdu_writer.h"
 #include "gateway_traffic.h"
 #include "link_types.h"
+#include "mqtt/mqtt_publisher.h"
 #include "output_stream.h"
 #include "progress_bar.h"
 #include "pvtap/bus_session.h"
@@ -51,6 +52,7 @@ class AuditRun : public BusDirectory {
 
   // Reading.
   bool open_outputs();
+  bool open_mqtt();
   bool read_inputs();  // false when an input ended early (truncated)
   void report_truncation() const;
   bool read_capture(const std::string& path, std::uint64_t done_before);
@@ -102,6 +104,7 @@ class AuditRun : public BusDirectory {
   const RegisterDecoder& decoder_;
   OutputStream& out_;
   std::unique_ptr<EventWriter> events_;
+  std::unique_ptr<MqttPublisher> mqtt_;  // --mqtt, besides the chosen format
   std::optional<ExportedPduWriter> writer_;
   std::unique_ptr<ProgressBar> progress_;
   GatewayTraffic gateway_;

@@ -27,6 +27,7 @@ void AuditRun::flush_live_output(double now) {
     out_.flush();
   }
   if (status_->due(now)) show_status(now);
+  if (mqtt_) mqtt_->tick(now);
 }
 
 void AuditRun::show_status(double now) {

@@ -8,6 +8,7 @@
 
 #include "audit_run.h"
 #include "common_options.h"
+#include "mqtt/mqtt_command_options.h"
 #include "stop_signal.h"
 
 namespace pvtap::analyzer {
@@ -37,6 +38,8 @@ const char* const kFooter =
     "  pvtap sniff --device /dev/ttyUSB0 --baud 19200 --parity even --format jsonl | jq .\n"
     "  pvtap sniff --device /dev/ttyUSB0 --device /dev/ttyUSB1 --write site.pcap\n"
     "  pvtap sniff --interface eth0 --port 4001 --duration 600 --summary-only\n"
+    "  pvtap sniff --device /dev/ttyUSB0 --summary-only --mqtt mqtt://broker.lan\n"
+    "      --mqtt-user pvtap --mqtt-password-file /etc/pvtap/mqtt.pw --mqtt-discovery\n"
     "\nIn Wireshark, once pvtap is installed (its Debian package, or `cmake --install`), the\n"
     "capture interfaces list \"RS485 tap\" for each serial port (pvtap answers Wireshark's\n"
     "extcap calls).\n";
@@ -98,11 +101,12 @@ std::string source_problem(const AuditOptions& o) {
 
 CLI::App* add_sniff_command(CLI::App& app, SniffCommandLine& command) {
   CLI::App* sniff = app.add_subcommand("sniff", kDescription);
-  sniff->footer(kFooter);
+  sniff->footer(std::string(kFooter) + kMqttHelpFooter);
   add_source_options(*sniff, command);
   add_protocol_options(*sniff, command.options, BaudRange{2400, 115200});
   add_stop_options(*sniff, command.options.live);
   add_output_options(*sniff, command.options);
+  add_mqtt_options(*sniff, command.options.mqtt);
   return sniff;
 }
 

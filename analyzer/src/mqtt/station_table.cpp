@@ -1,0 +1,89 @@
+// StationTable: recording replies, judging blocks and stations.
+#include "mqtt/station_table.h"
+
+#include <algorithm>
+
+#include "mqtt/mqtt_payloads.h"
+#include "mqtt/mqtt_topics.h"
+
+namespace pvtap::analyzer {
+namespace {
+
+constexpr std::string_view kIdentityKeys[] = {"model_name", "manufacturer_name", "serial_number",
+                                              "device_number", "firmware_version"};
+
+bool is_good_reply(const SessionFrame& f) {
+  return f.frame != nullptr && f.role == Role::Response && f.values_trusted &&
+         f.decode.status == DecodeStatus::Decoded;
+}
+
+void touch_block(StationState& s, const SessionFrame& f) {
+  PollBlock& b = s.blocks[{f.frame->function, f.decode.start}];
+  if (b.last > 0 && f.start_time > b.last) b.period = f.start_time - b.last;
+  b.last = f.start_time;
+}
+
+}  // namespace
+
+bool is_identity_key(std::string_view key) {
+  return std::find(std::begin(kIdentityKeys), std::end(kIdentityKeys), key) !=
+         std::end(kIdentityKeys);
+}
+
+std::optional<double> StationState::period() const {
+  std::optional<double> shortest;
+  for (const auto& [id, block] : blocks) {
+    if (block.period && (!shortest || *block.period < *shortest)) shortest = block.period;
+  }
+  return shortest;
+}
+
+bool StationState::answering(double now) const {
+  const std::optional<double> p = period();
+  return !p || now - last_reply <= 3 * *p;
+}
+
+void StationTable::record(const SessionFrame& f) {
+  if (!is_good_reply(f)) return;
+  StationState& s = stations_[f.frame->station];
+  s.address = f.frame->station;
+  s.dialect = f.dialect;
+  s.last_reply = std::max(s.last_reply, f.start_time);
+  s.replied_since_state = true;
+  touch_block(s, f);
+  std::string payload;
+  for (const DecodedValue& v : f.values) {
+    if (v.def == nullptr || !v.complete()) continue;
+    const std::string key = value_key(v);
+    auto it = s.values.find(key);
+    if (it == s.values.end()) it = s.values.emplace(key, HeldValue{}).first;
+    HeldValue& held = it->second;
+    if (is_identity_key(v.def->key)) {
+      payload.clear();
+      append_value_payload(payload, v);
+      const bool first = held.time == 0;
+      std::string before;
+      if (!first) append_value_payload(before, held.value);
+      if (first || before != payload) s.identity_changed = true;
+    }
+    held.value = v;
+    held.time = f.start_time;
+  }
+}
+
+std::size_t StationTable::blocks() const {
+  std::size_t n = 0;
+  for (const auto& [address, s] : stations_) n += s.blocks.size();
+  return n;
+}
+
+std::size_t StationTable::blocks_missing(double now) const {
+  std::size_t n = 0;
+  for (const auto& [address, s] : stations_) {
+    for (const auto& [id, block] : s.blocks)
+      if (block.missing(now)) ++n;
+  }
+  return n;
+}
+
+}  // namespace pvtap::analyzer
