@@ -8,8 +8,8 @@
 
 #include "audit_run.h"
 #include "common_options.h"
-#include "mqtt/mqtt_command_options.h"
 #include "link_types.h"
+#include "mqtt/mqtt_command_options.h"
 
 namespace pvtap::analyzer {
 namespace {

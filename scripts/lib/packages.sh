@@ -37,6 +37,13 @@ PVTAP_PACKAGES=(
   ser2net
   socat
   tcpdump
+  # pvtap --mqtt (libmosquitto) and its tests: a real broker, its clients, certificates made
+  # with openssl, and Debian's paho for the tests' subscriber.
+  libmosquitto-dev
+  mosquitto
+  mosquitto-clients
+  openssl
+  python3-paho-mqtt
 )
 
 # Prints the packages of PVTAP_PACKAGES that are not installed, one per line.

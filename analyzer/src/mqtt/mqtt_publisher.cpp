@@ -86,8 +86,14 @@ void MqttPublisher::gap(const EventContext& c, const SessionGap& g) {
 }
 
 void MqttPublisher::tick(double now) {
+  // The first publication comes an interval after the first event, not with it.
+  if (next_tick_ == 0) next_tick_ = now + interval_;
   if (now < next_tick_) return;
   next_tick_ = now + interval_;
+  publish_due(now);
+}
+
+void MqttPublisher::publish_due(double now) {
   // Availability changes are events: judged whether or not the broker is there.
   for (auto& [name, bus] : buses_) judge_availability(bus, now);
   if (!client_->connected()) return;  // values stay held, latest only
@@ -99,8 +105,7 @@ void MqttPublisher::tick(double now) {
 }
 
 void MqttPublisher::finish(double now) {
-  next_tick_ = now;
-  tick(now);
+  publish_due(now);
   std::optional<QueuedMessage> last;
   if (live_) last = QueuedMessage{topics_.status(), "offline"};
   if (!client_->close(last, live_ ? kLiveCloseSeconds : kReplayCloseSeconds)) {

@@ -12,12 +12,13 @@ namespace {
 constexpr std::string_view kIdentityKeys[] = {"model_name", "manufacturer_name", "serial_number",
                                               "device_number", "firmware_version"};
 
+// A reply with a good check and values (an error reply may carry the Hybrid device number).
 bool is_good_reply(const SessionFrame& f) {
-  return f.frame != nullptr && f.role == Role::Response && f.values_trusted &&
-         f.decode.status == DecodeStatus::Decoded;
+  return f.frame != nullptr && f.role == Role::Response && f.values_trusted && !f.values.empty();
 }
 
 void touch_block(StationState& s, const SessionFrame& f) {
+  if (f.decode.status != DecodeStatus::Decoded) return;
   PollBlock& b = s.blocks[{f.frame->function, f.decode.start}];
   if (b.last > 0 && f.start_time > b.last) b.period = f.start_time - b.last;
   b.last = f.start_time;
