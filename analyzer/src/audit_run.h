@@ -80,6 +80,7 @@ class AuditRun : public BusDirectory {
   void revive_taps(LiveTaps& taps, double now);
   double next_wake(const LiveTaps& taps, double now, double started) const;
   void after_wake(LiveTaps& taps, double now);
+  void publish_line_errors(LiveTaps& taps, double now);
   void on_record(InputKind kind, const CapturedPacket& packet);
   void on_network_packet(const CapturedPacket& packet);
   void on_exported_pdu(const CapturedPacket& packet);

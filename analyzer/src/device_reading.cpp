@@ -97,6 +97,7 @@ bool AuditRun::read_devices() {
     after_wake(taps, now);
     if (now >= next_sample) {
       for (auto& tap : taps) tap->device.sample_line_errors();
+      if (mqtt_) publish_line_errors(taps, now);
       next_sample = now + kLineErrorSampleEvery;
     }
   }
@@ -104,6 +105,13 @@ bool AuditRun::read_devices() {
   for (auto& tap : taps) live_.devices.push_back(tap->device.report(now));
   end_live_capture(started, now);
   return true;
+}
+
+void AuditRun::publish_line_errors(LiveTaps& taps, double now) {
+  const bool named = options_.live.devices.size() > 1;
+  for (auto& tap : taps) {
+    mqtt_->line_errors(named ? tap->device.path() : "", tap->device.report(now).line_errors);
+  }
 }
 
 double AuditRun::next_wake(const LiveTaps& taps, double now, double started) const {

@@ -46,6 +46,21 @@ void append_latency(std::string& out, std::string_view prefix, const Distributio
   append_json_count(out, p + "_count", d.count);
 }
 
+void append_line_errors(std::string& out, const std::optional<LineErrorCounts>& e) {
+  append_json_key(out, "line_errors");
+  if (!e) {
+    out += "null";
+    return;
+  }
+  out += "{\"framing\":";
+  append_uint(out, e->framing);
+  append_json_count(out, "overrun", e->overrun);
+  append_json_count(out, "parity", e->parity);
+  append_json_count(out, "breaks", e->breaks);
+  append_json_count(out, "buffer_overrun", e->buffer_overrun);
+  out += '}';
+}
+
 }  // namespace
 
 void BusHealth::count(const SessionFrame& f) {
@@ -87,6 +102,7 @@ void append_health_json(std::string& out, const BusHealth& h, const HealthContex
   append_json_count(out, "poll_blocks_missing", c.poll_blocks_missing);
   append_json_count(out, "events_queued", c.events_queued);
   append_json_count(out, "events_dropped", c.events_dropped);
+  append_line_errors(out, h.line_errors);
   if (!c.bus.empty()) {
     out += ",\"bus\":";
     append_json_string(out, c.bus);

@@ -3,9 +3,11 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 
+#include "live_report.h"
 #include "pvtap/bus_session.h"
 #include "pvtap/distribution_summary.h"
 
@@ -20,6 +22,8 @@ struct BusHealth {
   std::uint64_t unsolicited = 0;
   std::uint64_t noise_bytes = 0;
   std::uint64_t gaps = 0;
+  // The serial driver's counters of a tap, when it keeps them (TIOCGICOUNT; not a pty).
+  std::optional<LineErrorCounts> line_errors;
   DistributionAccumulator latency_interval;  // since the last publication
   DistributionAccumulator latency_total;
 
@@ -53,8 +57,9 @@ struct HealthField {
 };
 extern const HealthField kHealthFields[17];
 
-// {"ts":...,"interval_s":10,"frames":...,"latency_p50_ms":...,...,"bus":"..."}; latency
-// fields are null while no reply was timed.
+// {"ts":...,"interval_s":10,"frames":...,"latency_p50_ms":...,...,"line_errors":{...},
+// "bus":"..."}; latency fields are null while no reply was timed, line_errors where the
+// driver does not count them.
 void append_health_json(std::string& out, const BusHealth& h, const HealthContext& c);
 
 }  // namespace pvtap::analyzer

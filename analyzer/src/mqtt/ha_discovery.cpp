@@ -96,8 +96,10 @@ void append_station_device(std::string& out, const DiscoveryScope& scope, const 
 
 void append_availability(std::string& out, const DiscoveryScope& scope, std::uint8_t station) {
   out += ",\"availability_mode\":\"all\",\"availability\":[{\"topic\":";
-  append_json_string(out, scope.topics->status());
-  out += "},{\"topic\":";
+  if (scope.live) {
+    append_json_string(out, scope.topics->status());
+    out += "},{\"topic\":";
+  }
   append_json_string(out, scope.topics->availability(scope.bus_level, station));
   out += "}]";
 }
@@ -207,8 +209,10 @@ std::vector<QueuedMessage> health_discovery_configs(const DiscoveryScope& scope)
       append_member(o, "unit_of_measurement", f.unit);
       append_member(o, "device_class", "duration");
     }
-    o += ",\"availability_topic\":";
-    append_json_string(o, scope.topics->status());
+    if (scope.live) {
+      o += ",\"availability_topic\":";
+      append_json_string(o, scope.topics->status());
+    }
     o += ",\"device\":{\"identifiers\":[";
     append_json_string(o, "pvtap_" + node);
     o += "],\"name\":";

@@ -29,6 +29,7 @@ struct DiscoveryScope {
   const MqttTopics* topics = nullptr;
   std::string_view bus;        // as the sessions name it
   std::string_view bus_level;  // its topic level
+  bool live = true;            // PREFIX/status is kept (not when replaying a capture)
 };
 
 // The configs of one register of a station: a sensor, and for a bits register one binary

@@ -85,6 +85,13 @@ void MqttPublisher::gap(const EventContext& c, const SessionGap& g) {
   publish_event_line(bus);
 }
 
+void MqttPublisher::line_errors(std::string_view bus,
+                                const std::optional<LineErrorCounts>& counts) {
+  EventContext c;
+  c.bus = bus;
+  bus_of(c).health.line_errors = counts;
+}
+
 void MqttPublisher::tick(double now) {
   // The first publication comes an interval after the first event, not with it.
   if (next_tick_ == 0) next_tick_ = now + interval_;
@@ -175,7 +182,7 @@ void MqttPublisher::publish_station(Bus& bus, StationState& s) {
 }
 
 void MqttPublisher::publish_discovery(Bus& bus, StationState& s) {
-  const DiscoveryScope scope{&topics_, bus.name, bus.level};
+  const DiscoveryScope scope{&topics_, bus.name, bus.level, live_};
   for (auto& [key, held] : s.values) {
     if (held.discovered && !s.identity_changed) continue;
     bool sent = true;

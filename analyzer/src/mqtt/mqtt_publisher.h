@@ -40,6 +40,8 @@ class MqttPublisher : public EventWriter {
 
   // The capture clock reads `now`: publishes what is due. Cheap when nothing is.
   void tick(double now);
+  // A serial tap's driver counters (or none: not counted), for the health of its bus.
+  void line_errors(std::string_view bus, const std::optional<LineErrorCounts>& counts);
   // End of input: publishes everything held, then (live) offline; waits a little for the
   // broker to take it all and disconnects. Warns when events were left undelivered.
   void finish(double now);
