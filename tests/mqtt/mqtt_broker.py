@@ -63,6 +63,9 @@ class Broker:
             f.write(PASSWORD + "\n")
         lines = [f"listener {self.port} 127.0.0.1", "allow_anonymous false",
                  f"password_file {passwd}", "persistence true",
+                 # No limit on a subscriber's queue: the tests' Python subscriber is slower
+                 # than pvtap, and a broker that drops for it would hide what pvtap sent.
+                 "max_queued_messages 0",
                  f"persistence_location {self.folder}/",
                  f"user {pwd.getpwuid(os.getuid()).pw_name}"]
         if tls:

@@ -19,12 +19,32 @@ bool is_good_reply(const SessionFrame& f) {
 
 void touch_block(StationState& s, const SessionFrame& f) {
   if (f.decode.status != DecodeStatus::Decoded) return;
-  PollBlock& b = s.blocks[{f.frame->function, f.decode.start}];
-  if (b.last > 0 && f.start_time > b.last) b.period = f.start_time - b.last;
-  b.last = f.start_time;
+  s.blocks[{f.frame->function, f.decode.start}].seen(f.start_time);
 }
 
 }  // namespace
+
+void PollBlock::seen(double time) {
+  if (last > 0 && time > last) {
+    intervals[next] = time - last;
+    next = (next + 1) % kIntervals;
+    if (count < kIntervals) ++count;
+  }
+  last = time;
+}
+
+std::optional<double> PollBlock::period() const {
+  if (count < kIntervalsToJudge) return std::nullopt;
+  std::array<double, kIntervals> sorted = intervals;
+  const auto middle = sorted.begin() + static_cast<std::ptrdiff_t>(count / 2);
+  std::nth_element(sorted.begin(), middle, sorted.begin() + static_cast<std::ptrdiff_t>(count));
+  return *middle;
+}
+
+bool PollBlock::missing(double now) const {
+  const std::optional<double> p = period();
+  return p && now - last > 3 * *p;
+}
 
 bool is_identity_key(std::string_view key) {
   return std::find(std::begin(kIdentityKeys), std::end(kIdentityKeys), key) !=
@@ -34,7 +54,8 @@ bool is_identity_key(std::string_view key) {
 std::optional<double> StationState::period() const {
   std::optional<double> shortest;
   for (const auto& [id, block] : blocks) {
-    if (block.period && (!shortest || *block.period < *shortest)) shortest = block.period;
+    const std::optional<double> p = block.period();
+    if (p && (!shortest || *p < *shortest)) shortest = p;
   }
   return shortest;
 }

@@ -3,6 +3,7 @@
 // and their periods, and whether each station still answers.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <map>
 #include <optional>
@@ -22,11 +23,21 @@ struct HeldValue {
 };
 
 // PollBlock: a run of registers a master reads (station, function, start address), and how
-// often good replies bring it.
+// often good replies bring it: the median of its last intervals, so that a master's retry or
+// a duplicate reply (a short interval) or one lost poll (a long one) does not move it.
 struct PollBlock {
+  static constexpr std::size_t kIntervals = 9;
+  // No period (and so no outage) before this many intervals: a master's first round often
+  // reads a block twice in quick succession.
+  static constexpr std::size_t kIntervalsToJudge = 3;
   double last = 0;
-  std::optional<double> period;  // between its last two replies
-  bool missing(double now) const { return period && now - last > 3 * *period; }
+  std::array<double, kIntervals> intervals{};
+  std::size_t count = 0;  // intervals seen, up to kIntervals
+  std::size_t next = 0;   // ring position of the next interval
+
+  void seen(double time);
+  std::optional<double> period() const;
+  bool missing(double now) const;
 };
 
 // StationState: one station's held values and timing.
