@@ -61,8 +61,11 @@ std::optional<double> StationState::period() const {
 }
 
 bool StationState::answering(double now) const {
+  // A master polling many times a second can pause for longer than three rounds without any
+  // station being away (it, or the host reading the tap, was scheduled out).
+  constexpr double kShortestOutage = 1.0;
   const std::optional<double> p = period();
-  return !p || now - last_reply <= 3 * *p;
+  return !p || now - last_reply <= std::max(3 * *p, kShortestOutage);
 }
 
 void StationTable::record(const SessionFrame& f) {

@@ -52,7 +52,8 @@ struct StationState {
   bool identity_changed = false;     // model, serial or maker changed: rediscover the device
   // The shortest period of its blocks: the station should answer at least this often.
   std::optional<double> period() const;
-  // Answered within three poll periods (a station with no known period yet answered once).
+  // Answered within three poll periods, and within the last second (a station with no known
+  // period yet answered once).
   bool answering(double now) const;
 };
 
