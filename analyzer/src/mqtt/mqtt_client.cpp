@@ -89,6 +89,16 @@ void MqttClient::publish_event(std::string topic, std::string payload) {
   i.events.push(QueuedMessage{std::move(topic), std::move(payload)});
 }
 
+void MqttClient::wait_for_room(std::size_t limit) {
+  for (;;) {
+    {
+      std::lock_guard lock(impl_->mutex);
+      if (!impl_->is_connected || impl_->unacknowledged.size() < limit) return;
+    }
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+  }
+}
+
 bool MqttClient::connected() const {
   std::lock_guard lock(impl_->mutex);
   return impl_->is_connected;

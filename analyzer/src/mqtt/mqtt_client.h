@@ -52,6 +52,11 @@ class MqttClient {
   // An event: QoS 1, not retained, queued while the broker is away.
   void publish_event(std::string topic, std::string payload);
 
+  // Waits while `limit` or more messages are with libmosquitto, not yet written or
+  // acknowledged (returns at once when not connected). Only for replays, which may wait:
+  // without it a capture read at full speed piles up in libmosquitto's queue.
+  void wait_for_room(std::size_t limit);
+
   bool connected() const;
   // Successful connections so far (a change means the broker may have lost retained data).
   std::uint64_t connections() const;

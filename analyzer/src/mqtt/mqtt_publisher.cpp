@@ -12,6 +12,9 @@ namespace {
 // How long the end of a capture waits for the broker to take what is left.
 constexpr double kLiveCloseSeconds = 5;
 constexpr double kReplayCloseSeconds = 60;
+// A replay waits while this many messages are on their way (bounds its memory); a live
+// capture never waits.
+constexpr std::size_t kReplayWindow = 500;
 
 bool is_event(const SessionFrame& f) {
   return !f.check.ok || !f.parse_error.empty() || f.unsolicited ||
@@ -48,7 +51,12 @@ MqttPublisher::Bus& MqttPublisher::bus_of(const EventContext& c) {
   return it->second;
 }
 
+void MqttPublisher::pace() {
+  if (!live_) client_->wait_for_room(kReplayWindow);
+}
+
 void MqttPublisher::publish_event_line(const Bus& bus) {
+  pace();
   std::string& line = line_->buffer();
   if (!line.empty() && line.back() == '\n') line.pop_back();
   client_->publish_event(topics_.events(bus.level), line);
@@ -158,6 +166,7 @@ void MqttPublisher::judge_availability(Bus& bus, double now) {
 
 void MqttPublisher::publish_retained(Bus& bus, double now) {
   for (auto& [address, s] : bus.stations.stations()) {
+    pace();
     if (discovery_) publish_discovery(bus, s);
     publish_station(bus, s);
   }

@@ -59,6 +59,7 @@ class MqttPublisher : public EventWriter {
 
   Bus& bus_of(const EventContext& c);
   void publish_due(double now);
+  void pace();
   void publish_event_line(const Bus& bus);
   void judge_availability(Bus& bus, double now);
   void publish_retained(Bus& bus, double now);
