@@ -126,6 +126,7 @@ bool MqttClient::close(const std::optional<QueuedMessage>& last, double timeout)
     {
       std::lock_guard lock(impl_->mutex);
       if (impl_->events.empty() && impl_->unacknowledged.empty()) return true;
+      if (!impl_->is_connected) return false;  // nobody to wait for
     }
     if (std::chrono::steady_clock::now() >= deadline) return false;
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
