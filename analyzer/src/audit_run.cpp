@@ -82,11 +82,13 @@ bool AuditRun::open_outputs() {
     }
     writer_->flush_each_record(options_.live.flush_each_record);
   }
+  // Before any output line (a csv header): a broker that refuses is an error with no output.
+  if (!open_mqtt()) return false;
   if (!options_.summary_only) {
     events_ = make_event_writer(options_.format, out_);
     events_->begin();
   }
-  return open_mqtt();
+  return true;
 }
 
 bool AuditRun::open_mqtt() {

@@ -35,6 +35,9 @@ MqttPublisher::MqttPublisher(std::unique_ptr<MqttClient> client, const MqttOptio
       jsonl_(make_jsonl_event_writer(*line_)) {}
 
 MqttPublisher::~MqttPublisher() {
+  // Ended without finish() (a device that could not be opened after the broker accepted
+  // us): the site is not left "online", and nothing half-done is flushed.
+  if (!finished_ && live_) client_->close(QueuedMessage{topics_.status(), "offline"}, 1.0);
   jsonl_.reset();
   line_.reset();
   if (line_sink_ != nullptr) std::fclose(line_sink_);
@@ -120,6 +123,7 @@ void MqttPublisher::publish_due(double now) {
 }
 
 void MqttPublisher::finish(double now) {
+  finished_ = true;
   publish_due(now);
   std::optional<QueuedMessage> last;
   if (live_) last = QueuedMessage{topics_.status(), "offline"};

@@ -83,6 +83,7 @@ class MqttPublisher : public EventWriter {
   std::string scratch_;
   double next_tick_ = 0;
   std::uint64_t connections_seen_ = 0;
+  bool finished_ = false;
 };
 
 }  // namespace pvtap::analyzer
