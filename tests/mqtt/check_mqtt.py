@@ -5,7 +5,7 @@ with --format jsonl and --mqtt at once, and what reached the broker is judged ag
 jsonl lines of the same run.
 
 usage: check_mqtt.py --pvtap PVTAP --sim PVTAP_SIM --scratch DIR CHECK
-checks: values outage bad_login tls unreachable replay
+checks: values availability outage bad_login tls unreachable replay
 """
 import argparse
 import json
@@ -148,6 +148,53 @@ def sniff_run(args, broker, prefix, name, *extra, pcap=None):
                        *mqtt_args(broker, prefix, *extra)])
     sniffer.wait_open(pty.path)
     return pty, sniffer
+
+
+def check_station_outages(sub, prefix, lines, stations, bad):
+    """The bus fell silent between two plays: each station went offline once with its last
+    reply's time, then online again."""
+    events = mqtt_events(sub.snapshot(), prefix, station_events=True)
+    for station in stations:
+        seq = [(e["type"], e["last_reply_ts"]) for e in events if e["station"] == station]
+        replies = [f["ts"] for f in frames_of(lines) if f["station"] == station and
+                   f["role"] == "response" and f["check"] == "ok" and f["values"]]
+        before = max((t for t in replies if seq and t <= seq[0][1]), default=None)
+        bad.check([t for t, _ in seq] == ["station_offline", "station_online"],
+                  f"station {station}: events {seq}")
+        bad.check(bool(seq) and seq[0][1] == before,
+                  f"station {station}: offline after {seq[:1]}, last reply before it {before}")
+
+
+def check_availability(args):
+    """A master polling every 0.3 s falls silent for 2.5 s, then polls again: each station
+    goes offline once (with the time of its last reply) and online again, as events and as
+    its availability topic."""
+    bad = Failures()
+    broker = Broker(args.scratch, "availability")
+    sub = Subscriber(broker)
+    prefix = "test/availability"
+    first, again = (pty_bus.simulate(args.sim, args.scratch, f"mqtt-availability-{seed}",
+                                     ["--baud", str(check_sniff.BAUD), "--dialect", "gsl",
+                                      "--inverters", "2", "--period", "0.3", "--duration",
+                                      duration, "--seed", seed])
+                    for seed, duration in (("8", "2.5"), ("9", "1.5")))
+    pty, sniffer = sniff_run(args, broker, prefix, "availability")
+    check_sniff.play_truth(pty, first)
+    time.sleep(2.5)  # over three poll periods, and over the shortest outage (1 s)
+    check_sniff.play_truth(pty, again)
+    bad.check(sniffer.stop() == 0, f"exit status {sniffer.proc.returncode}: {sniffer.stderr()}")
+    pty.close()
+    lines = sniffer.events()
+    sub.wait_for(lambda m: sub.latest().get(f"{prefix}/status") == "offline")
+    stations = sorted(latest_jsonl_values(lines))
+    bad.check(stations == [1, 2], f"stations {stations}")
+    check_station_outages(sub, prefix, lines, stations, bad)
+    for station in stations:
+        seq = [p for t, p, _ in sub.snapshot() if t == f"{prefix}/bus/{station}/availability"]
+        bad.check("offline" in seq and seq[-1] == "online", f"station {station}: {seq}")
+    sub.close()
+    broker.stop()
+    return bad.exit_status("availability")
 
 
 def check_values(args):
@@ -315,7 +362,7 @@ def check_replay(args):
     return bad.exit_status("replay")
 
 
-CHECKS = {"values": check_values, "outage": check_outage, "bad_login": check_bad_login,
+CHECKS = {"values": check_values, "availability": check_availability, "outage": check_outage, "bad_login": check_bad_login,
           "tls": check_tls, "unreachable": check_unreachable, "replay": check_replay}
 
 
