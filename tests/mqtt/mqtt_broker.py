@@ -1,6 +1,7 @@
 """A real Debian mosquitto broker for the tests: on a free loopback port, with a password
 file, optionally with TLS (certificates made here with openssl), and a paho subscriber that
 records everything it receives."""
+import atexit
 import os
 import pwd
 import queue
@@ -76,6 +77,7 @@ class Broker:
         db = os.path.join(self.folder, "mosquitto.db")
         if os.path.exists(db):
             os.remove(db)
+        atexit.register(self.stop)  # also when a check fails with an exception
         self.start()
 
     def url(self):
