@@ -7,8 +7,13 @@ Measures what a field engineer cares about on a small logger box:
 - pvtap's CPU time as a share of the wall time, and its peak memory;
 - latency from the write of a frame's last byte to its jsonl line on pvtap's stdout.
 
+With --mqtt, pvtap also publishes to a mosquitto broker the script starts on a free loopback
+port (tests/mqtt/mqtt_broker.py; run with Debian's /usr/bin/python3 for its paho), and the
+script counts the messages a subscriber receives.
+
 usage: sniff_pty_bench.py --pvtap build/analyzer/pvtap --sim build/captures/pvtap-sim
        [--baud 115200] [--duration 60] [--inverters 16] [--period 0.2] [--busy]
+       [--faults none|all] [--mqtt] [--mqtt-interval 10]
 """
 import argparse
 import bisect
@@ -26,6 +31,9 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
                                 "sniff"))
 sys.dont_write_bytecode = True  # no __pycache__ in the source tree
 import pty_bus  # noqa: E402
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests",
+                                "mqtt"))
 
 
 def read_lines(stream, lines):
@@ -86,6 +94,9 @@ def main():
     parser.add_argument("--busy", action="store_true",
                         help="squeeze the silences to just over t3.5; "
                              "the simulated duration is then cut to fill --duration")
+    parser.add_argument("--faults", default="none", help="pvtap-sim's --faults")
+    parser.add_argument("--mqtt", action="store_true", help="also publish to a local broker")
+    parser.add_argument("--mqtt-interval", default="10")
     args = parser.parse_args()
     scratch = tempfile.mkdtemp(prefix="pvtap-sniff-bench-")
     # Squeezed, a simulated minute lasts about a tenth of one.
@@ -93,16 +104,25 @@ def main():
     truth = pty_bus.simulate(args.sim, scratch, "bench",
                              ["--dialect", "gsl,hybrid,ascii", "--inverters",
                               str(args.inverters), "--duration", str(sim_seconds), "--period",
-                              str(args.period), "--baud", str(args.baud), "--seed", "1"])
+                              str(args.period), "--baud", str(args.baud), "--seed", "1",
+                              "--faults", args.faults])
     events = truth["events"]
     if args.busy:
         events = squeeze(events, args.baud)
         while len(events) > 1 and events[-1]["ts"] - events[0]["ts"] > args.duration:
             events.pop()
     pty = pty_bus.Pty()
+    mqtt, broker, sub = [], None, None
+    if args.mqtt:
+        import mqtt_broker
+        broker = mqtt_broker.Broker(scratch, "bench")
+        sub = mqtt_broker.Subscriber(broker)
+        mqtt = ["--mqtt", broker.url(), "--mqtt-user", mqtt_broker.USER, "--mqtt-password-file",
+                broker.password_file, "--mqtt-topic", "bench", "--mqtt-interval",
+                args.mqtt_interval, "--mqtt-discovery"]
     proc = subprocess.Popen([args.pvtap, "sniff", "--device", pty.path, "--baud",
                              str(args.baud), "--format", "jsonl", "--timeout",
-                             str(truth["timeout_s"])],
+                             str(truth["timeout_s"]), *mqtt],
                             stdout=subprocess.PIPE, text=True)
     lines = []
     reader = threading.Thread(target=read_lines, args=(proc.stdout, lines))
@@ -143,7 +163,33 @@ def main():
           f"{percentile(latency_ms, 50):.2f}, p99 {percentile(latency_ms, 99):.2f}, max "
           f"{max(latency_ms):.2f}")
     ok = proc.returncode == 0 and same and summary["bytes"] == bus_bytes
+    if sub is not None:
+        ok = report_mqtt(sub, parsed, wall) and ok
+        sub.close()
+        broker.stop()
     return 0 if ok else 1
+
+
+def report_mqtt(sub, parsed, wall):
+    """Messages the broker passed on, by kind; the events must be all of jsonl's."""
+    time.sleep(1.0)
+    messages = sub.snapshot()
+    kinds = {}
+    for topic, _, _ in messages:
+        kind = ("discovery" if topic.startswith("homeassistant/") else topic.rsplit("/", 1)[-1]
+                if topic.endswith(("/events", "/health", "/state", "/status", "/availability"))
+                else "value")
+        kinds[kind] = kinds.get(kind, 0) + 1
+    events = [m for m in messages
+              if m[0].endswith("/events") and '"type":"station_' not in m[1]]
+    want = [e for _, e in parsed if e["type"] in ("timeout", "gap") or
+            (e["type"] == "frame" and (e["check"] == "bad" or any(
+                i.startswith(("malformed", "unsolicited", "late reply", "exception",
+                              "error reply")) for i in e["issues"])))]
+    print(f"MQTT: {len(messages)} messages in {wall:.1f} s = {len(messages) / wall:.1f}/s "
+          f"({', '.join(f'{k} {n}' for k, n in sorted(kinds.items()))}); events "
+          f"{len(events)} of {len(want)} jsonl events")
+    return len(events) == len(want)
 
 
 if __name__ == "__main__":

@@ -41,6 +41,13 @@ PVTAP_PACKAGES=(
   # browser (headless chromium, driven over the DevTools pipe).
   libjs-dygraphs
   chromium
+  # pvtap --mqtt (libmosquitto) and its tests: a real broker, its clients, certificates made
+  # with openssl, and Debian's paho for the tests' subscriber.
+  libmosquitto-dev
+  mosquitto
+  mosquitto-clients
+  openssl
+  python3-paho-mqtt
 )
 
 # Prints the packages of PVTAP_PACKAGES that are not installed, one per line.

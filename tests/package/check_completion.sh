@@ -73,6 +73,8 @@ expect_same "--gsl-ids values" "$(printf '%s\n' decimal hex)" \
     "$(complete_line "$pvtap" audit --gsl-ids '')"
 expect_same "nothing is guessed for --timeout" "" "$(complete_line "$pvtap" audit --timeout '')"
 expect_same "--fail-on's value" "errors" "$(complete_line "$pvtap" audit --fail-on '')"
+expect_same "--mqtt offers the two schemes" "$(printf '%s\n' mqtt:// mqtts://)" \
+    "$(complete_line "$pvtap" sniff --mqtt '')"
 expect_same "--parity values" "$(printf '%s\n' even none odd)" \
     "$(complete_line "$pvtap" sniff --device /dev/ttyS0 --parity '')"
 
@@ -89,10 +91,13 @@ unset PVTAP_SERIAL_PORTS
 scratch=$(mktemp -d)
 trap 'rm -rf "$scratch"' EXIT
 mkdir "$scratch/site"
-touch "$scratch/a.pcap" "$scratch/b.pcapng" "$scratch/notes.txt" "$scratch/site.toml"
+touch "$scratch/a.pcap" "$scratch/b.pcapng" "$scratch/notes.txt" "$scratch/site.toml" \
+    "$scratch/ca.crt"
 cd "$scratch" || exit 1
 expect_same "audit FILE offers captures and folders" "$(printf '%s\n' a.pcap b.pcapng site)" \
     "$(complete_line "$pvtap" audit --summary-only '')"
+expect_same "--mqtt-ca offers certificates and folders" "$(printf '%s\n' ca.crt site)" \
+    "$(complete_line "$pvtap" sniff --mqtt-ca '')"
 expect_same "--map offers TOML files and folders" "$(printf '%s\n' site site.toml)" \
     "$(complete_line "$pvtap" audit --map '')"
 

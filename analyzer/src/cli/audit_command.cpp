@@ -8,6 +8,7 @@
 
 #include "cli/common_options.h"
 #include "cli/exit_status.h"
+#include "cli/mqtt_command_options.h"
 #include "output/progress_bar.h"
 #include "output/run_output.h"
 #include "pipeline/pipeline.h"
@@ -49,6 +50,8 @@ std::string footer_text() {
          "  pvtap audit --write frames.pcap capture.pcap   (open frames.pcap in Wireshark)\n"
          "  pvtap audit --summary-only --html day.html --values day.csv site.pcap\n"
          "  pvtap audit --summary-only --values site.lp --values-format influx site.pcap\n"
+         "  pvtap audit --summary-only --mqtt mqtt://broker.lan day.pcapng  (back-fill a broker\n"
+         "      with the day's values and events, stamped with their capture times)\n"
          "\nSupported link types: " +
          supported_link_types_text() + "\n";
 }
@@ -71,10 +74,11 @@ void add_input_options(CLI::App& audit, AuditOptions& o) {
 
 CLI::App* add_audit_command(CLI::App& app, AuditOptions& options) {
   CLI::App* audit = app.add_subcommand("audit", kDescription);
-  audit->footer(footer_text());
+  audit->footer(footer_text() + kMqttHelpFooter);
   add_input_options(*audit, options);
   add_protocol_options(*audit, options, kAnyBaud);
   add_output_options(*audit, options);
+  add_mqtt_options(*audit, options.mqtt);
   return audit;
 }
 
@@ -115,6 +119,7 @@ int audit(const AuditOptions& options, const RegisterDecoder& decoder, OutputStr
   CaptureReader reader(pipeline, progress);
   const bool complete = reader.read(options.captures, options.raw_dumps);
   pipeline.finish(reader.last_time());
+  output.end_of_input(reader.last_time());
   progress.clear();
   AuditReport report = pipeline.report();
   report.inputs = reader.inputs();

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "mqtt/mqtt_options.h"
 #include "output/event_writer.h"
 #include "output/values_writer.h"
 #include "pvtap/dialect.h"
@@ -41,6 +42,7 @@ struct CommonOptions {
   // --html: the report as one self-contained page; --plot narrows its value charts.
   std::string html_path;
   std::vector<std::string> plot_keys;
+  MqttOptions mqtt;  // --mqtt: also publish to a broker
 };
 
 // AuditOptions: `pvtap audit`: capture files or plain dumps.

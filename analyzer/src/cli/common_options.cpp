@@ -157,7 +157,8 @@ PipelineSettings pipeline_settings(const CommonOptions& o) {
   s.gateway_gap_ms = o.gateway_gap_ms;
   s.ports = o.ports;
   // --values and --html need the values of every frame even when stdout shows none.
-  s.decode_values = !o.summary_only || !o.values_path.empty() || !o.html_path.empty();
+  s.decode_values =
+      !o.summary_only || !o.values_path.empty() || !o.html_path.empty() || o.mqtt.active();
   s.gsl_ids = o.gsl_ids;
   return s;
 }
@@ -168,6 +169,7 @@ OutputSettings output_settings(const CommonOptions& o) {
   s.summary_only = o.summary_only;
   s.write_path = o.write_path;
   s.files = FileOutputSettings{o.values_path, o.values_format, o.html_path, o.plot_keys};
+  s.mqtt = o.mqtt;
   return s;
 }
 

@@ -8,6 +8,7 @@
 
 #include "cli/common_options.h"
 #include "cli/exit_status.h"
+#include "cli/mqtt_command_options.h"
 #include "output/run_output.h"
 #include "pipeline/pipeline.h"
 #include "sources/interface_source.h"
@@ -44,6 +45,8 @@ const char* const kFooter =
     "  pvtap sniff --device /dev/ttyUSB0 --device /dev/ttyUSB1 --write site.pcap\n"
     "  pvtap sniff --interface eth0 --port 4001 --duration 600 --summary-only\n"
     "  pvtap sniff --device /dev/ttyUSB0 --duration 3600 --html hour.html --values hour.csv\n"
+    "  pvtap sniff --device /dev/ttyUSB0 --summary-only --mqtt mqtt://broker.lan\n"
+    "      --mqtt-user pvtap --mqtt-password-file /etc/pvtap/mqtt.pw --mqtt-discovery\n"
     "\nIn Wireshark, once pvtap is installed (its Debian package, or `cmake --install`), the\n"
     "capture interfaces list \"RS485 tap\" for each serial port (pvtap answers Wireshark's\n"
     "extcap calls).\n";
@@ -110,6 +113,7 @@ bool capture_from(Source& source, const SniffOptions& o, Pipeline& pipeline, Run
   LiveLoop loop(o.live, pipeline, output);
   source.run(loop, live);
   pipeline.finish(loop.last_time());
+  output.end_of_input(loop.last_time());
   return true;
 }
 
@@ -117,6 +121,7 @@ int capture(const SniffOptions& o, const RegisterDecoder& decoder, OutputStream&
   OutputSettings output_choice = output_settings(o);
   // Each record reaches the --write file at once, so that an abrupt end loses nothing.
   output_choice.flush_each_record = true;
+  output_choice.live = true;
   RunOutput output(output_choice, out);
   if (!output.open()) return kExitBadInput;
   Pipeline pipeline(pipeline_settings(o), decoder, output.events());
@@ -143,11 +148,12 @@ int capture(const SniffOptions& o, const RegisterDecoder& decoder, OutputStream&
 
 CLI::App* add_sniff_command(CLI::App& app, SniffCommandLine& command) {
   CLI::App* sniff = app.add_subcommand("sniff", kDescription);
-  sniff->footer(kFooter);
+  sniff->footer(std::string(kFooter) + kMqttHelpFooter);
   add_source_options(*sniff, command);
   add_protocol_options(*sniff, command.options, BaudRange{2400, 115200});
   add_stop_options(*sniff, command.options.live);
   add_output_options(*sniff, command.options);
+  add_mqtt_options(*sniff, command.options.mqtt);
   return sniff;
 }
 

@@ -34,6 +34,15 @@ bool RunOutput::open() {
     }
     fanout_.add(*pcap_);
   }
+  // Before any output line (a csv header): a broker that refuses is an error with no output.
+  if (settings_.mqtt.active()) {
+    std::string error;
+    mqtt_ = MqttPublisher::open(settings_.mqtt, settings_.live, error);
+    if (!mqtt_) {
+      std::fprintf(stderr, "pvtap: %s\n", error.c_str());
+      return false;
+    }
+  }
   if (const auto error = files_.open()) {
     std::fprintf(stderr, "pvtap: cannot write %s\n", error->c_str());
     return false;
@@ -43,6 +52,7 @@ bool RunOutput::open() {
     fanout_.add(*format_);
   }
   files_.add_to(fanout_);
+  if (mqtt_) fanout_.add(*mqtt_);
   fanout_.begin();
   return true;
 }
@@ -64,6 +74,18 @@ void RunOutput::write_summary(const AuditReport& report) {
 void RunOutput::flush() {
   if (!out_.buffer().empty()) out_.flush();
   files_.flush();
+}
+
+void RunOutput::tick(double now) {
+  if (mqtt_) mqtt_->tick(now);
+}
+
+void RunOutput::line_errors(std::string_view bus, const std::optional<LineErrorCounts>& counts) {
+  if (mqtt_) mqtt_->line_errors(bus, counts);
+}
+
+void RunOutput::end_of_input(double time) {
+  if (mqtt_) mqtt_->finish(time);
 }
 
 bool RunOutput::close(const AuditReport& report) {

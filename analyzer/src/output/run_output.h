@@ -8,6 +8,8 @@
 #include <string>
 
 #include "formatting/output_stream.h"
+#include "mqtt/mqtt_options.h"
+#include "mqtt/mqtt_publisher.h"
 #include "output/event_fanout.h"
 #include "output/event_writer.h"
 #include "output/file_outputs.h"
@@ -23,6 +25,8 @@ struct OutputSettings {
   std::string write_path;     // --write; empty for none
   bool flush_each_record = false;
   FileOutputSettings files;  // --values, --html
+  MqttOptions mqtt;          // --mqtt
+  bool live = false;         // a live capture (the broker learns when pvtap goes away)
 };
 
 class RunOutput {
@@ -38,6 +42,13 @@ class RunOutput {
   void write_summary(const AuditReport& report);
   // Live capture: what is buffered for stdout and --values goes out now.
   void flush();
+  // The capture clock reads `now`: what the broker gets per interval goes out when due.
+  void tick(double now);
+  // A serial tap's driver counters, for the broker's health of its bus.
+  bool wants_line_errors() const { return mqtt_ != nullptr; }
+  void line_errors(std::string_view bus, const std::optional<LineErrorCounts>& counts);
+  // The input ended at `time`: the broker gets everything held.
+  void end_of_input(double time);
   bool stdout_pending() const { return !out_.buffer().empty(); }
   // Writes the HTML report and closes the files; false (after saying why) when writing one
   // of them failed.
@@ -50,6 +61,7 @@ class RunOutput {
   std::unique_ptr<EventWriter> format_;
   std::optional<PduCaptureOutput> pcap_;
   FileOutputs files_;
+  std::unique_ptr<MqttPublisher> mqtt_;
   EventFanout fanout_;
 };
 

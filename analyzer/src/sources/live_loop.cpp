@@ -43,6 +43,7 @@ void LiveLoop::after_wake(double now) {
   if (output_.stdout_pending()) status_.clear();
   output_.flush();
   if (status_.due(now)) show_status(now);
+  output_.tick(now);
 }
 
 void LiveLoop::show_status(double now) {

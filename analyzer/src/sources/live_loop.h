@@ -25,6 +25,8 @@ class LiveLoop {
   double wake_at(double now) const;
   // Events (and --values rows) go out as they happen; the status line is redrawn when due.
   void after_wake(double now);
+  // The run's output, for what a source reports besides events (line error counters).
+  RunOutput& output() { return output_; }
   // A line is about to go to stderr: the status line makes room for it.
   void make_room_on_stderr() { status_.clear(); }
   // A record of this time was fed: the capture ends no earlier.

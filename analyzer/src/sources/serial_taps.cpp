@@ -93,6 +93,7 @@ void SerialTaps::run(LiveLoop& loop, LiveSources& live) {
     after_wake(now);
     if (now >= next_sample) {
       for (auto& tap : taps_) tap->device.sample_line_errors();
+      if (loop.output().wants_line_errors()) report_line_errors(now);
       next_sample = now + kLineErrorSampleEvery;
     }
   }
@@ -100,6 +101,14 @@ void SerialTaps::run(LiveLoop& loop, LiveSources& live) {
   for (auto& tap : taps_) live.devices.push_back(tap->device.report(now));
   loop.end(now, live);
   loop_ = nullptr;
+}
+
+void SerialTaps::report_line_errors(double now) {
+  const bool named = live_.devices.size() > 1;
+  for (auto& tap : taps_) {
+    loop_->output().line_errors(named ? tap->device.path() : "",
+                                tap->device.report(now).line_errors);
+  }
 }
 
 double SerialTaps::next_wake(double now) const {

@@ -34,6 +34,7 @@ class SerialTaps {
   void revive(double now);
   double next_wake(double now) const;
   void after_wake(double now);
+  void report_line_errors(double now);
 
   const LiveOptions& live_;
   std::uint32_t baud_;

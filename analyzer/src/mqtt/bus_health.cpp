@@ -1,0 +1,114 @@
+// BusHealth: counting and the health JSON.
+#include "mqtt/bus_health.h"
+
+#include "formatting/number_text.h"
+#include "formatting/json_text.h"
+
+namespace pvtap::analyzer {
+
+const HealthField kHealthFields[17] = {
+    {"frames", "frames", "", true},
+    {"damaged_frames", "damaged frames", "", true},
+    {"timeouts", "timeouts", "", true},
+    {"unanswered_damaged_requests", "unanswered damaged requests", "", true},
+    {"exceptions", "exceptions", "", true},
+    {"unsolicited", "unsolicited replies", "", true},
+    {"noise_bytes", "noise bytes", "", true},
+    {"gaps", "capture gaps", "", true},
+    {"latency_p50_ms", "latency p50", "ms", false},
+    {"latency_p95_ms", "latency p95", "ms", false},
+    {"latency_max_ms", "latency max", "ms", false},
+    {"latency_total_p50_ms", "latency p50 since start", "ms", false},
+    {"latency_total_p95_ms", "latency p95 since start", "ms", false},
+    {"latency_total_max_ms", "latency max since start", "ms", false},
+    {"poll_blocks_missing", "poll blocks missing", "", false},
+    {"stations_answering", "stations answering", "", false},
+    {"events_dropped", "MQTT events dropped", "", true},
+};
+
+namespace {
+
+void append_ms(std::string& out, std::string_view key, const DistributionSummary& d,
+               double seconds) {
+  append_json_key(out, key);
+  if (d.count == 0) {
+    out += "null";
+  } else {
+    append_fixed(out, seconds * 1e3, 3);
+  }
+}
+
+void append_latency(std::string& out, std::string_view prefix, const DistributionAccumulator& a) {
+  const DistributionSummary d = a.summary();
+  const std::string p(prefix);
+  append_ms(out, p + "_p50_ms", d, d.p50);
+  append_ms(out, p + "_p95_ms", d, d.p95);
+  append_ms(out, p + "_max_ms", d, d.max);
+  append_json_count(out, p + "_count", d.count);
+}
+
+void append_line_errors(std::string& out, const std::optional<LineErrorCounts>& e) {
+  append_json_key(out, "line_errors");
+  if (!e) {
+    out += "null";
+    return;
+  }
+  out += "{\"framing\":";
+  append_uint(out, e->framing);
+  append_json_count(out, "overrun", e->overrun);
+  append_json_count(out, "parity", e->parity);
+  append_json_count(out, "breaks", e->breaks);
+  append_json_count(out, "buffer_overrun", e->buffer_overrun);
+  out += '}';
+}
+
+}  // namespace
+
+void BusHealth::count(const SessionFrame& f) {
+  ++frames;
+  if (!f.check.ok) ++damaged_frames;
+  if (f.reply_kind == ReplyKind::GslException || f.reply_kind == ReplyKind::HybridError) {
+    ++exceptions;
+  }
+  if (f.unsolicited) ++unsolicited;
+  if (f.latency) {
+    latency_interval.add(*f.latency);
+    latency_total.add(*f.latency);
+  }
+}
+
+void BusHealth::count(const SessionTimeout& t) {
+  if (t.kind == UnansweredKind::Timeout) ++timeouts;
+  if (t.kind == UnansweredKind::DamagedRequest) ++unanswered_damaged_requests;
+}
+
+void append_health_json(std::string& out, const BusHealth& h, const HealthContext& c) {
+  out += "{\"ts\":";
+  append_fixed(out, c.now, 6);
+  out += ",\"interval_s\":";
+  append_fixed(out, c.interval, 3);
+  append_json_count(out, "frames", h.frames);
+  append_json_count(out, "damaged_frames", h.damaged_frames);
+  append_json_count(out, "timeouts", h.timeouts);
+  append_json_count(out, "unanswered_damaged_requests", h.unanswered_damaged_requests);
+  append_json_count(out, "exceptions", h.exceptions);
+  append_json_count(out, "unsolicited", h.unsolicited);
+  append_json_count(out, "noise_bytes", h.noise_bytes);
+  append_json_count(out, "gaps", h.gaps);
+  append_latency(out, "latency", h.latency_interval);
+  append_latency(out, "latency_total", h.latency_total);
+  append_json_count(out, "stations", c.stations);
+  append_json_count(out, "stations_answering", c.stations_answering);
+  append_json_count(out, "poll_blocks", c.poll_blocks);
+  append_json_count(out, "poll_blocks_missing", c.poll_blocks_missing);
+  append_json_count(out, "events_queued", c.events_queued);
+  append_json_count(out, "events_dropped", c.events_dropped);
+  append_line_errors(out, h.line_errors);
+  if (!c.bus.empty()) {
+    out += ",\"bus\":";
+    append_json_string(out, c.bus);
+  }
+  out += '}';
+}
+
+}  // namespace pvtap::analyzer

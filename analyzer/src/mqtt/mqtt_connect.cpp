@@ -1,0 +1,158 @@
+// MqttClient: setting up libmosquitto and the synchronous first connection, whose failures
+// are one-line errors (a refused login, a certificate the CA does not vouch for, a broker
+// that is not there).
+#include <pthread.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <csignal>
+#include <cstring>
+
+#include "mqtt/mqtt_client_impl.h"
+
+namespace pvtap::analyzer {
+namespace {
+
+constexpr int kKeepaliveSeconds = 30;
+constexpr double kConnackWaitSeconds = 10;
+
+extern "C" void connect_cb(mosquitto*, void* self, int rc) {
+  static_cast<MqttClient::Impl*>(self)->on_connect(rc);
+}
+extern "C" void disconnect_cb(mosquitto*, void* self, int rc) {
+  static_cast<MqttClient::Impl*>(self)->on_disconnect(rc);
+}
+extern "C" void publish_cb(mosquitto*, void* self, int mid) {
+  static_cast<MqttClient::Impl*>(self)->on_publish(mid);
+}
+extern "C" void log_cb(mosquitto*, void* self, int level, const char* text) {
+  static_cast<MqttClient::Impl*>(self)->on_log(level, text);
+}
+
+// libmosquitto writes to its socket from its own thread: a broker that goes away must give
+// that write EPIPE, not kill pvtap with SIGPIPE. Threads inherit the mask of their creator,
+// so SIGPIPE is blocked while the client connects and starts its thread, then restored.
+class SigpipeBlocked {
+ public:
+  SigpipeBlocked() {
+    sigset_t pipe;
+    sigemptyset(&pipe);
+    sigaddset(&pipe, SIGPIPE);
+    pthread_sigmask(SIG_BLOCK, &pipe, &saved_);
+  }
+  ~SigpipeBlocked() { pthread_sigmask(SIG_SETMASK, &saved_, nullptr); }
+
+ private:
+  sigset_t saved_;
+};
+
+const char* or_null(const std::string& s) {
+  return s.empty() ? nullptr : s.c_str();
+}
+
+}  // namespace
+
+std::string MqttClient::Impl::log_detail() {
+  std::lock_guard lock(log_mutex);
+  return last_error_log.empty() ? std::string() : " (" + last_error_log + ")";
+}
+
+std::string MqttClient::Impl::where() const {
+  return "MQTT broker " + config.broker.host + ":" + std::to_string(config.broker.port);
+}
+
+bool MqttClient::Impl::configure(std::string& error) {
+  mosquitto_lib_init();
+  mosq = mosquitto_new(config.client_id.c_str(), true, this);
+  if (mosq == nullptr) {
+    error = "cannot create an MQTT client: " + std::string(std::strerror(errno));
+    return false;
+  }
+  mosquitto_int_option(mosq, MOSQ_OPT_PROTOCOL_VERSION, MQTT_PROTOCOL_V311);
+  mosquitto_connect_callback_set(mosq, connect_cb);
+  mosquitto_disconnect_callback_set(mosq, disconnect_cb);
+  mosquitto_publish_callback_set(mosq, publish_cb);
+  mosquitto_log_callback_set(mosq, log_cb);
+  mosquitto_reconnect_delay_set(mosq, 1, 30, true);
+  if (!config.user.empty()) {
+    mosquitto_username_pw_set(mosq, config.user.c_str(), or_null(config.password));
+  }
+  if (config.will) {
+    const QueuedMessage& w = *config.will;
+    mosquitto_will_set(mosq, w.topic.c_str(), static_cast<int>(w.payload.size()), w.payload.data(),
+                       1, true);
+  }
+  if (!config.broker.tls) return true;
+  // Without --mqtt-ca the system's CAs (Debian's ca-certificates) vouch for the broker.
+  const char* capath = config.ca_file.empty() ? "/etc/ssl/certs" : nullptr;
+  const int rc = mosquitto_tls_set(mosq, or_null(config.ca_file), capath, or_null(config.cert_file),
+                                   or_null(config.key_file), nullptr);
+  if (rc != MOSQ_ERR_SUCCESS) {
+    error = "MQTT TLS settings: " + std::string(mosquitto_strerror(rc)) +
+            " (check --mqtt-ca, --mqtt-cert and --mqtt-key)";
+    return false;
+  }
+  return true;
+}
+
+bool MqttClient::Impl::connect_now(std::string& error) {
+  SigpipeBlocked blocked;
+  int rc =
+      mosquitto_connect(mosq, config.broker.host.c_str(), config.broker.port, kKeepaliveSeconds);
+  if (rc != MOSQ_ERR_SUCCESS) {
+    const std::string why = rc == MOSQ_ERR_ERRNO ? std::strerror(errno) : mosquitto_strerror(rc);
+    error = "cannot connect to " + where() + ": " + why;
+    if (rc == MOSQ_ERR_TLS) error += log_detail();
+    return false;
+  }
+  const auto deadline =
+      std::chrono::steady_clock::now() + std::chrono::duration<double>(kConnackWaitSeconds);
+  while (connack.load() < 0 && std::chrono::steady_clock::now() < deadline) {
+    rc = mosquitto_loop(mosq, 100, 1);
+    if (rc != MOSQ_ERR_SUCCESS && connack.load() < 0) {
+      const std::string why = rc == MOSQ_ERR_ERRNO ? std::strerror(errno) : mosquitto_strerror(rc);
+      error = "connection to " + where() + " failed: " + why;
+      error += log_detail();
+      return false;
+    }
+  }
+  if (connack.load() != 0) {
+    error = connack.load() < 0
+                ? where() + " did not answer the connection within 10 s"
+                : where() + " refused the connection: " + mosquitto_connack_string(connack.load());
+    return false;
+  }
+  rc = mosquitto_loop_start(mosq);
+  if (rc != MOSQ_ERR_SUCCESS) {
+    error = "cannot start the MQTT network thread: " + std::string(mosquitto_strerror(rc));
+    return false;
+  }
+  loop_running = true;
+  std::lock_guard lock(mutex);
+  starting = false;
+  return true;
+}
+
+MqttClient::Impl::~Impl() {
+  if (mosq == nullptr) return;
+  mosquitto_disconnect(mosq);
+  if (loop_running) mosquitto_loop_stop(mosq, false);
+  mosquitto_destroy(mosq);
+  mosquitto_lib_cleanup();
+}
+
+void MqttClient::Impl::on_log(int level, const char* text) {
+  if (level != MOSQ_LOG_ERR || text == nullptr) return;
+  std::lock_guard lock(log_mutex);
+  last_error_log = text;
+}
+
+std::unique_ptr<MqttClient> MqttClient::connect(const MqttClientConfig& config,
+                                                std::string& error) {
+  auto impl = std::make_unique<Impl>(config);
+  if (!impl->configure(error) || !impl->connect_now(error)) return nullptr;
+  return std::unique_ptr<MqttClient>(new MqttClient(std::move(impl)));
+}
+
+}  // namespace pvtap::analyzer

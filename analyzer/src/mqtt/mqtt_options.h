@@ -1,0 +1,22 @@
+// MqttOptions: where and how `pvtap sniff --mqtt` and `pvtap audit --mqtt` publish, as typed.
+#pragma once
+
+#include <string>
+
+namespace pvtap::analyzer {
+
+struct MqttOptions {
+  std::string url;        // mqtt://host[:1883] or mqtts://host[:8883]; empty: no MQTT
+  std::string topic;      // prefix; empty means pvtap/<hostname>
+  std::string client_id;  // empty means pvtap-<hostname>-<pid>
+  std::string user;
+  std::string password_file;  // first line is the password (never on the command line)
+  std::string ca_file;        // TLS: the broker's CA; empty uses the system's CAs
+  std::string cert_file;      // TLS client certificate and its key, for brokers that ask
+  std::string key_file;
+  double interval = 10;    // seconds between value, state and health publications
+  bool discovery = false;  // Home Assistant discovery configs under homeassistant/
+  bool active() const { return !url.empty(); }
+};
+
+}  // namespace pvtap::analyzer

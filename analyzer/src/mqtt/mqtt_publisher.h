@@ -1,0 +1,89 @@
+// MqttPublisher: the MQTT output of pvtap sniff and pvtap audit, an EventWriter like the
+// text, jsonl and csv ones, plus a periodic tick for what is published per interval.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <string_view>
+
+#include "output/event_writer.h"
+#include "mqtt/bus_health.h"
+#include "mqtt/mqtt_client.h"
+#include "mqtt/mqtt_options.h"
+#include "mqtt/mqtt_topics.h"
+#include "mqtt/station_table.h"
+#include "formatting/output_stream.h"
+#include "output/value_json_cache.h"
+
+namespace pvtap::analyzer {
+
+// What goes out when:
+// - events (damaged frames, exceptions, unsolicited replies, timeouts, capture gaps; a
+//   station that stops answering or answers again) at once, as their jsonl line, QoS 1;
+// - once per interval (on the capture's clock: wall time live, the capture's time when
+//   replaying): every value that changed, each station's state and availability, each bus's
+//   health, and the discovery configs of registers seen for the first time;
+// - everything retained again after a reconnection (a restarted broker may have lost it).
+// A live publisher (sniff) also keeps PREFIX/status: online, and offline as its last will.
+class MqttPublisher : public EventWriter {
+ public:
+  // Connected to the broker, or null with a one-line reason in `error`.
+  static std::unique_ptr<MqttPublisher> open(const MqttOptions& options, bool live,
+                                             std::string& error);
+  ~MqttPublisher() override;
+
+  void frame(const EventContext& c, const SessionFrame& f) override;
+  void timeout(const EventContext& c, const SessionTimeout& t) override;
+  void noise(const EventContext& c, const SessionNoise& n) override;
+  void gap(const EventContext& c, const SessionGap& g) override;
+
+  // The capture clock reads `now`: publishes what is due. Cheap when nothing is.
+  void tick(double now);
+  // A serial tap's driver counters (or none: not counted), for the health of its bus.
+  void line_errors(std::string_view bus, const std::optional<LineErrorCounts>& counts);
+  // End of input: publishes everything held, then (live) offline; waits a little for the
+  // broker to take it all and disconnects. Warns when events were left undelivered.
+  void finish(double now);
+
+ private:
+  struct Bus {
+    std::string name;
+    std::string level;
+    StationTable stations;
+    BusHealth health;
+    bool health_discovered = false;
+  };
+  MqttPublisher(std::unique_ptr<MqttClient> client, const MqttOptions& options, std::string prefix,
+                bool live);
+
+  Bus& bus_of(const EventContext& c);
+  void publish_due(double now);
+  void pace();
+  void publish_event_line(const Bus& bus);
+  void judge_availability(Bus& bus, double now);
+  void publish_retained(Bus& bus, double now);
+  void publish_station(Bus& bus, StationState& s);
+  void publish_discovery(Bus& bus, StationState& s);
+  void publish_health(Bus& bus, double now);
+  void forget_published();
+
+  std::unique_ptr<MqttClient> client_;
+  MqttTopics topics_;
+  double interval_;
+  bool discovery_;
+  bool live_;
+  std::map<std::string, Bus, std::less<>> buses_;
+  // The jsonl writer renders each event's line into `line_`'s buffer, taken out at once (one
+  // line never reaches the flush size, so nothing is ever written to the sink).
+  std::FILE* line_sink_ = nullptr;
+  std::unique_ptr<OutputStream> line_;
+  std::unique_ptr<EventWriter> jsonl_;
+  ValueJsonCache values_;
+  std::string scratch_;
+  double next_tick_ = 0;
+  std::uint64_t connections_seen_ = 0;
+  bool finished_ = false;
+};
+
+}  // namespace pvtap::analyzer
