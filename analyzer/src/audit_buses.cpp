@@ -1,6 +1,7 @@
 // AuditRun's buses: one BusSession per gateway (or one for a serial capture), and where their
 // events go: latency statistics, the --write file and the chosen output format.
 #include "audit_bus.h"
+#include "pvtap/carrier_timing.h"
 
 namespace pvtap::analyzer {
 
@@ -10,23 +11,13 @@ BusSessionOptions AuditRun::session_options(InputKind kind) const {
   o.reassembler.baud = options_.baud;
   o.matcher.timeout = options_.timeout;
   o.decode_values = !options_.summary_only;
-  if (kind == InputKind::Network) {
-    o.reassembler.timestamps = TimestampTrust::Untrusted;
-    o.reassembler.boundary_gap = options_.gateway_gap_ms / 1000.0;
-    o.reassembler.segment_ends_pin = true;
-    o.timestamp_note =
-        "the timestamps are those of the gateway's TCP/UDP segments, not of bus characters";
-  }
-  if (kind == InputKind::Serial && batched_serial_records_) {
-    o.reassembler.timestamps = TimestampTrust::Untrusted;
-    o.timestamp_note =
-        "the capture's records are chunks read from a serial adapter: their timestamps are "
-        "batched (e.g. by a USB adapter's latency timer), not per character";
-  }
-  if (!options_.raw_dumps.empty()) {
-    o.has_timestamps = false;
-    o.reassembler.timestamps = TimestampTrust::Untrusted;
-  }
+  CarrierTiming carrier{Carrier::SerialCharacters, options_.gateway_gap_ms / 1000.0, {}};
+  if (kind == InputKind::Network) carrier.carrier = Carrier::GatewaySegments;
+  if (kind == InputKind::Serial && batched_serial_records_)
+    carrier.carrier = Carrier::SerialBatches;
+  if (kind == InputKind::ExportedPdu) carrier.carrier = Carrier::ExportedPdus;
+  if (!options_.raw_dumps.empty()) carrier.carrier = Carrier::PlainDump;
+  apply_carrier_timing(carrier, o);
   return o;
 }
 

@@ -45,9 +45,6 @@ class AuditRun : public BusDirectory {
  private:
   class BusOutput;
   struct Bus;
-  struct DirectedFeed {
-    Direction last = Direction::Unknown;
-  };
 
   // Reading.
   bool open_outputs();
@@ -107,7 +104,6 @@ class AuditRun : public BusDirectory {
   GatewayTraffic gateway_;
   std::vector<std::unique_ptr<Bus>> buses_;
   std::map<std::string, Bus*> bus_by_name_;
-  DirectedFeed serial_turns_;
   int link_type_ = -1;
   double last_time_ = 0;
   std::vector<InputReport> inputs_;

@@ -9,6 +9,7 @@
 #include "audit_bus.h"
 #include "device_tap.h"
 #include "pvtap/bus_timing.h"
+#include "pvtap/carrier_timing.h"
 #include "wall_clock.h"
 
 namespace pvtap::analyzer {
@@ -18,7 +19,6 @@ struct AuditRun::LiveTap {
       : device(path, baud, line) {}
   DeviceTap device;
   BusSession* bus = nullptr;
-  std::string timestamp_note;  // outlives the session's view of it
   double t35 = 0;
   // The bus must be told of its silence t3.5 after the last byte (to decide a pending frame).
   std::optional<double> silence_due;
@@ -44,17 +44,7 @@ BusSessionOptions AuditRun::tap_session_options(LiveTap& tap) const {
   o.reassembler.bits_per_char = options_.live.line.bits_per_char();
   const BusTiming timing(options_.baud, o.reassembler.bits_per_char);
   tap.t35 = timing.t35;
-  const LatencyTimerState& timer = tap.device.latency_timer();
-  // A read returns what the adapter held back for up to its latency timer: longer than t1.5
-  // and the stamps cannot tell the bus's silences apart.
-  if (timer.ms && *timer.ms * 1e-3 > timing.t15) {
-    tap.timestamp_note = "the adapter's USB latency timer is " + std::to_string(*timer.ms) +
-                         " ms: reads come in batches too coarse to judge t1.5/t3.5";
-    o.reassembler.timestamps = TimestampTrust::Untrusted;
-    // Bytes come late by at most the timer: a longer silence than that plus t3.5 was real.
-    o.reassembler.boundary_gap = *timer.ms * 1e-3 + timing.t35;
-    o.timestamp_note = tap.timestamp_note;
-  }
+  apply_carrier_timing({Carrier::LiveSerial, 0.0, tap.device.latency_timer().ms}, o);
   return o;
 }
 

@@ -75,12 +75,6 @@ void AuditRun::on_exported_pdu(const CapturedPacket& packet) {
 
 void AuditRun::feed_directed(BusSession& bus, Direction d, std::span<const std::uint8_t> bytes,
                              double time) {
-  // Half duplex: when one side speaks, the other side's frame is complete.
-  if (d != Direction::Unknown && serial_turns_.last != Direction::Unknown &&
-      serial_turns_.last != d) {
-    bus.end_turn(serial_turns_.last);
-  }
-  serial_turns_.last = d;
   bus.feed(BusChunk{bytes, time, d});
 }
 

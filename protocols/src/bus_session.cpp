@@ -87,6 +87,7 @@ struct BusSession::Impl : MatchSink {
   std::vector<DecodedValue> values;
   std::uint64_t next_id = 0;
   std::uint64_t loss_boundary_id = 0;  // requests before this id were waiting during a loss
+  Direction last_direction = Direction::Unknown;  // of the last chunk fed
   bool any_time = false;
   double first_time = 0;
   double last_time = 0;
@@ -246,6 +247,13 @@ BusSession::BusSession(BusSessionOptions options, const RegisterDecoder& decoder
 BusSession::~BusSession() = default;
 
 void BusSession::feed(const BusChunk& chunk) {
+  // Half duplex: when one side starts talking the other has finished its turn.
+  const Direction previous = impl_->last_direction;
+  impl_->last_direction = chunk.direction;
+  if (chunk.direction != Direction::Unknown && previous != Direction::Unknown &&
+      previous != chunk.direction && chunk.previous_turn_complete) {
+    end_turn(previous);
+  }
   if (chunk.bytes.empty()) return;
   impl_->time_seen(chunk.time);
   Impl::DirectionStream& s = impl_->stream(chunk.direction);
@@ -273,6 +281,7 @@ void BusSession::data_lost(Direction direction, double time,
 void BusSession::restart(Direction direction) {
   auto& s = impl_->streams[index_of(direction)];
   if (s) s->reassembler.discontinuity();
+  impl_->last_direction = Direction::Unknown;
 }
 
 void BusSession::idle(double now) {
@@ -280,6 +289,19 @@ void BusSession::idle(double now) {
     if (s) s->reassembler.idle(now);
   }
   if (impl_->options.has_timestamps) impl_->matcher.advance(now);
+}
+
+std::optional<double> BusSession::next_deadline() const {
+  const Impl& m = *impl_;
+  std::optional<double> earliest;
+  const auto consider = [&earliest](std::optional<double> t) {
+    if (t && (!earliest || *t < *earliest)) earliest = t;
+  };
+  for (const auto& s : m.streams) {
+    if (s) consider(s->reassembler.next_deadline());
+  }
+  if (m.options.has_timestamps) consider(m.matcher.next_deadline());
+  return earliest;
 }
 
 void BusSession::finish() {

@@ -1,6 +1,7 @@
 #include "pvtap/transaction_matcher.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "pvtap/function_codes.h"
 #include "pvtap/reply_rules.h"
@@ -40,6 +41,12 @@ Role TransactionMatcher::on_frame(const ObservedFrame& in) {
 void TransactionMatcher::advance(double now) {
   now_ = std::max(now_, now);
   if (now_ > next_deadline_) expire_overdue();
+}
+
+std::optional<double> TransactionMatcher::next_deadline() const {
+  if (!std::isfinite(next_deadline_)) return std::nullopt;
+  // A request times out once time has passed its deadline, not at it.
+  return std::nextafter(next_deadline_, std::numeric_limits<double>::infinity());
 }
 
 void TransactionMatcher::finish() {

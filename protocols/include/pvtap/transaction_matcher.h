@@ -60,6 +60,10 @@ class TransactionMatcher {
   // Moves time forward while the bus is silent (live capture), reporting due timeouts.
   void advance(double now);
 
+  // The earliest moment advance() reports a timeout, or later (a wake that finds nothing
+  // due sets the next one); nullopt when no request waits.
+  std::optional<double> next_deadline() const;
+
   // Ends the capture: every request still waiting times out with CaptureEnded.
   void finish();
 
