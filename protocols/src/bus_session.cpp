@@ -315,14 +315,7 @@ void BusSession::finish() {
 ReassemblerTotals BusSession::Impl::totals() const {
   ReassemblerTotals sum;
   for (const auto& s : streams) {
-    if (!s) continue;
-    const ReassemblerTotals& t = s->reassembler.totals();
-    sum.bytes_in += t.bytes_in;
-    sum.frame_bytes += t.frame_bytes;
-    sum.noise_bytes += t.noise_bytes;
-    sum.frames += t.frames;
-    sum.bad_frames += t.bad_frames;
-    sum.noise_runs += t.noise_runs;
+    if (s) sum += s->reassembler.totals();
   }
   return sum;
 }
@@ -347,8 +340,8 @@ ReassemblerTotals BusSession::totals() const {
 BusReport BusSession::report() const {
   const Impl& m = *impl_;
   BusReport r;
-  r.bytes = m.totals();
   m.tally.fill(r);
+  r.bytes = m.totals();
   r.has_timestamps = m.options.has_timestamps;
   r.first_time = m.first_time;
   r.last_time = m.last_time;

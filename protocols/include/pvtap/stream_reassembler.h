@@ -113,6 +113,7 @@ struct ReassemblerTotals {
   std::uint64_t frames = 0;
   std::uint64_t bad_frames = 0;
   std::uint64_t noise_runs = 0;
+  ReassemblerTotals& operator+=(const ReassemblerTotals& o);  // the one way to add them up
 };
 
 // StreamReassembler: finds ASCII and RTU frames in a byte stream cut at arbitrary points.
