@@ -129,11 +129,11 @@ void BusSession::Impl::on_frame(Direction direction, const FrameEvent& e) {
   out.role = e.role;
   out.check = e.check;
   ParseOutcome parsed = parse_frame(e.bytes, e.dialect, e.role);
-  if (!parsed) out.parse_error = parsed.error;
+  if (!parsed) out.parse_error = parsed.diagnostics();
   // A damaged frame whose byte count lies does not parse, but it was sent: its header is
   // enough to pair it and count it.
   if (parsed || !e.check.ok) {
-    frame = parsed ? *parsed.frame : frame_header(e.bytes, e.dialect, e.role);
+    frame = parsed ? parsed.value() : frame_header(e.bytes, e.dialect, e.role);
     out.frame = &frame;
     handle_parsed(out, e);
   }

@@ -34,11 +34,11 @@ class Pipeline : public ReassemblerSink {
  public:
   void on_frame(const FrameEvent& e) override {
     const auto parsed = parse_frame(e.bytes, e.dialect, e.role);
-    ASSERT_TRUE(parsed) << parsed.error;
+    ASSERT_TRUE(parsed) << parsed.diagnostics();
     const std::uint64_t id = next_id_++;
-    frames_[id] = *parsed.frame;
+    frames_[id] = parsed.value();
     const FrameMatch match = matcher_.on_frame(
-        ObservedFrame{id, summarize(*parsed.frame), e.start_time, e.end_time, e.check.ok, false});
+        ObservedFrame{id, summarize(parsed.value()), e.start_time, e.end_time, e.check.ok, false});
     add_timeouts(match.timeouts);
     if (match.transaction) {
       transactions.push_back(*match.transaction);
