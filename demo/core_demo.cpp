@@ -205,7 +205,7 @@ std::vector<std::string> frame_cells(std::span<const std::uint8_t> bytes, Dialec
   std::vector<std::string> cells{std::string(pvtap::to_string(d)),
                                  std::string(pvtap::to_string(r))};
   if (parsed) {
-    const pvtap::Frame& f = *parsed.frame;
+    const pvtap::Frame& f = parsed.value();
     cells.push_back(station_text(f));
     cells.push_back(format("%02X %s", static_cast<unsigned>(f.function),
                            std::string(pvtap::fc::function_name(d, f.function)).c_str()));
@@ -213,7 +213,7 @@ std::vector<std::string> frame_cells(std::span<const std::uint8_t> bytes, Dialec
   } else {
     cells.push_back("-");
     cells.push_back("-");
-    cells.push_back(format("malformed: %s", std::string(parsed.error).c_str()));
+    cells.push_back(format("malformed: %s", parsed.error_text().c_str()));
   }
   cells.push_back(verdict_text(d, bytes, check));
   return cells;

@@ -26,16 +26,16 @@ void parse_each_reading(std::span<const std::uint8_t> bytes) {
     for (const Role role : {Role::Request, Role::Response}) {
       const auto parsed = pvtap::parse_frame(bytes, d, role);
       if (!parsed) {
-        PVTAP_FUZZ_CHECK(!parsed.error.empty());
+        PVTAP_FUZZ_CHECK(!parsed.diagnostics().empty());
         continue;
       }
-      const auto layout = pvtap::frame_layout(*parsed.frame, bytes.size());
+      const auto layout = pvtap::frame_layout(parsed.value(), bytes.size());
       PVTAP_FUZZ_CHECK(layout.check.offset + layout.check.length <= bytes.size());
       PVTAP_FUZZ_CHECK(layout.words.offset + layout.words.length <= bytes.size());
-      const auto wire = pvtap::encode_frame(*parsed.frame);
+      const auto wire = pvtap::encode_frame(parsed.value());
       if (wire.empty()) continue;
       const auto again = pvtap::parse_frame(wire, d, role);
-      PVTAP_FUZZ_CHECK(again && *again.frame == *parsed.frame);
+      PVTAP_FUZZ_CHECK(again && again.value() == parsed.value());
       PVTAP_FUZZ_CHECK(pvtap::verify_check(wire, d).ok);
     }
   }

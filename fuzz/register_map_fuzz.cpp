@@ -43,16 +43,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string_view text(reinterpret_cast<const char*>(data), size);
   const auto loaded = pvtap::load_register_map(text, "fuzz.toml");
   if (!loaded) {
-    PVTAP_FUZZ_CHECK(!loaded.errors.empty());
-    for (const auto& e : loaded.errors) PVTAP_FUZZ_CHECK(!e.message.empty());
+    PVTAP_FUZZ_CHECK(!loaded.diagnostics().empty());
+    for (const auto& e : loaded.diagnostics()) PVTAP_FUZZ_CHECK(!e.message.empty());
     (void)loaded.error_text();
     return 0;
   }
-  check_loaded(*loaded.map);
-  const auto resolved = pvtap::resolve_user_register_map(*loaded.map);
+  check_loaded(loaded.value());
+  const auto resolved = pvtap::resolve_user_register_map(loaded.value());
   if (resolved) {
-    check_loaded(*resolved.map);
-    decode_with(*resolved.map);
+    check_loaded(resolved.value());
+    decode_with(resolved.value());
   }
   return 0;
 }

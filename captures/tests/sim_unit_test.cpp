@@ -114,9 +114,9 @@ TEST(BusMaster, FramesParseAsSentAndChecksMatchTheTruth) {
     EXPECT_EQ(wire_function(e.bytes, e.dialect), e.function);
     if (!e.check_ok) continue;
     const ParseOutcome parsed = parse_frame(e.bytes, e.dialect, e.role);
-    ASSERT_TRUE(parsed) << parsed.error;
-    EXPECT_EQ(parsed.frame->station, e.station);
-    EXPECT_EQ(parsed.frame->function, e.function);
+    ASSERT_TRUE(parsed) << parsed.diagnostics();
+    EXPECT_EQ(parsed->station, e.station);
+    EXPECT_EQ(parsed->function, e.function);
   }
 }
 

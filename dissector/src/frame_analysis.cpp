@@ -62,7 +62,9 @@ void plan_device(const Frame& f, wmem_allocator_t* pool, FramePlan& plan) {
 std::optional<Frame> placing_request(const FrameRecord& r) {
   const FrameRecord* q = r.placed_by;
   if (r.role != Role::Response || q == nullptr || q->bytes == nullptr) return std::nullopt;
-  return parse_frame({q->bytes, q->length}, q->dialect, Role::Request).frame;
+  ParseOutcome parsed = parse_frame({q->bytes, q->length}, q->dialect, Role::Request);
+  if (!parsed) return std::nullopt;
+  return std::move(parsed).value();
 }
 
 std::string value_label(const DecodedValue& v, Dialect d) {
@@ -141,11 +143,11 @@ void analyze(std::span<const std::uint8_t> bytes, const AnalysisContext& ctx, Fr
   ParseOutcome parsed = parse_frame(bytes, r.dialect, r.role);
   if (!parsed) {
     plan_check_span(bytes.size(), r.dialect, plan);
-    plan.parse_error = pool_text(ctx.pool, parsed.error);
-    plan.summary = pool_text(ctx.pool, "malformed frame: " + std::string(parsed.error));
+    plan.parse_error = pool_text(ctx.pool, parsed.diagnostics());
+    plan.summary = pool_text(ctx.pool, "malformed frame: " + parsed.error_text());
     return;
   }
-  Frame& f = *parsed.frame;
+  Frame& f = parsed.value();
   plan_header(f, bytes.size(), ctx.pool, plan);
   if (ctx.with_values) {
     plan_device(f, ctx.pool, plan);

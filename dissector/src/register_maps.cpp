@@ -53,7 +53,7 @@ void apply_user_map(const fs::path& file, const RegisterMap& user) {
     report_unloaded(file, stacked.error_text());
     return;
   }
-  current = *stacked.map;
+  current = stacked.value();
 }
 
 void load_user_map(const fs::path& file) {
@@ -62,7 +62,7 @@ void load_user_map(const fs::path& file) {
     report_unloaded(file, loaded.error_text());
     return;
   }
-  apply_user_map(file, *loaded.map);
+  apply_user_map(file, loaded.value());
 }
 
 }  // namespace

@@ -12,7 +12,7 @@ constexpr std::size_t kHeaderLength = 8;
 constexpr std::size_t kTrailerLength = 5;  // checksum(4) + EOT
 
 ParseOutcome fail(std::string_view why) {
-  return ParseOutcome{std::nullopt, why};
+  return ParseOutcome::failure(why);
 }
 
 void put_hex(std::vector<std::uint8_t>& out, unsigned value, int digits) {
@@ -46,14 +46,14 @@ ParseOutcome parse_ascii(std::span<const std::uint8_t> b, Role role) {
     const auto count = read_hex(body);
     if (!count) return fail("non-hex character in a hex field");
     f.count = *count;
-    return ParseOutcome{f, {}};
+    return f;
   }
   for (std::size_t i = 0; i < body.size(); i += 4) {
     const auto word = read_hex(body.subspan(i, 4));
     if (!word) return fail("non-hex character in a data word");
     if (!f.words.push_back(*word)) return fail("ASCII reply has more than 255 words");
   }
-  return ParseOutcome{f, {}};
+  return f;
 }
 
 FrameCheck verify_ascii_check(std::span<const std::uint8_t> b) {

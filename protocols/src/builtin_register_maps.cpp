@@ -35,7 +35,7 @@ std::string_view embedded_text(Dialect d) {
 
 RegisterMap loaded_or_empty(Dialect d) {
   RegisterMapResult result = load_builtin_register_map(d);
-  return result.map ? *result.map : RegisterMap{};
+  return result ? result.value() : RegisterMap{};
 }
 
 }  // namespace

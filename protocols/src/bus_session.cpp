@@ -12,7 +12,7 @@
 #include "request_book.h"
 
 namespace pvtap {
-struct BusSession::Impl : MatchSink {
+struct BusSession::Impl {
   // DirectionStream: the reassembler of one direction and where its events go.
   struct DirectionStream : ReassemblerSink {
     DirectionStream(Impl& o, Direction d)
@@ -30,7 +30,7 @@ struct BusSession::Impl : MatchSink {
       : options(o),
         decoder(d),
         sink(s),
-        matcher(*this, o.matcher),
+        matcher(o.matcher),
         timing(BusTiming(o.reassembler.baud, o.reassembler.bits_per_char)) {}
 
   DirectionStream& stream(Direction d) {
@@ -41,37 +41,23 @@ struct BusSession::Impl : MatchSink {
 
   void on_frame(Direction direction, const FrameEvent& e);
   void handle_parsed(SessionFrame& out, const FrameEvent& e);
-  const detail::RequestRecord* answered_request(SessionFrame& out);
-  void note_transaction(SessionFrame& out, const Frame& frame);
+  void take_findings(SessionFrame& out, const FrameMatch& match);
+  const detail::RequestRecord* answered_request(SessionFrame& out, const FrameMatch& match);
+  void note_transaction(SessionFrame& out, const Frame& frame, const FrameMatch& match);
   void decode_values(SessionFrame& out, const Frame* request);
-  void add_timing(const SessionFrame& out, double max_inner_gap);
+  void add_timing(const SessionFrame& out, const FrameMatch& match, double max_inner_gap);
   // The station a latency belongs to: the request's, since a damaged reply's may be wrong.
-  std::uint8_t answering_station() const {
-    return current.transaction ? current.transaction->station : frame.station;
+  std::uint8_t answering_station(const FrameMatch& match) const {
+    return match.transaction ? match.transaction->station : frame.station;
   }
+  // Timeouts come before the frame that made them due.
+  void report(std::span<const Timeout> timeouts) {
+    for (const Timeout& t : timeouts) report(t);
+  }
+  void report(const Timeout& t);
   TimestampQuality timestamp_quality() const;
   ReassemblerTotals totals() const;
   void time_seen(double t);
-
-  // MatchSink: findings of the frame being matched are collected in `current`; timeouts are
-  // passed on at once, since they come before the frame that made them due.
-  void on_transaction(const Transaction& t) override {
-    current.transaction = t;
-    tally.add_transaction(t);
-  }
-  void on_timeout(const Timeout& t) override;
-  void on_unsolicited(const UnsolicitedReply& u) override { current.unsolicited = u; }
-  void on_duplicate(const DuplicateReply& d) override { current.duplicate = d; }
-  void on_byte_count_mismatch(const ByteCountMismatch& m) override { current.mismatch = m; }
-  void on_role_corrected(const RoleCorrection&) override { current.role_corrected = true; }
-
-  struct MatchFindings {
-    std::optional<Transaction> transaction;
-    std::optional<UnsolicitedReply> unsolicited;
-    std::optional<ByteCountMismatch> mismatch;
-    std::optional<DuplicateReply> duplicate;
-    bool role_corrected = false;
-  };
 
   BusSessionOptions options;
   const RegisterDecoder& decoder;
@@ -82,11 +68,11 @@ struct BusSession::Impl : MatchSink {
   detail::BusTally tally;
   detail::LatestReadings latest;
   detail::RequestBook requests;
-  MatchFindings current;
   Frame frame;  // the frame being handled; SessionFrame::frame points here
   std::vector<DecodedValue> values;
   std::uint64_t next_id = 0;
   std::uint64_t loss_boundary_id = 0;  // requests before this id were waiting during a loss
+  Direction last_direction = Direction::Unknown;  // of the last chunk fed
   bool any_time = false;
   double first_time = 0;
   double last_time = 0;
@@ -103,7 +89,7 @@ void BusSession::Impl::time_seen(double t) {
   last_time = std::max(last_time, t);
 }
 
-void BusSession::Impl::on_timeout(const Timeout& t) {
+void BusSession::Impl::report(const Timeout& t) {
   SessionTimeout out;
   out.timeout = t;
   const detail::RequestRecord* request =
@@ -143,11 +129,11 @@ void BusSession::Impl::on_frame(Direction direction, const FrameEvent& e) {
   out.role = e.role;
   out.check = e.check;
   ParseOutcome parsed = parse_frame(e.bytes, e.dialect, e.role);
-  if (!parsed) out.parse_error = parsed.error;
+  if (!parsed) out.parse_error = parsed.diagnostics();
   // A damaged frame whose byte count lies does not parse, but it was sent: its header is
   // enough to pair it and count it.
   if (parsed || !e.check.ok) {
-    frame = parsed ? *parsed.frame : frame_header(e.bytes, e.dialect, e.role);
+    frame = parsed ? parsed.value() : frame_header(e.bytes, e.dialect, e.role);
     out.frame = &frame;
     handle_parsed(out, e);
   }
@@ -156,37 +142,44 @@ void BusSession::Impl::on_frame(Direction direction, const FrameEvent& e) {
 }
 
 void BusSession::Impl::handle_parsed(SessionFrame& out, const FrameEvent& e) {
-  current = MatchFindings{};
   const bool role_known = out.direction != Direction::Unknown;
   FrameSummary summary = summarize(frame);
-  const Role role = matcher.on_frame(
+  const FrameMatch match = matcher.on_frame(
       ObservedFrame{out.id, summary, out.start_time, out.end_time, e.check.ok, role_known});
-  frame.role = role;
-  out.role = role;
-  out.role_corrected = current.role_corrected;
-  out.duplicate = current.duplicate.has_value();
-  if (current.duplicate) out.duplicate_of = current.duplicate->original_request_id;
-  out.count_mismatch = current.mismatch;
-  if (current.unsolicited) {
-    out.unsolicited = true;
-    if (current.unsolicited->late_for_request_id) {
-      out.late_by = current.unsolicited->since_request;
-      out.late_for = current.unsolicited->late_for_request_id;
-    }
-  }
-  if (role == Role::Request) {
+  // Before the request is remembered: a request it gave up is looked up by its slot.
+  report(match.timeouts);
+  if (match.transaction) tally.add_transaction(*match.transaction);
+  take_findings(out, match);
+  if (match.role == Role::Request) {
     requests.remember(out.id, frame, out.start_time, out.end_time, e.check.ok);
   } else {
-    summary.role = role;
+    summary.role = match.role;
     out.reply_kind = reply_kind(summary);
   }
-  note_transaction(out, frame);
-  add_timing(out, e.max_inner_gap);
+  note_transaction(out, frame, match);
+  add_timing(out, match, e.max_inner_gap);
 }
 
-const detail::RequestRecord* BusSession::Impl::answered_request(SessionFrame& out) {
-  if (current.transaction) {
-    const Transaction& t = *current.transaction;
+void BusSession::Impl::take_findings(SessionFrame& out, const FrameMatch& match) {
+  frame.role = match.role;
+  out.role = match.role;
+  out.role_corrected = match.role_correction.has_value();
+  out.duplicate = match.duplicate.has_value();
+  if (match.duplicate) out.duplicate_of = match.duplicate->original_request_id;
+  out.count_mismatch = match.count_mismatch;
+  if (match.unsolicited) {
+    out.unsolicited = true;
+    if (match.unsolicited->late_for_request_id) {
+      out.late_by = match.unsolicited->since_request;
+      out.late_for = match.unsolicited->late_for_request_id;
+    }
+  }
+}
+
+const detail::RequestRecord* BusSession::Impl::answered_request(SessionFrame& out,
+                                                                const FrameMatch& match) {
+  if (match.transaction) {
+    const Transaction& t = *match.transaction;
     out.request_id = t.request_id;
     out.broadcast_answer = t.broadcast;
     if (options.has_timestamps) out.latency = t.latency;
@@ -194,15 +187,16 @@ const detail::RequestRecord* BusSession::Impl::answered_request(SessionFrame& ou
     return requests.find(slot, t.request_id);
   }
   // A duplicate carries the words of the request it answered before.
-  if (current.duplicate) {
-    const DuplicateReply& d = *current.duplicate;
+  if (match.duplicate) {
+    const DuplicateReply& d = *match.duplicate;
     return requests.find(detail::RequestBook::slot_of(d.dialect, d.station), d.original_request_id);
   }
   return nullptr;
 }
 
-void BusSession::Impl::note_transaction(SessionFrame& out, const Frame& reply) {
-  const detail::RequestRecord* request = answered_request(out);
+void BusSession::Impl::note_transaction(SessionFrame& out, const Frame& reply,
+                                        const FrameMatch& match) {
+  const detail::RequestRecord* request = answered_request(out, match);
   // A request with a bad check may carry a corrupted start address: do not place words by it.
   const bool sound = request != nullptr && request->check_ok;
   if (sound) out.placed_by = request->id;
@@ -225,18 +219,19 @@ void BusSession::Impl::decode_values(SessionFrame& out, const Frame* request) {
   out.values = values;
 }
 
-void BusSession::Impl::add_timing(const SessionFrame& out, double max_inner_gap) {
+void BusSession::Impl::add_timing(const SessionFrame& out, const FrameMatch& match,
+                                  double max_inner_gap) {
   if (!options.has_timestamps) return;
   // With timestamps declared too coarse the bus gaps are never judged; requests alone give
   // the poll periods, and the gap statistics are spared the other frames.
   if (options.reassembler.timestamps == TimestampTrust::Untrusted && out.role != Role::Request) {
-    if (out.latency) timing.add_latency(answering_station(), *out.latency);
+    if (out.latency) timing.add_latency(answering_station(match), *out.latency);
     return;
   }
   timing.add_frame(FrameTiming{out.id, frame.dialect, out.role, frame.station, frame.function,
                                out.start_time, out.end_time, max_inner_gap, frame.start,
                                frame.count, out.check.ok});
-  if (out.latency) timing.add_latency(answering_station(), *out.latency);
+  if (out.latency) timing.add_latency(answering_station(match), *out.latency);
 }
 
 BusSession::BusSession(BusSessionOptions options, const RegisterDecoder& decoder,
@@ -246,6 +241,13 @@ BusSession::BusSession(BusSessionOptions options, const RegisterDecoder& decoder
 BusSession::~BusSession() = default;
 
 void BusSession::feed(const BusChunk& chunk) {
+  // Half duplex: when one side starts talking the other has finished its turn.
+  const Direction previous = impl_->last_direction;
+  impl_->last_direction = chunk.direction;
+  if (chunk.direction != Direction::Unknown && previous != Direction::Unknown &&
+      previous != chunk.direction && chunk.previous_turn_complete) {
+    end_turn(previous);
+  }
   if (chunk.bytes.empty()) return;
   impl_->time_seen(chunk.time);
   Impl::DirectionStream& s = impl_->stream(chunk.direction);
@@ -262,7 +264,7 @@ void BusSession::data_lost(Direction direction, double time,
                            std::optional<std::uint64_t> lost_bytes) {
   Impl& m = *impl_;
   // Timeouts that fell due before the loss are plain timeouts.
-  if (m.options.has_timestamps) m.matcher.advance(time);
+  if (m.options.has_timestamps) m.report(m.matcher.advance(time));
   m.stream(direction).reassembler.discontinuity();
   m.loss_boundary_id = m.next_id;
   const SessionGap gap{direction, m.options.has_timestamps ? time : 0.0, lost_bytes};
@@ -273,13 +275,27 @@ void BusSession::data_lost(Direction direction, double time,
 void BusSession::restart(Direction direction) {
   auto& s = impl_->streams[index_of(direction)];
   if (s) s->reassembler.discontinuity();
+  impl_->last_direction = Direction::Unknown;
 }
 
 void BusSession::idle(double now) {
   for (auto& s : impl_->streams) {
     if (s) s->reassembler.idle(now);
   }
-  if (impl_->options.has_timestamps) impl_->matcher.advance(now);
+  if (impl_->options.has_timestamps) impl_->report(impl_->matcher.advance(now));
+}
+
+std::optional<double> BusSession::next_deadline() const {
+  const Impl& m = *impl_;
+  std::optional<double> earliest;
+  const auto consider = [&earliest](std::optional<double> t) {
+    if (t && (!earliest || *t < *earliest)) earliest = t;
+  };
+  for (const auto& s : m.streams) {
+    if (s) consider(s->reassembler.next_deadline());
+  }
+  if (m.options.has_timestamps) consider(m.matcher.next_deadline());
+  return earliest;
 }
 
 void BusSession::finish() {
@@ -292,21 +308,14 @@ void BusSession::finish() {
   std::sort(order.begin(), order.end(),
             [](const auto* a, const auto* b) { return a->last_feed_time < b->last_feed_time; });
   for (auto* s : order) s->reassembler.finish();
-  if (m.options.has_timestamps && m.any_time) m.matcher.advance(m.last_time);
-  m.matcher.finish();
+  if (m.options.has_timestamps && m.any_time) m.report(m.matcher.advance(m.last_time));
+  m.report(m.matcher.finish());
 }
 
 ReassemblerTotals BusSession::Impl::totals() const {
   ReassemblerTotals sum;
   for (const auto& s : streams) {
-    if (!s) continue;
-    const ReassemblerTotals& t = s->reassembler.totals();
-    sum.bytes_in += t.bytes_in;
-    sum.frame_bytes += t.frame_bytes;
-    sum.noise_bytes += t.noise_bytes;
-    sum.frames += t.frames;
-    sum.bad_frames += t.bad_frames;
-    sum.noise_runs += t.noise_runs;
+    if (s) sum += s->reassembler.totals();
   }
   return sum;
 }
@@ -331,8 +340,8 @@ ReassemblerTotals BusSession::totals() const {
 BusReport BusSession::report() const {
   const Impl& m = *impl_;
   BusReport r;
-  r.bytes = m.totals();
   m.tally.fill(r);
+  r.bytes = m.totals();
   r.has_timestamps = m.options.has_timestamps;
   r.first_time = m.first_time;
   r.last_time = m.last_time;

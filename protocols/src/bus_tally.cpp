@@ -49,8 +49,8 @@ void BusTally::count_exception(const SessionFrame& f) {
 }
 
 void BusTally::add_frame(const SessionFrame& f) {
-  if (!f.check.ok && wants_example(counts_.bad_check_examples)) {
-    counts_.bad_check_examples.push_back(example_of(f));
+  if (!f.check.ok && wants_example(bad_check_examples_)) {
+    bad_check_examples_.push_back(example_of(f));
   }
   if (!f.parse_error.empty()) ++counts_.malformed_frames;
   if (f.frame == nullptr) return;
@@ -72,8 +72,8 @@ void BusTally::add_frame(const SessionFrame& f) {
     ++counts_.unsolicited;
     ++s.unsolicited;
     if (f.late_by) ++counts_.late_replies;
-    if (wants_example(counts_.unsolicited_examples)) {
-      counts_.unsolicited_examples.push_back(example_of(f));
+    if (wants_example(unsolicited_examples_)) {
+      unsolicited_examples_.push_back(example_of(f));
     }
   }
   if (f.duplicate) {
@@ -89,7 +89,7 @@ void BusTally::add_frame(const SessionFrame& f) {
 }
 
 void BusTally::add_transaction(const Transaction& t) {
-  ++transactions_;
+  ++counts_.transactions;
   if (t.reply_check_ok) return;
   ++counts_.damaged_replies;
   ++station(t.station).summary.damaged_replies;
@@ -109,8 +109,8 @@ void BusTally::add_timeout(const SessionTimeout& t) {
       } else {
         ++counts_.timeouts_by_reason[0];
       }
-      if (wants_example(counts_.timeout_examples)) {
-        counts_.timeout_examples.push_back(TimeoutExample{t.timeout, t.request_start});
+      if (wants_example(timeout_examples_)) {
+        timeout_examples_.push_back(TimeoutExample{t.timeout, t.request_start});
       }
       break;
     case UnansweredKind::InputEnded:
@@ -132,31 +132,14 @@ void BusTally::add_gap(const SessionGap& g) {
 }
 
 void BusTally::fill(BusReport& r) const {
-  r.requests = counts_.requests;
-  r.responses = counts_.responses;
-  r.by_dialect = counts_.by_dialect;
-  r.malformed_frames = counts_.malformed_frames;
-  r.timeouts = counts_.timeouts;
-  r.timeouts_by_reason = counts_.timeouts_by_reason;
-  r.damaged_replies = counts_.damaged_replies;
-  r.unanswered_damaged_requests = counts_.unanswered_damaged_requests;
-  r.unanswered_at_end = counts_.unanswered_at_end;
-  r.unanswered_after_loss = counts_.unanswered_after_loss;
-  r.transactions = transactions_;
-  r.unsolicited = counts_.unsolicited;
-  r.late_replies = counts_.late_replies;
-  r.duplicates = counts_.duplicates;
-  r.count_mismatches = counts_.count_mismatches;
-  r.role_corrections = counts_.role_corrections;
-  r.exceptions = counts_.exceptions;
+  r.counters() = counts_;
   r.exception_codes.clear();
   for (const auto& [key, count] : exception_codes_) {
     r.exception_codes.push_back(ExceptionTally{key.first, key.second, count});
   }
-  r.gaps = counts_.gaps;
-  r.bad_check_examples = counts_.bad_check_examples;
-  r.timeout_examples = counts_.timeout_examples;
-  r.unsolicited_examples = counts_.unsolicited_examples;
+  r.bad_check_examples = bad_check_examples_;
+  r.timeout_examples = timeout_examples_;
+  r.unsolicited_examples = unsolicited_examples_;
 }
 
 void BusTally::fill_stations(BusReport& r) const {

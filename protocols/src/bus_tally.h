@@ -6,6 +6,7 @@
 #include <map>
 #include <span>
 #include <utility>
+#include <vector>
 
 #include "pvtap/bus_report.h"
 #include "pvtap/bus_session.h"
@@ -19,7 +20,8 @@ class BusTally {
   void add_gap(const SessionGap& g);
   void add_transaction(const Transaction& t);
 
-  // Writes the counters and examples into `r` (totals, timing and values come from elsewhere).
+  // Writes the counters and examples into `r` (byte totals, timing and values come from
+  // elsewhere: its bytes are zero here).
   void fill(BusReport& r) const;
   // The per-station counters, for the stations that appeared.
   void fill_stations(BusReport& r) const;
@@ -34,8 +36,10 @@ class BusTally {
   static FrameExample example_of(const SessionFrame& f);
 
   std::array<StationCounters, 256> stations_{};
-  BusReport counts_;  // only its counters and examples are used
-  std::uint64_t transactions_ = 0;
+  BusCounters counts_;
+  std::vector<FrameExample> bad_check_examples_;
+  std::vector<TimeoutExample> timeout_examples_;
+  std::vector<FrameExample> unsolicited_examples_;
   std::map<std::pair<Dialect, std::uint8_t>, std::uint64_t> exception_codes_;
 };
 

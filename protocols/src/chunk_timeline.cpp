@@ -1,6 +1,8 @@
 #include "chunk_timeline.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 namespace pvtap::detail {
 namespace {
@@ -44,6 +46,26 @@ void ChunkTimeline::add(std::uint64_t end, std::size_t size, double time, Direct
   marks_.push_back(Mark{end - size, end, time, previous_time_, gap, direction});
   previous_time_ = time;
   have_previous_ = true;
+}
+
+std::optional<double> ChunkTimeline::silence_proven_at(double delay) const {
+  if (!have_previous_) return std::nullopt;
+  double silence = 0.0;
+  if (trusted_) {
+    silence = timing_.t35 - kGapToleranceChars * timing_.char_time;
+  } else if (boundary_gap_ > 0) {
+    silence = boundary_gap_;
+  } else {
+    return std::nullopt;
+  }
+  // The sum may round below what proves_boundary() accepts: step up to the first moment that
+  // it does, so that a driver woken then always finds the silence proven.
+  double now = previous_time_ + silence + delay;
+  for (int step = 0; step < 64 && std::isfinite(now); ++step) {
+    if (silent_since_last_byte(now - delay)) return now;
+    now = std::nextafter(now, std::numeric_limits<double>::infinity());
+  }
+  return std::nullopt;
 }
 
 void ChunkTimeline::drop_before(std::uint64_t offset) {

@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <deque>
+#include <optional>
 #include <string_view>
 
 #include "pvtap/bus_timing.h"
@@ -62,6 +63,9 @@ class ChunkTimeline {
   bool silent_since_last_byte(double now) const {
     return have_previous_ && proves_boundary(now - previous_time_);
   }
+  // The earliest `now` at which silent_since_last_byte(now - delay) holds; nullopt when no
+  // silence can prove a boundary (batched timing without a boundary gap, or no byte yet).
+  std::optional<double> silence_proven_at(double delay = 0.0) const;
 
   bool trusted() const { return trusted_; }
   std::string_view reason() const { return reason_; }

@@ -134,9 +134,9 @@ std::string MapDiagnostic::to_string() const {
   return text;
 }
 
-std::string RegisterMapResult::error_text() const {
+std::string diagnostic_text(const std::vector<MapDiagnostic>& problems) {
   std::string text;
-  for (const MapDiagnostic& d : errors) {
+  for (const MapDiagnostic& d : problems) {
     if (!text.empty()) text += '\n';
     text += d.to_string();
   }

@@ -197,9 +197,9 @@ RegisterMapResult RegisterMapBuilder::build(std::vector<MapDiagnostic> earlier) 
     std::stable_sort(
         problems.items.begin(), problems.items.end(),
         [](const MapDiagnostic& a, const MapDiagnostic& b) { return a.line < b.line; });
-    return RegisterMapResult{std::nullopt, std::move(problems.items)};
+    return RegisterMapResult::failure(std::move(problems.items));
   }
-  return RegisterMapResult{RegisterMap(MapLayout(header_, std::move(valid)).run()), {}};
+  return RegisterMap(MapLayout(header_, std::move(valid)).run());
 }
 
 }  // namespace pvtap

@@ -57,7 +57,7 @@ class MapFileReader {
 
   RegisterMapResult read(const toml::table& root) {
     detail::MapHeaderSpec header = read_header(root);
-    if (!dialect_known_) return RegisterMapResult{std::nullopt, std::move(problems_.items)};
+    if (!dialect_known_) return RegisterMapResult::failure(std::move(problems_.items));
     read_enums(root.get("enums"));
     RegisterMapBuilder builder(std::move(header));
     read_registers(root.get("register"), builder);
@@ -329,7 +329,7 @@ RegisterMapResult load_register_map(std::string_view toml_text, std::string_view
   } catch (const toml::parse_error& e) {
     MapDiagnostic d{std::string(source_name), line_of(e.source()), column_of(e.source()),
                     std::string(e.description())};
-    return RegisterMapResult{std::nullopt, {std::move(d)}};
+    return RegisterMapResult::failure({std::move(d)});
   }
   return MapFileReader(source_name).read(root);
 }
@@ -338,7 +338,7 @@ RegisterMapResult load_register_map_file(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     MapDiagnostic d{path.string(), 0, 0, "cannot open the file"};
-    return RegisterMapResult{std::nullopt, {std::move(d)}};
+    return RegisterMapResult::failure({std::move(d)});
   }
   std::ostringstream text;
   text << in.rdbuf();

@@ -41,7 +41,7 @@ RegisterMapResult merge_register_maps(const RegisterMap& base, const RegisterMap
     MapDiagnostic d{std::string(overlay.source_name()), 0, 0,
                     "a " + std::string(to_string(overlay.dialect())) + " map cannot extend a " +
                         std::string(to_string(base.dialect())) + " map"};
-    return RegisterMapResult{std::nullopt, {std::move(d)}};
+    return RegisterMapResult::failure({std::move(d)});
   }
   const unsigned step = address_step(base.dialect());
   CoveredAddresses replaced;
@@ -61,12 +61,12 @@ RegisterMapResult merge_register_maps(const RegisterMap& base, const RegisterMap
 }
 
 RegisterMapResult resolve_user_register_map(const RegisterMap& user) {
-  if (user.mode() == MapMode::Replace) return RegisterMapResult{user, {}};
+  if (user.mode() == MapMode::Replace) return user;
   return merge_register_maps(builtin_register_map(user.dialect()), user);
 }
 
 RegisterMapResult stack_register_map(const RegisterMap& in_effect, const RegisterMap& user) {
-  if (user.mode() == MapMode::Replace) return RegisterMapResult{user, {}};
+  if (user.mode() == MapMode::Replace) return user;
   return merge_register_maps(in_effect, user);
 }
 

@@ -11,7 +11,7 @@ constexpr std::size_t kFixedLength = 8;  // addr fc word word crc
 constexpr std::size_t kDeviceNumberLength = 4;
 
 ParseOutcome fail(std::string_view why) {
-  return ParseOutcome{std::nullopt, why};
+  return ParseOutcome::failure(why);
 }
 
 std::uint16_t be16(std::span<const std::uint8_t> b, std::size_t at) {
@@ -56,7 +56,7 @@ ParseOutcome parse_hybrid_request(std::span<const std::uint8_t> b, Frame f) {
   } else {
     return fail("not a Hybrid request function code");
   }
-  return ParseOutcome{f, {}};
+  return f;
 }
 
 ParseOutcome parse_hybrid_reply(std::span<const std::uint8_t> b, Frame f) {
@@ -77,7 +77,7 @@ ParseOutcome parse_hybrid_reply(std::span<const std::uint8_t> b, Frame f) {
   } else if (!read_words(rest, f)) {
     return fail("Hybrid reply data is not whole 16-bit registers");
   }
-  return ParseOutcome{f, {}};
+  return f;
 }
 
 ParseOutcome parse_gsl_request(std::span<const std::uint8_t> b, Frame f) {
@@ -87,7 +87,7 @@ ParseOutcome parse_gsl_request(std::span<const std::uint8_t> b, Frame f) {
     f.count = be16(b, 4);
     f.byte_count = b[6];
     if (!read_words(b.subspan(7, b[6]), f)) return fail("GSL 0x10 data is not whole registers");
-    return ParseOutcome{f, {}};
+    return f;
   }
   if (b.size() != kFixedLength) return fail("GSL request is not 8 bytes");
   f.start = be16(b, 2);
@@ -98,20 +98,20 @@ ParseOutcome parse_gsl_request(std::span<const std::uint8_t> b, Frame f) {
   } else {
     return fail("not a GSL request function code");
   }
-  return ParseOutcome{f, {}};
+  return f;
 }
 
 ParseOutcome parse_gsl_reply(std::span<const std::uint8_t> b, Frame f) {
   if (fc::is_gsl_exception(f.function)) {
     if (b.size() != 5) return fail("GSL exception is not 5 bytes");
     f.exception_code = b[2];
-    return ParseOutcome{f, {}};
+    return f;
   }
   if (f.function == fc::kGslReadHolding || f.function == fc::kGslReadInput) {
     const auto body = counted_body(b, f);
     if (!body) return fail("GSL reply length disagrees with its byte count");
     if (!read_words(*body, f)) return fail("GSL reply data is not whole registers");
-    return ParseOutcome{f, {}};
+    return f;
   }
   if (b.size() != kFixedLength) return fail("GSL write reply is not 8 bytes");
   f.start = be16(b, 2);
@@ -122,7 +122,7 @@ ParseOutcome parse_gsl_reply(std::span<const std::uint8_t> b, Frame f) {
   } else {
     return fail("not a GSL reply function code");
   }
-  return ParseOutcome{f, {}};
+  return f;
 }
 
 void encode_hybrid_reply_body(const Frame& f, std::vector<std::uint8_t>& body) {

@@ -42,8 +42,6 @@ struct SegmentedBus::Impl : BusSessionSink {
   // Where the session's offsets of a direction start in this object's stream positions:
   // after a loss the session's reassembler numbers its bytes on without the lost ones.
   std::array<std::uint64_t, kDirections> base{};
-  Direction last_direction = Direction::Unknown;
-  bool any = false;
 };
 
 SegmentedBus::SegmentedBus(BusSessionOptions options, const RegisterDecoder& decoder,
@@ -66,10 +64,6 @@ void SegmentedBus::add(Direction d, std::uint64_t offset, std::span<const std::u
     s.fed_to = offset;
   }
   const auto fresh = bytes.subspan(static_cast<std::size_t>(s.fed_to - offset));
-  // Half duplex: when one side starts talking the other has finished its turn.
-  if (m.any && d != m.last_direction) m.session.end_turn(m.last_direction);
-  m.any = true;
-  m.last_direction = d;
   s.fed_to = end;
   m.session.feed(BusChunk{fresh, time, d});
 }

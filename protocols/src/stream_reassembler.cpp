@@ -44,6 +44,7 @@ struct StreamReassembler::Impl {
   bool after_frame = true;  // input starts here: as good a frame boundary as a frame's end
 
   std::uint64_t offset_of(std::size_t index) const { return buffer_offset + index; }
+  bool nothing_pending() const { return head == buffer.size() && noise_begin == head; }
 
   void compact() {
     if (noise_begin < kCompactThreshold || noise_begin * 2 < buffer.size()) return;
@@ -142,13 +143,20 @@ void StreamReassembler::feed(const BusChunk& chunk) {
 
 void StreamReassembler::idle(double now) {
   Impl& m = *impl_;
-  if (m.head == m.buffer.size() && m.noise_begin == m.head) return;
+  if (m.nothing_pending()) return;
   if (!m.timeline.silent_since_last_byte(now)) return;
   m.silence_after = true;
   m.give_up = m.timeline.silent_since_last_byte(now - m.options.give_up_after);
   m.process(false);
   // Noise ends where the silence begins: report it now rather than with the next frame.
   if (m.head == m.buffer.size()) m.flush_noise();
+}
+
+std::optional<double> StreamReassembler::next_deadline() const {
+  const Impl& m = *impl_;
+  // Once the bytes were given up, no longer silence decides anything more.
+  if (m.nothing_pending() || m.give_up) return std::nullopt;
+  return m.timeline.silence_proven_at(m.silence_after ? m.options.give_up_after : 0.0);
 }
 
 void StreamReassembler::discontinuity() {

@@ -1,6 +1,7 @@
 #include "pvtap/transaction_matcher.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "pvtap/function_codes.h"
 #include "pvtap/reply_rules.h"
@@ -14,35 +15,50 @@ bool is_broadcast_request(const FrameSummary& f) {
 
 }  // namespace
 
-TransactionMatcher::TransactionMatcher(MatchSink& sink, MatcherConfig config)
-    : sink_(sink), config_(config) {}
+TransactionMatcher::TransactionMatcher(MatcherConfig config) : config_(config) {}
 
-Role TransactionMatcher::on_frame(const ObservedFrame& in) {
-  advance(in.start_time);
-  Role role = in.frame.role;
-  if (role == Role::Request && !in.role_known) {
+FrameMatch TransactionMatcher::on_frame(const ObservedFrame& in) {
+  timeout_count_ = 0;
+  move_time_to(in.start_time);
+  FrameMatch out;
+  out.role = in.frame.role;
+  if (out.role == Role::Request && !in.role_known) {
     const Slot& own = station_slots_[in.frame.station];
     if (own.state == SlotState::Pending && echoes_write(own.request.frame, in.frame, in.check_ok)) {
-      sink_.on_role_corrected(RoleCorrection{in.id, own.request.id, Role::Request, Role::Response});
-      role = Role::Response;
+      out.role_correction = RoleCorrection{in.id, own.request.id, Role::Request, Role::Response};
+      out.role = Role::Response;
     }
   }
-  if (role == Role::Request) {
+  if (out.role == Role::Request) {
     on_request(in);
   } else {
-    on_reply(in);
+    on_reply(in, out);
   }
   // The bus is busy until the frame's last byte; later timeouts are judged from there.
   now_ = std::max(now_, in.end_time);
-  return role;
+  out.timeouts = timeouts();
+  return out;
 }
 
-void TransactionMatcher::advance(double now) {
+std::span<const Timeout> TransactionMatcher::advance(double now) {
+  timeout_count_ = 0;
+  move_time_to(now);
+  return timeouts();
+}
+
+void TransactionMatcher::move_time_to(double now) {
   now_ = std::max(now_, now);
   if (now_ > next_deadline_) expire_overdue();
 }
 
-void TransactionMatcher::finish() {
+std::optional<double> TransactionMatcher::next_deadline() const {
+  if (!std::isfinite(next_deadline_)) return std::nullopt;
+  // A request times out once time has passed its deadline, not at it.
+  return std::nextafter(next_deadline_, std::numeric_limits<double>::infinity());
+}
+
+std::span<const Timeout> TransactionMatcher::finish() {
+  timeout_count_ = 0;
   const std::size_t n = collect_pending(false);
   for (std::size_t i = 0; i < n; ++i) {
     Slot& slot = *due_[i];
@@ -50,6 +66,7 @@ void TransactionMatcher::finish() {
             std::nullopt);
   }
   next_deadline_ = std::numeric_limits<double>::infinity();
+  return timeouts();
 }
 
 std::size_t TransactionMatcher::pending_count() const {
@@ -72,23 +89,23 @@ void TransactionMatcher::on_request(const ObservedFrame& in) {
   next_deadline_ = std::min(next_deadline_, deadline);
 }
 
-void TransactionMatcher::on_reply(const ObservedFrame& in) {
-  if (try_answer(in)) return;
-  if (try_duplicate(in)) return;
-  report_unsolicited(in);
+void TransactionMatcher::on_reply(const ObservedFrame& in, FrameMatch& out) {
+  if (try_answer(in, out)) return;
+  if (try_duplicate(in, out)) return;
+  out.unsolicited = unsolicited(in);
 }
 
-bool TransactionMatcher::try_answer(const ObservedFrame& in) {
+bool TransactionMatcher::try_answer(const ObservedFrame& in, FrameMatch& out) {
   const std::uint8_t station = in.frame.station;
   Slot& own = station_slots_[station];
   if (own.state == SlotState::Pending && answers(own.request.frame, in.frame)) {
-    complete(own, in);
+    complete(own, in, out);
     own.state = SlotState::Answered;
     return true;
   }
   if (broadcast_.state == SlotState::Pending && !broadcast_answered_by_[station] &&
       answers(broadcast_.request.frame, in.frame)) {
-    complete(broadcast_, in);
+    complete(broadcast_, in, out);
     broadcast_answered_by_.set(station);
     return true;
   }
@@ -99,7 +116,7 @@ bool TransactionMatcher::try_answer(const ObservedFrame& in) {
       (only->request.frame.dialect == Dialect::Ascii) != ascii) {
     return false;
   }
-  complete(*only, in);
+  complete(*only, in, out);
   only->state = SlotState::Answered;
   return true;
 }
@@ -115,7 +132,7 @@ TransactionMatcher::Slot* TransactionMatcher::only_pending() {
   return found;
 }
 
-bool TransactionMatcher::try_duplicate(const ObservedFrame& in) {
+bool TransactionMatcher::try_duplicate(const ObservedFrame& in, FrameMatch& out) {
   const std::uint8_t station = in.frame.station;
   const Slot& own = station_slots_[station];
   const Slot* original = nullptr;
@@ -126,12 +143,12 @@ bool TransactionMatcher::try_duplicate(const ObservedFrame& in) {
     original = &broadcast_;
   }
   if (original == nullptr) return false;
-  sink_.on_duplicate(DuplicateReply{in.id, original->request.id, in.frame.dialect, station,
-                                    in.frame.function, in.check_ok});
+  out.duplicate = DuplicateReply{in.id,   original->request.id, in.frame.dialect,
+                                 station, in.frame.function,    in.check_ok};
   return true;
 }
 
-void TransactionMatcher::report_unsolicited(const ObservedFrame& in) {
+UnsolicitedReply TransactionMatcher::unsolicited(const ObservedFrame& in) const {
   const std::uint8_t station = in.frame.station;
   UnsolicitedReply event{in.id,       in.frame.dialect, station, in.frame.function,
                          in.check_ok, std::nullopt,     0.0};
@@ -148,25 +165,27 @@ void TransactionMatcher::report_unsolicited(const ObservedFrame& in) {
     event.late_for_request_id = late->request.id;
     event.since_request = in.start_time - late->request.end_time;
   }
-  sink_.on_unsolicited(event);
+  return event;
 }
 
-void TransactionMatcher::complete(const Slot& slot, const ObservedFrame& reply) {
+void TransactionMatcher::complete(const Slot& slot, const ObservedFrame& reply,
+                                  FrameMatch& out) const {
   const RequestRecord& request = slot.request;
   const FrameSummary& r = reply.frame;
   // A damaged reply may carry a damaged station: the request says who answered it, but a
   // broadcast is answered by each station under its own address.
   const FrameSummary& who = is_broadcast(slot) ? r : request.frame;
-  sink_.on_transaction(Transaction{request.id, reply.id, reply.start_time - request.end_time,
-                                   who.dialect, who.station, request.frame.function, r.function,
-                                   reply_kind(r), is_broadcast(slot), request.check_ok,
-                                   reply.check_ok});
+  out.transaction =
+      Transaction{request.id,       reply.id,      reply.start_time - request.end_time,
+                  who.dialect,      who.station,   request.frame.function,
+                  r.function,       reply_kind(r), is_broadcast(slot),
+                  request.check_ok, reply.check_ok};
   if (!reply.check_ok) return;
   const auto counts = compare_reply_count(request.frame, r);
   if (counts && !counts->matches()) {
-    sink_.on_byte_count_mismatch(ByteCountMismatch{request.id, reply.id, r.dialect, r.station,
-                                                   request.frame.function, counts->expected,
-                                                   counts->found, counts->unit});
+    out.count_mismatch = ByteCountMismatch{
+        request.id,       reply.id,      r.dialect,   r.station, request.frame.function,
+        counts->expected, counts->found, counts->unit};
   }
 }
 
@@ -179,8 +198,9 @@ void TransactionMatcher::give_up(Slot& slot, TimeoutReason reason, double waited
   }
   slot.state = SlotState::TimedOut;
   const FrameSummary& f = slot.request.frame;
-  sink_.on_timeout(Timeout{slot.request.id, f.dialect, f.station, f.function, reason, waited,
-                           next_request_id, slot.request.check_ok});
+  timeouts_[timeout_count_++] =
+      Timeout{slot.request.id, f.dialect, f.station,       f.function,
+              reason,          waited,    next_request_id, slot.request.check_ok};
 }
 
 void TransactionMatcher::expire_overdue() {

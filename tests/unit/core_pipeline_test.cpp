@@ -30,25 +30,24 @@ Frame gsl_frame(Role role, std::uint8_t station, std::uint16_t start, WordList w
 }
 
 // Collects what the pipeline reports: frames by id, transactions, timeouts, decoded values.
-class Pipeline : public ReassemblerSink, public MatchSink {
+class Pipeline : public ReassemblerSink {
  public:
-  Pipeline() : matcher_(*this) {}
-
   void on_frame(const FrameEvent& e) override {
     const auto parsed = parse_frame(e.bytes, e.dialect, e.role);
-    ASSERT_TRUE(parsed) << parsed.error;
+    ASSERT_TRUE(parsed) << parsed.diagnostics();
     const std::uint64_t id = next_id_++;
-    frames_[id] = *parsed.frame;
-    matcher_.on_frame(
-        ObservedFrame{id, summarize(*parsed.frame), e.start_time, e.end_time, e.check.ok, false});
+    frames_[id] = parsed.value();
+    const FrameMatch match = matcher_.on_frame(
+        ObservedFrame{id, summarize(parsed.value()), e.start_time, e.end_time, e.check.ok, false});
+    add_timeouts(match.timeouts);
+    if (match.transaction) {
+      transactions.push_back(*match.transaction);
+      decoder_.decode(frames_[match.transaction->response_id],
+                      &frames_[match.transaction->request_id], values);
+    }
   }
   void on_noise(const NoiseEvent& e) override { noise_bytes += e.bytes.size(); }
-  void on_transaction(const Transaction& t) override {
-    transactions.push_back(t);
-    decoder_.decode(frames_[t.response_id], &frames_[t.request_id], values);
-  }
-  void on_timeout(const Timeout& t) override { timeouts.push_back(t); }
-  void finish() { matcher_.finish(); }
+  void finish() { add_timeouts(matcher_.finish()); }
 
   const DecodedValue* value(std::string_view key) const {
     for (const auto& v : values) {
@@ -63,6 +62,10 @@ class Pipeline : public ReassemblerSink, public MatchSink {
   std::size_t noise_bytes = 0;
 
  private:
+  void add_timeouts(std::span<const Timeout> decided) {
+    timeouts.insert(timeouts.end(), decided.begin(), decided.end());
+  }
+
   TransactionMatcher matcher_;
   RegisterDecoder decoder_;
   std::map<std::uint64_t, Frame> frames_;

@@ -101,8 +101,8 @@ TEST(FrameCodec, EveryKindRoundTrips) {
     ASSERT_FALSE(wire.empty());
     EXPECT_TRUE(verify_check(wire, f.dialect).ok);
     const auto back = parse_frame(wire, f.dialect, f.role);
-    ASSERT_TRUE(back) << back.error;
-    EXPECT_EQ(*back.frame, f);
+    ASSERT_TRUE(back) << back.diagnostics();
+    EXPECT_EQ(back.value(), f);
   }
 }
 

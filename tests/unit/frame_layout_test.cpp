@@ -19,9 +19,9 @@ struct Parsed {
 Parsed parse(std::string_view hex, Dialect d, Role r) {
   const auto bytes = hex_bytes(hex);
   const ParseOutcome out = parse_frame(bytes, d, r);
-  EXPECT_TRUE(out) << out.error;
+  EXPECT_TRUE(out) << out.diagnostics();
   if (!out) return {};
-  return {*out.frame, frame_layout(*out.frame, bytes.size())};
+  return {out.value(), frame_layout(out.value(), bytes.size())};
 }
 
 void expect_span(FieldSpan s, unsigned offset, unsigned length) {

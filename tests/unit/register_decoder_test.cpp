@@ -440,10 +440,10 @@ unit = "kW"
 )toml",
                                              "site.toml");
   ASSERT_TRUE(user) << user.error_text();
-  RegisterMapResult merged = resolve_user_register_map(*user.map);
+  RegisterMapResult merged = resolve_user_register_map(user.value());
   ASSERT_TRUE(merged) << merged.error_text();
   RegisterDecoder decoder;
-  decoder.use_map(*merged.map);
+  decoder.use_map(merged.value());
   std::vector<DecodedValue> out;
   const Frame request = test::read_request(Dialect::Gsl, 6, fc::kGslReadHolding, 1040, 1);
   decoder.decode(gsl_reply({5}), &request, out);

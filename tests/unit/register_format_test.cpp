@@ -76,7 +76,7 @@ const RegisterDecoder& kinds_decoder() {
     RegisterDecoder d;
     RegisterMapResult map = load_register_map(kEveryKind, "kinds.toml");
     EXPECT_TRUE(map) << map.error_text();
-    if (map) d.use_map(*map.map);
+    if (map) d.use_map(map.value());
     return d;
   }();
   return decoder;

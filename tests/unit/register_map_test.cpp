@@ -34,9 +34,9 @@ TEST(RegisterMap, BuiltinMapsLoadWithoutErrors) {
   for (Dialect d : {Dialect::Ascii, Dialect::Hybrid, Dialect::Gsl}) {
     RegisterMapResult result = load_builtin_register_map(d);
     ASSERT_TRUE(result) << result.error_text();
-    EXPECT_EQ(result.map->dialect(), d);
-    EXPECT_EQ(result.map->mode(), MapMode::Replace);
-    EXPECT_EQ(result.map->source_name(), "builtin:" + std::string(to_string(d)) + ".toml");
+    EXPECT_EQ(result->dialect(), d);
+    EXPECT_EQ(result->mode(), MapMode::Replace);
+    EXPECT_EQ(result->source_name(), "builtin:" + std::string(to_string(d)) + ".toml");
   }
 }
 
@@ -231,9 +231,9 @@ unit = "V"
 TEST(RegisterMap, LoadsAMinimalMap) {
   RegisterMapResult result = load_register_map(kSmallMap, "small.toml");
   ASSERT_TRUE(result) << result.error_text();
-  EXPECT_EQ(result.map->size(), 1u);
-  EXPECT_EQ(result.map->title(), "small");
-  EXPECT_EQ(result.map->registers()[0].line, 4u);
+  EXPECT_EQ(result->size(), 1u);
+  EXPECT_EQ(result->title(), "small");
+  EXPECT_EQ(result->registers()[0].line, 4u);
 }
 
 TEST(RegisterMap, SyntaxErrorNamesFileAndLine) {
@@ -413,7 +413,7 @@ TEST(RegisterMap, LoadsFromAFileAndNamesMissingFiles) {
   }
   RegisterMapResult good = load_register_map_file(path);
   ASSERT_TRUE(good) << good.error_text();
-  EXPECT_EQ(good.map->source_name(), path.string());
+  EXPECT_EQ(good->source_name(), path.string());
   std::filesystem::remove(path);
 
   RegisterMapResult missing = load_register_map_file(path);
@@ -442,10 +442,10 @@ unit = "W"
 TEST(RegisterMap, UserMapOverridesAndExtendsTheBuiltinMap) {
   RegisterMapResult user = load_register_map(kUserExtension, "site.toml");
   ASSERT_TRUE(user) << user.error_text();
-  EXPECT_EQ(user.map->mode(), MapMode::Extend);
-  RegisterMapResult merged = resolve_user_register_map(*user.map);
+  EXPECT_EQ(user->mode(), MapMode::Extend);
+  RegisterMapResult merged = resolve_user_register_map(user.value());
   ASSERT_TRUE(merged) << merged.error_text();
-  const RegisterMap& map = *merged.map;
+  const RegisterMap& map = merged.value();
   EXPECT_EQ(map.size(), builtin_register_map(Dialect::Hybrid).size() + 1);
   EXPECT_EQ(map.source_name(), "builtin:hybrid.toml + site.toml");
   const RegisterDef* battery = map.find_key("battery_voltage");
@@ -475,13 +475,13 @@ unit = "W"
                                                "reserve.toml");
   ASSERT_TRUE(first) << first.error_text();
   ASSERT_TRUE(second) << second.error_text();
-  RegisterMapResult one = stack_register_map(builtin_register_map(Dialect::Hybrid), *first.map);
+  RegisterMapResult one = stack_register_map(builtin_register_map(Dialect::Hybrid), first.value());
   ASSERT_TRUE(one) << one.error_text();
-  RegisterMapResult both = stack_register_map(*one.map, *second.map);
+  RegisterMapResult both = stack_register_map(one.value(), second.value());
   ASSERT_TRUE(both) << both.error_text();
-  EXPECT_EQ(both.map->locate(0x1050)->def->key, "site_limit") << "the first file's entry stays";
-  EXPECT_EQ(both.map->locate(0x1051)->def->key, "site_reserve");
-  EXPECT_DOUBLE_EQ(both.map->find_key("battery_voltage")->scale, 0.01);
+  EXPECT_EQ(both->locate(0x1050)->def->key, "site_limit") << "the first file's entry stays";
+  EXPECT_EQ(both->locate(0x1051)->def->key, "site_reserve");
+  EXPECT_DOUBLE_EQ(both->find_key("battery_voltage")->scale, 0.01);
   RegisterMapResult replace = load_register_map(R"toml(dialect = "hybrid"
 mode = "replace"
 [[register]]
@@ -491,9 +491,9 @@ name = "only register"
 )toml",
                                                 "replace.toml");
   ASSERT_TRUE(replace) << replace.error_text();
-  RegisterMapResult alone = stack_register_map(*both.map, *replace.map);
+  RegisterMapResult alone = stack_register_map(both.value(), replace.value());
   ASSERT_TRUE(alone) << alone.error_text();
-  EXPECT_EQ(alone.map->size(), 1u);
+  EXPECT_EQ(alone->size(), 1u);
 }
 
 TEST(RegisterMap, UserKeyMovesTheBuiltinEntry) {
@@ -508,24 +508,24 @@ unit = "Hz"
 )toml",
                                              "moved.toml");
   ASSERT_TRUE(user) << user.error_text();
-  RegisterMapResult merged = resolve_user_register_map(*user.map);
+  RegisterMapResult merged = resolve_user_register_map(user.value());
   ASSERT_TRUE(merged) << merged.error_text();
-  EXPECT_FALSE(merged.map->locate(1056));
-  EXPECT_EQ(merged.map->find_key("grid_frequency")->address, 3000);
+  EXPECT_FALSE(merged->locate(1056));
+  EXPECT_EQ(merged->find_key("grid_frequency")->address, 3000);
 }
 
 TEST(RegisterMap, ReplacingMapStandsAlone) {
   RegisterMapResult user = load_register_map(kSmallMap, "small.toml");
   ASSERT_TRUE(user);
-  RegisterMapResult resolved = resolve_user_register_map(*user.map);
+  RegisterMapResult resolved = resolve_user_register_map(user.value());
   ASSERT_TRUE(resolved);
-  EXPECT_EQ(resolved.map->size(), 1u);
+  EXPECT_EQ(resolved->size(), 1u);
 }
 
 TEST(RegisterMap, MergeRefusesAnotherDialect) {
   RegisterMapResult user = load_register_map(kSmallMap, "small.toml");
   ASSERT_TRUE(user);
-  RegisterMapResult merged = merge_register_maps(builtin_register_map(Dialect::Gsl), *user.map);
+  RegisterMapResult merged = merge_register_maps(builtin_register_map(Dialect::Gsl), user.value());
   EXPECT_FALSE(merged);
   EXPECT_NE(merged.error_text().find("small.toml: a hybrid map cannot extend a gsl map"),
             std::string::npos)
@@ -538,7 +538,7 @@ TEST(RegisterMap, MapOutlivesCopiesAndKeepsItsViews) {
   {
     RegisterMapResult result = load_register_map(kSmallMap, "small.toml");
     ASSERT_TRUE(result);
-    copy = *result.map;
+    copy = result.value();
     name = copy.registers()[0].name;
   }
   EXPECT_EQ(name, "battery voltage");

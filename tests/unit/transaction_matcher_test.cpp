@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "pvtap/frame.h"
@@ -16,8 +17,8 @@
 namespace pvtap {
 namespace {
 
-// Keeps every event, so that a test can check both what was reported and what was not.
-struct RecordingSink : MatchSink {
+// Keeps every finding, so that a test can check both what was decided and what was not.
+struct RecordingSink {
   std::vector<Transaction> transactions;
   std::vector<Timeout> timeouts;
   std::vector<UnsolicitedReply> unsolicited;
@@ -25,17 +26,41 @@ struct RecordingSink : MatchSink {
   std::vector<ByteCountMismatch> mismatches;
   std::vector<RoleCorrection> corrections;
 
-  void on_transaction(const Transaction& e) override { transactions.push_back(e); }
-  void on_timeout(const Timeout& e) override { timeouts.push_back(e); }
-  void on_unsolicited(const UnsolicitedReply& e) override { unsolicited.push_back(e); }
-  void on_duplicate(const DuplicateReply& e) override { duplicates.push_back(e); }
-  void on_byte_count_mismatch(const ByteCountMismatch& e) override { mismatches.push_back(e); }
-  void on_role_corrected(const RoleCorrection& e) override { corrections.push_back(e); }
+  void record(std::span<const Timeout> decided) {
+    timeouts.insert(timeouts.end(), decided.begin(), decided.end());
+  }
+  void record(const FrameMatch& m) {
+    record(m.timeouts);
+    if (m.role_correction) corrections.push_back(*m.role_correction);
+    if (m.transaction) transactions.push_back(*m.transaction);
+    if (m.duplicate) duplicates.push_back(*m.duplicate);
+    if (m.unsolicited) unsolicited.push_back(*m.unsolicited);
+    if (m.count_mismatch) mismatches.push_back(*m.count_mismatch);
+  }
 
   std::size_t total() const {
     return transactions.size() + timeouts.size() + unsolicited.size() + duplicates.size() +
            mismatches.size() + corrections.size();
   }
+};
+
+// A matcher whose findings are kept in a RecordingSink.
+class RecordingMatcher {
+ public:
+  explicit RecordingMatcher(RecordingSink& sink, MatcherConfig config = {})
+      : sink_(sink), matcher_(config) {}
+  Role on_frame(const ObservedFrame& frame) {
+    const FrameMatch m = matcher_.on_frame(frame);
+    sink_.record(m);
+    return m.role;
+  }
+  void advance(double now) { sink_.record(matcher_.advance(now)); }
+  void finish() { sink_.record(matcher_.finish()); }
+  std::size_t pending_count() const { return matcher_.pending_count(); }
+
+ private:
+  RecordingSink& sink_;
+  TransactionMatcher matcher_;
 };
 
 Frame rtu_reply(Dialect d, std::uint8_t station, std::uint8_t function, std::uint8_t n) {
@@ -84,7 +109,7 @@ ObservedFrame observed(std::uint64_t id, const Frame& f, double start, double en
 class TransactionMatcherTest : public ::testing::Test {
  protected:
   RecordingSink sink;
-  TransactionMatcher matcher{sink};
+  RecordingMatcher matcher{sink};
 };
 
 TEST_F(TransactionMatcherTest, PlainRequestReplyGivesLatency) {
@@ -229,7 +254,7 @@ TEST_F(TransactionMatcherTest, KnownRoleIsNeverCorrected) {
 
 TEST_F(TransactionMatcherTest, TimeoutWhenNoReplyWithinTheTimeout) {
   RecordingSink short_sink;
-  TransactionMatcher short_matcher(short_sink, MatcherConfig{0.2});
+  RecordingMatcher short_matcher(short_sink, MatcherConfig{0.2});
   short_matcher.on_frame(
       observed(1, test::read_request(Dialect::Gsl, 1, fc::kGslReadHolding, 0, 2), 0.0, 0.008));
   // The reply comes 0.292 s after the request: too late for a 0.2 s timeout.

@@ -124,15 +124,14 @@ bool load_maps(const CommonOptions& o, RegisterDecoder& decoder) {
     const RegisterMapResult loaded = load_register_map_file(path);
     // Several files stack in the order given, as the plugin stacks its folder's files.
     const RegisterMapResult resolved =
-        loaded ? stack_register_map(decoder.map(loaded.map->dialect()), *loaded.map)
-               : RegisterMapResult{};
+        loaded ? stack_register_map(decoder.map(loaded->dialect()), loaded.value()) : loaded;
     const RegisterMapResult& failed = loaded ? resolved : loaded;
     if (!loaded || !resolved) {
       std::fprintf(stderr, "pvtap: %s: bad register map\n%s", path.c_str(),
                    failed.error_text().c_str());
       return false;
     }
-    decoder.use_map(*resolved.map);
+    decoder.use_map(resolved.value());
   }
   return true;
 }

@@ -66,14 +66,10 @@ void GatewayTraffic::Connection::gap(Direction d, std::uint64_t lost, double tim
 
 void GatewayTraffic::Connection::feed_bus(Direction d, std::span<const std::uint8_t> bytes,
                                           double time) {
-  // Half duplex: when one side starts talking the other has finished, unless some of its
-  // bytes are still missing (a hole waiting for a retransmission).
-  if (last_direction != Direction::Unknown && last_direction != d &&
-      (transport == Transport::Udp || !stream(last_direction).has_hole())) {
-    bus->end_turn(last_direction);
-  }
-  last_direction = d;
-  bus->feed(BusChunk{bytes, time, d});
+  // The other side's turn is not over while some of its bytes are still missing (a hole
+  // waiting for a retransmission).
+  const bool other_complete = transport == Transport::Udp || !stream(other(d)).has_hole();
+  bus->feed(BusChunk{bytes, time, d, other_complete});
 }
 
 void GatewayTraffic::Connection::become_bus() {

@@ -59,7 +59,6 @@ struct GatewayTraffic::Connection {
   DirectionSink from_slave_sink;
   TcpDirectionStream to_slave_stream;
   TcpDirectionStream from_slave_stream;
-  Direction last_direction = Direction::Unknown;
   std::uint64_t ignored_bytes = 0;
   double last_seen = 0;
   bool fin_to_slave = false;

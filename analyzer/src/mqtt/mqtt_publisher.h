@@ -7,13 +7,13 @@
 #include <string>
 #include <string_view>
 
-#include "output/event_writer.h"
+#include "formatting/output_stream.h"
 #include "mqtt/bus_health.h"
 #include "mqtt/mqtt_client.h"
 #include "mqtt/mqtt_options.h"
 #include "mqtt/mqtt_topics.h"
 #include "mqtt/station_table.h"
-#include "formatting/output_stream.h"
+#include "output/event_writer.h"
 #include "output/value_json_cache.h"
 
 namespace pvtap::analyzer {
@@ -40,6 +40,10 @@ class MqttPublisher : public EventWriter {
 
   // The capture clock reads `now`: publishes what is due. Cheap when nothing is.
   void tick(double now);
+  // When tick() next has something to publish; nullopt before the first tick.
+  std::optional<double> next_due() const {
+    return next_tick_ > 0 ? std::optional<double>(next_tick_) : std::nullopt;
+  }
   // A serial tap's driver counters (or none: not counted), for the health of its bus.
   void line_errors(std::string_view bus, const std::optional<LineErrorCounts>& counts);
   // End of input: publishes everything held, then (live) offline; waits a little for the

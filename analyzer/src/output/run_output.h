@@ -45,6 +45,8 @@ class RunOutput {
   // The capture clock reads `now`: what the broker gets per interval goes out when due.
   void tick(double now);
   // A serial tap's driver counters, for the broker's health of its bus.
+  // When the broker is next due its per-interval messages; nullopt without --mqtt.
+  std::optional<double> next_due() const { return mqtt_ ? mqtt_->next_due() : std::nullopt; }
   bool wants_line_errors() const { return mqtt_ != nullptr; }
   void line_errors(std::string_view bus, const std::optional<LineErrorCounts>& counts);
   // The input ended at `time`: the broker gets everything held.

@@ -1,6 +1,7 @@
 // StatusLine: one line on a terminal's stderr, redrawn in place while a live capture runs.
 #pragma once
 
+#include <optional>
 #include <string>
 
 namespace pvtap::analyzer {
@@ -13,6 +14,10 @@ class StatusLine {
   StatusLine& operator=(const StatusLine&) = delete;
 
   bool due(double now) const { return enabled_ && now >= next_; }
+  // When the line is next to be redrawn; nullopt when it is off.
+  std::optional<double> next_due() const {
+    return enabled_ ? std::optional<double>(next_) : std::nullopt;
+  }
   // Draws `text` in place of the previous line (at most a few times a second: see due()).
   void show(double now, const std::string& text);
   // Erases the line, e.g. before other output goes to the same terminal.

@@ -57,6 +57,15 @@ void BusSet::finish() {
   for (auto& bus : buses_) bus->session.finish();
 }
 
+std::optional<double> BusSet::next_deadline() const {
+  std::optional<double> earliest;
+  for (const auto& bus : buses_) {
+    const std::optional<double> due = bus->session.next_deadline();
+    if (due && (!earliest || *due < *earliest)) earliest = due;
+  }
+  return earliest;
+}
+
 std::vector<BusFindings> BusSet::findings() const {
   std::vector<BusFindings> out;
   for (const auto& bus : buses_)

@@ -29,6 +29,7 @@ class BusSet {
   // The bus has been silent until `now` on every bus (live capture).
   void idle(double now);
   void finish();
+  std::optional<double> next_deadline() const;  // the earliest over every bus
   std::vector<BusFindings> findings() const;
   ReassemblerTotals totals() const;  // over every bus
 

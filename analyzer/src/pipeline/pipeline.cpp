@@ -1,5 +1,7 @@
 #include "pipeline/pipeline.h"
 
+#include "pvtap/carrier_timing.h"
+
 namespace pvtap::analyzer {
 
 Pipeline::Pipeline(const PipelineSettings& settings, const RegisterDecoder& decoder,
@@ -27,24 +29,23 @@ BusSessionOptions Pipeline::bus_options(InputKind kind) const {
   o.reassembler.baud = settings_.baud;
   o.matcher.timeout = settings_.timeout;
   o.decode_values = settings_.decode_values;
-  if (kind == InputKind::Network) {
-    o.reassembler.timestamps = TimestampTrust::Untrusted;
-    o.reassembler.boundary_gap = settings_.gateway_gap_ms / 1000.0;
-    o.reassembler.segment_ends_pin = true;
-    o.timestamp_note =
-        "the timestamps are those of the gateway's TCP/UDP segments, not of bus characters";
-  }
-  if (kind == InputKind::Serial && batched_serial_) {
-    o.reassembler.timestamps = TimestampTrust::Untrusted;
-    o.timestamp_note =
-        "the capture's records are chunks read from a serial adapter: their timestamps are "
-        "batched (e.g. by a USB adapter's latency timer), not per character";
-  }
-  if (!settings_.has_timestamps) {
-    o.has_timestamps = false;
-    o.reassembler.timestamps = TimestampTrust::Untrusted;
-  }
+  apply_carrier_timing(CarrierTiming{carrier_of(kind), settings_.gateway_gap_ms / 1000.0, {}}, o);
   return o;
+}
+
+Carrier Pipeline::carrier_of(InputKind kind) const {
+  if (!settings_.has_timestamps) return Carrier::PlainDump;
+  switch (kind) {
+    case InputKind::Network:
+      return Carrier::GatewaySegments;
+    case InputKind::ExportedPdu:
+      return Carrier::ExportedPdus;
+    case InputKind::Serial:
+      return batched_serial_ ? Carrier::SerialBatches : Carrier::SerialCharacters;
+    case InputKind::RtacSerial:
+      break;
+  }
+  return Carrier::SerialCharacters;
 }
 
 BusSession& Pipeline::add_bus(const std::string& name, const BusSessionOptions& options) {

@@ -17,6 +17,7 @@
 #include "pvtap/bus_session.h"
 #include "pvtap/capture/capture_file.h"
 #include "pvtap/capture/link_types.h"
+#include "pvtap/carrier_timing.h"
 #include "report/audit_report.h"
 
 namespace pvtap::analyzer {
@@ -50,9 +51,13 @@ class Pipeline : public BusDirectory {
   // A bus fed by its source directly (a serial tap).
   BusSession& add_bus(const std::string& name, const BusSessionOptions& options);
   BusSessionOptions bus_options(InputKind kind) const;
+  // How the bytes of that kind of input reach pvtap, for what their timestamps prove.
+  Carrier carrier_of(InputKind kind) const;
 
   // Live sources: every bus has been silent until `now`.
   void idle(double now);
+  // When the buses can next decide something while silent (see BusSession::next_deadline).
+  std::optional<double> next_deadline() const { return buses_.next_deadline(); }
   // End of input at `time`: every byte decided, every waiting request judged.
   void finish(double time);
 
@@ -80,7 +85,6 @@ class Pipeline : public BusDirectory {
   bool batched_serial_ = false;
   bool network_ = false;
   SkippedRecords skipped_;
-  Direction pdu_turn_ = Direction::Unknown;  // who spoke last in exported PDUs
 };
 
 }  // namespace pvtap::analyzer

@@ -75,14 +75,8 @@ void Pipeline::on_exported_pdu(const CapturedPacket& packet) {
     ++skipped_.foreign_pdus;
     return;
   }
-  BusSession& bus = serial_bus(InputKind::ExportedPdu);
-  // Half duplex: when one side speaks, the other side's frame is complete.
-  const Direction d = record->direction;
-  if (d != Direction::Unknown && pdu_turn_ != Direction::Unknown && pdu_turn_ != d) {
-    bus.end_turn(pdu_turn_);
-  }
-  pdu_turn_ = d;
-  bus.feed(BusChunk{record->pdu, packet.time, d});
+  // Half duplex: the session ends a side's turn when the other side speaks.
+  serial_bus(InputKind::ExportedPdu).feed(BusChunk{record->pdu, packet.time, record->direction});
 }
 
 }  // namespace pvtap::analyzer

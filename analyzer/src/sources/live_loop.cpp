@@ -11,8 +11,9 @@
 namespace pvtap::analyzer {
 namespace {
 
-// The longest sleep: the matcher's timeouts and the status line are judged this often.
-constexpr double kTick = 0.05;
+// The longest sleep when nothing is due: bytes and signals end it earlier; the bound only
+// keeps a clock that jumps from holding the loop for long.
+constexpr double kLongestSleep = 60.0;
 
 }  // namespace
 
@@ -33,7 +34,12 @@ bool LiveLoop::should_stop() const {
 }
 
 double LiveLoop::wake_at(double now) const {
-  double wake = now + kTick;
+  double wake = now + kLongestSleep;
+  // The core says when its buses can next decide something; the driver never re-derives it.
+  for (const std::optional<double> due :
+       {pipeline_.next_deadline(), status_.next_due(), output_.next_due()}) {
+    if (due) wake = std::min(wake, *due);
+  }
   if (options_.duration > 0) wake = std::min(wake, started_ + options_.duration);
   return wake;
 }

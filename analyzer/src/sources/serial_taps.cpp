@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "pvtap/bus_timing.h"
+#include "pvtap/carrier_timing.h"
 #include "sources/device_tap.h"
 #include "sources/wall_clock.h"
 
@@ -15,10 +16,6 @@ struct SerialTaps::Tap {
   Tap(const std::string& path, std::uint32_t baud, SerialLine line) : device(path, baud, line) {}
   DeviceTap device;
   BusSession* bus = nullptr;
-  std::string timestamp_note;  // outlives the session's view of it
-  double t35 = 0;
-  // The bus must be told of its silence t3.5 after the last byte (to decide a pending frame).
-  std::optional<double> silence_due;
   // The bus is known silent up to this moment: when the last read that found nothing began.
   // Not "now": bytes may have arrived since, unread while pvtap was scheduled out.
   double quiet_until = 0;
@@ -42,19 +39,7 @@ SerialTaps::~SerialTaps() = default;
 BusSessionOptions SerialTaps::session_options(Tap& tap) const {
   BusSessionOptions o = pipeline_.bus_options(InputKind::Serial);
   o.reassembler.bits_per_char = live_.line.bits_per_char();
-  const BusTiming timing(baud_, o.reassembler.bits_per_char);
-  tap.t35 = timing.t35;
-  const LatencyTimerState& timer = tap.device.latency_timer();
-  // A read returns what the adapter held back for up to its latency timer: longer than t1.5
-  // and the stamps cannot tell the bus's silences apart.
-  if (timer.ms && *timer.ms * 1e-3 > timing.t15) {
-    tap.timestamp_note = "the adapter's USB latency timer is " + std::to_string(*timer.ms) +
-                         " ms: reads come in batches too coarse to judge t1.5/t3.5";
-    o.reassembler.timestamps = TimestampTrust::Untrusted;
-    // Bytes come late by at most the timer: a longer silence than that plus t3.5 was real.
-    o.reassembler.boundary_gap = *timer.ms * 1e-3 + timing.t35;
-    o.timestamp_note = tap.timestamp_note;
-  }
+  apply_carrier_timing({Carrier::LiveSerial, 0.0, tap.device.latency_timer().ms}, o);
   return o;
 }
 
@@ -83,7 +68,7 @@ void SerialTaps::run(LiveLoop& loop, LiveSources& live) {
   loop_ = &loop;
   std::vector<std::uint8_t> buffer(kReadBuffer);
   double now = wall_clock_seconds();
-  double next_sample = now + kLineErrorSampleEvery;
+  next_sample_ = now + kLineErrorSampleEvery;
   while (!loop.should_stop()) {
     wait(next_wake(now));
     for (auto& tap : taps_) {
@@ -91,10 +76,10 @@ void SerialTaps::run(LiveLoop& loop, LiveSources& live) {
     }
     now = wall_clock_seconds();
     after_wake(now);
-    if (now >= next_sample) {
+    if (now >= next_sample_) {
       for (auto& tap : taps_) tap->device.sample_line_errors();
       if (loop.output().wants_line_errors()) report_line_errors(now);
-      next_sample = now + kLineErrorSampleEvery;
+      next_sample_ = now + kLineErrorSampleEvery;
     }
   }
   now = wall_clock_seconds();
@@ -112,9 +97,9 @@ void SerialTaps::report_line_errors(double now) {
 }
 
 double SerialTaps::next_wake(double now) const {
-  double wake = loop_->wake_at(now);
+  // The buses' own deadlines (the end of a t3.5 silence, a reply timeout) are in the loop's.
+  double wake = std::min(loop_->wake_at(now), next_sample_);
   for (const auto& tap : taps_) {
-    if (tap->silence_due) wake = std::min(wake, *tap->silence_due);
     if (tap->device.gone()) wake = std::min(wake, tap->device.next_attempt());
   }
   return wake;
@@ -147,7 +132,6 @@ void SerialTaps::read(Tap& tap, std::span<std::uint8_t> buffer) {
     }
     tap.device.count_read(got);
     tap.bus->feed(BusChunk{buffer.first(got), time, Direction::Unknown});
-    tap.silence_due = time + tap.t35;
     // A read that did not fill the buffer emptied the driver's queue: no need for another
     // read (a system call per wake-up) to learn that nothing else was waiting.
     if (got < buffer.size()) return;
@@ -156,7 +140,6 @@ void SerialTaps::read(Tap& tap, std::span<std::uint8_t> buffer) {
 
 void SerialTaps::lose(Tap& tap, double now) {
   tap.device.went_away(now);
-  tap.silence_due.reset();
   tap.bus->data_lost(Direction::Unknown, now, std::nullopt);
   loop_->make_room_on_stderr();
   std::fprintf(stderr, "pvtap: %s: device gone (%s); reopening it as it comes back\n",
@@ -177,7 +160,6 @@ void SerialTaps::revive(double now) {
 void SerialTaps::after_wake(double now) {
   revive(now);
   for (auto& tap : taps_) {
-    if (tap->silence_due && tap->quiet_until >= *tap->silence_due) tap->silence_due.reset();
     // A tap that is gone has nothing unread: its timeouts run on the clock.
     tap->bus->idle(tap->device.fd() >= 0 ? tap->quiet_until : now);
   }

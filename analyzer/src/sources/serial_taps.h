@@ -40,6 +40,7 @@ class SerialTaps {
   std::uint32_t baud_;
   Pipeline& pipeline_;
   LiveLoop* loop_ = nullptr;  // while run() runs
+  double next_sample_ = 0;    // when the line error counters are read next
   std::vector<std::unique_ptr<Tap>> taps_;
 };
 

@@ -83,11 +83,9 @@ struct GapTally {
   std::uint64_t gaps_of_unknown_size = 0;
 };
 
-// BusReport: the findings of one bus. Counters cover the whole input; examples are the
-// first few of each kind.
-struct BusReport {
-  static constexpr std::size_t kMaxExamples = 5;
-
+// BusCounters: every counter of one bus, added up in one way (operator+=, which fails to
+// compile when a counter is added here and not there).
+struct BusCounters {
   ReassemblerTotals bytes;  // every direction added up
   std::uint64_t requests = 0;
   std::uint64_t responses = 0;
@@ -109,8 +107,20 @@ struct BusReport {
   std::uint64_t count_mismatches = 0;
   std::uint64_t role_corrections = 0;
   std::uint64_t exceptions = 0;
-  std::vector<ExceptionTally> exception_codes;  // sorted by dialect and code
   GapTally gaps;
+
+  BusCounters& operator+=(const BusCounters& o);
+};
+
+// BusReport: the findings of one bus. Counters cover the whole input; examples are the
+// first few of each kind.
+struct BusReport : BusCounters {
+  static constexpr std::size_t kMaxExamples = 5;
+
+  BusCounters& counters() { return *this; }
+  const BusCounters& counters() const { return *this; }
+
+  std::vector<ExceptionTally> exception_codes;  // sorted by dialect and code
   std::vector<FrameExample> bad_check_examples;
   std::vector<TimeoutExample> timeout_examples;
   std::vector<FrameExample> unsolicited_examples;

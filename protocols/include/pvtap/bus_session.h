@@ -5,6 +5,7 @@
 #include <memory>
 #include <optional>
 #include <span>
+#include <string>
 #include <string_view>
 
 #include "pvtap/bus_report.h"
@@ -25,7 +26,7 @@ struct BusSessionOptions {
   bool has_timestamps = true;
   // Why the source's timestamps cannot time the bus, when the caller knows better than the
   // reassembler (set reassembler.timestamps = Untrusted with it).
-  std::string_view timestamp_note;
+  std::string timestamp_note;
   // Decode register values of every frame for the sink (output); the latest-value table of
   // the report is kept either way.
   bool decode_values = true;
@@ -122,6 +123,8 @@ class BusSession {
   BusSession(const BusSession&) = delete;
   BusSession& operator=(const BusSession&) = delete;
 
+  // Half duplex: a chunk of known direction after one of the other known direction ends the
+  // other's turn (end_turn), unless the chunk says that turn is not complete.
   void feed(const BusChunk& chunk);
   // The sender in `direction` has finished its turn: on a half-duplex bus the other side
   // started talking, so its pending bytes are complete. Call it only when no data of that
@@ -130,9 +133,13 @@ class BusSession {
   // Capture data of `direction` was lost at `time`; reported as a gap.
   void data_lost(Direction direction, double time, std::optional<std::uint64_t> lost_bytes);
   // The byte stream restarts (a new TCP connection to the same gateway); nothing was lost.
+  // The next chunk starts a turn of its own: it ends no turn of the previous stream.
   void restart(Direction direction);
   // The bus has been silent until `now` (live capture): pending decisions and timeouts.
   void idle(double now);
+  // When idle() can next decide something (see StreamReassembler::next_deadline and
+  // TransactionMatcher::next_deadline); nullopt when only more bytes can.
+  std::optional<double> next_deadline() const;
   // End of input: every byte is decided, every waiting request judged.
   void finish();
 

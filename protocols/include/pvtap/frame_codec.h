@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "pvtap/frame.h"
+#include "pvtap/result.h"
 
 namespace pvtap {
 
@@ -20,11 +21,7 @@ struct FrameCheck {
 };
 
 // ParseOutcome: a parsed frame, or a short static description of why it is malformed.
-struct ParseOutcome {
-  std::optional<Frame> frame;
-  std::string_view error;  // empty when frame is set
-  explicit operator bool() const { return frame.has_value(); }
-};
+using ParseOutcome = Result<Frame>;
 
 // Parses one complete frame (exactly its bytes, check included) of a known dialect and role.
 // The check is not judged here: a frame with a bad check still parses (see verify_check).

@@ -1,8 +1,9 @@
-// What the transaction matcher reports, and the interface that receives it.
+// What the transaction matcher decides, as values.
 #pragma once
 
 #include <cstdint>
 #include <optional>
+#include <span>
 
 #include "pvtap/dialect.h"
 
@@ -96,18 +97,19 @@ struct RoleCorrection {
   Role corrected = Role::Response;
 };
 
-// MatchSink: receives the matcher's events as they are decided, in the order described by
-// TransactionMatcher. Every callback defaults to doing nothing, so an adapter overrides only
-// what it reports.
-class MatchSink {
- public:
-  virtual ~MatchSink() = default;
-  virtual void on_transaction(const Transaction&) {}
-  virtual void on_timeout(const Timeout&) {}
-  virtual void on_unsolicited(const UnsolicitedReply&) {}
-  virtual void on_duplicate(const DuplicateReply&) {}
-  virtual void on_byte_count_mismatch(const ByteCountMismatch&) {}
-  virtual void on_role_corrected(const RoleCorrection&) {}
+// FrameMatch: what the matcher decided for one frame, in the order it was decided: the
+// timeouts (those the frame's start made due, then the request a new request to the same
+// station gave up), the role correction, the transaction, duplicate or unsolicited reply
+// (at most one of them), the length mismatch. `timeouts` points into the matcher and is
+// valid until its next call.
+struct FrameMatch {
+  Role role = Role::Request;  // as corrected (a GSL 0x06 echo is a response)
+  std::span<const Timeout> timeouts;
+  std::optional<RoleCorrection> role_correction;
+  std::optional<Transaction> transaction;
+  std::optional<DuplicateReply> duplicate;
+  std::optional<UnsolicitedReply> unsolicited;
+  std::optional<ByteCountMismatch> count_mismatch;
 };
 
 }  // namespace pvtap

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "pvtap/dialect.h"
+#include "pvtap/result.h"
 
 namespace pvtap {
 
@@ -138,13 +139,11 @@ struct MapDiagnostic {
   std::string to_string() const;  // "hybrid.toml:42:3: message"
 };
 
+// One diagnostic per line.
+std::string diagnostic_text(const std::vector<MapDiagnostic>& problems);
+
 // RegisterMapResult: a loaded map, or the problems that prevented it (sorted by line).
-struct RegisterMapResult {
-  std::optional<RegisterMap> map;
-  std::vector<MapDiagnostic> errors;
-  explicit operator bool() const { return map.has_value(); }
-  std::string error_text() const;  // one diagnostic per line
-};
+using RegisterMapResult = Result<RegisterMap, std::vector<MapDiagnostic>>;
 
 // Parses a map file's text; `source_name` names it in diagnostics.
 RegisterMapResult load_register_map(std::string_view toml_text, std::string_view source_name);

@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string_view>
 
@@ -43,6 +44,9 @@ struct BusChunk {
   std::span<const std::uint8_t> bytes;
   double time = 0.0;
   Direction direction = Direction::Unknown;
+  // False when the other direction's last bytes may still be on their way (a TCP hole
+  // waiting for a retransmission): this chunk does not end that direction's turn.
+  bool previous_turn_complete = true;
 };
 
 // FrameEvent: one frame found on the bus. `bytes` is valid only during the callback.
@@ -109,6 +113,7 @@ struct ReassemblerTotals {
   std::uint64_t frames = 0;
   std::uint64_t bad_frames = 0;
   std::uint64_t noise_runs = 0;
+  ReassemblerTotals& operator+=(const ReassemblerTotals& o);  // the one way to add them up
 };
 
 // StreamReassembler: finds ASCII and RTU frames in a byte stream cut at arbitrary points.
@@ -125,6 +130,11 @@ class StreamReassembler {
   void feed(const BusChunk& chunk);
   // The bus has been silent up to `now` (live capture); may resolve pending bytes.
   void idle(double now);
+  // When idle() can next decide something: with bytes pending, the moment the silence after
+  // the last byte proves a frame boundary, then the give-up time (give_up_after later).
+  // nullopt when nothing is pending or no silence can decide it (offline, or batched timing
+  // without a boundary gap).
+  std::optional<double> next_deadline() const;
   // Bytes were lost here (capture gap, unplugged adapter): nothing may span the break.
   void discontinuity();
   // End of input: every pending byte becomes part of a frame or noise.

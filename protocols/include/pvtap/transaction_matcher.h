@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <limits>
 #include <optional>
+#include <span>
 
 #include "pvtap/frame_summary.h"
 #include "pvtap/match_events.h"
@@ -30,11 +31,11 @@ struct ObservedFrame {
   bool role_known = false;
 };
 
-// TransactionMatcher: pairs requests with replies and reports timeouts, unsolicited and
-// duplicate replies, length mismatches and corrected roles to a MatchSink.
+// TransactionMatcher: pairs requests with replies and returns, as values, the timeouts,
+// unsolicited and duplicate replies, length mismatches and corrected roles it decided.
 //
 // Frames must arrive in bus order. Each frame first advances time to its start_time (which
-// reports the requests whose timeout has passed), then is handled. Pairing is by station:
+// times out the requests whose timeout has passed), then is handled. Pairing is by station:
 // each station has at most one pending request, and a new request to a station gives up the
 // previous one (NextRequestFirst). A reply answers the pending request of its own station;
 // failing that, the pending Hybrid broadcast (0xFF). The broadcast stays open until its
@@ -44,24 +45,28 @@ struct ObservedFrame {
 // answers the one pending request when exactly one is pending: the slave answered and the
 // line damaged the answer, which is not a timeout.
 //
-// Events of one frame come in this order: timeouts that its start time made due, then the
-// role correction, then the transaction, duplicate or unsolicited reply, then a length
-// mismatch. Lengths are judged only on replies with a good check: in a corrupted reply the
-// length field itself may be the corrupted part.
+// What one frame decided comes back as a FrameMatch (see there for the order). Lengths are
+// judged only on replies with a good check: in a corrupted reply the length field itself may
+// be the corrupted part.
 //
-// Memory is fixed (one record per address plus the broadcast); nothing is allocated per frame.
+// Memory is fixed (one record per address plus the broadcast, and the timeouts of one call);
+// nothing is allocated per frame. The timeouts returned stay valid until the next call.
 class TransactionMatcher {
  public:
-  explicit TransactionMatcher(MatchSink& sink, MatcherConfig config = {});
+  explicit TransactionMatcher(MatcherConfig config = {});
 
-  // Handles one frame; returns its role, corrected when it is a GSL 0x06 echo.
-  Role on_frame(const ObservedFrame& frame);
+  // Handles one frame: its role (corrected when it is a GSL 0x06 echo) and what it decided.
+  FrameMatch on_frame(const ObservedFrame& frame);
 
-  // Moves time forward while the bus is silent (live capture), reporting due timeouts.
-  void advance(double now);
+  // Moves time forward while the bus is silent (live capture): the requests that timed out.
+  std::span<const Timeout> advance(double now);
+
+  // The earliest moment advance() reports a timeout, or later (a wake that finds nothing
+  // due sets the next one); nullopt when no request waits.
+  std::optional<double> next_deadline() const;
 
   // Ends the capture: every request still waiting times out with CaptureEnded.
-  void finish();
+  std::span<const Timeout> finish();
 
   // Requests waiting for a reply (broadcast included), for diagnostics.
   std::size_t pending_count() const;
@@ -84,22 +89,23 @@ class TransactionMatcher {
   static constexpr std::size_t kSlots = 257;  // 256 stations + the broadcast
 
   void on_request(const ObservedFrame& in);
-  void on_reply(const ObservedFrame& in);
-  bool try_answer(const ObservedFrame& in);
+  void on_reply(const ObservedFrame& in, FrameMatch& out);
+  bool try_answer(const ObservedFrame& in, FrameMatch& out);
   Slot* only_pending();
-  bool try_duplicate(const ObservedFrame& in);
-  void report_unsolicited(const ObservedFrame& in);
-  void complete(const Slot& slot, const ObservedFrame& reply);
+  bool try_duplicate(const ObservedFrame& in, FrameMatch& out);
+  UnsolicitedReply unsolicited(const ObservedFrame& in) const;
+  void complete(const Slot& slot, const ObservedFrame& reply, FrameMatch& out) const;
   void give_up(Slot& slot, TimeoutReason reason, double waited,
                std::optional<std::uint64_t> next_request_id);
+  void move_time_to(double now);
   void expire_overdue();
+  std::span<const Timeout> timeouts() const { return {timeouts_.data(), timeout_count_}; }
   std::size_t collect_pending(bool only_overdue);
   bool is_broadcast(const Slot& slot) const { return &slot == &broadcast_; }
   Slot& slot_at(std::size_t i) {
     return i < station_slots_.size() ? station_slots_[i] : broadcast_;
   }
 
-  MatchSink& sink_;
   MatcherConfig config_;
   std::array<Slot, 256> station_slots_{};
   Slot broadcast_;
@@ -108,6 +114,9 @@ class TransactionMatcher {
   // A lower bound on the earliest deadline; stale-early is harmless (one extra scan).
   double next_deadline_ = std::numeric_limits<double>::infinity();
   std::array<Slot*, kSlots> due_{};  // scratch for ordering timeouts without allocating
+  // The timeouts of the current call: at most one per slot, since each was pending.
+  std::array<Timeout, kSlots> timeouts_{};
+  std::size_t timeout_count_ = 0;
 };
 
 }  // namespace pvtap
