@@ -75,12 +75,7 @@ std::vector<BusFindings> BusSet::findings() const {
 
 ReassemblerTotals BusSet::totals() const {
   ReassemblerTotals sum;
-  for (const auto& bus : buses_) {
-    const ReassemblerTotals t = bus->session.totals();
-    sum.bytes_in += t.bytes_in;
-    sum.frames += t.frames;
-    sum.bad_frames += t.bad_frames;
-  }
+  for (const auto& bus : buses_) sum += bus->session.totals();
   return sum;
 }
 
