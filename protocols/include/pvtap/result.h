@@ -20,7 +20,10 @@ inline std::string diagnostic_text(std::string_view why) {
 template <typename T, typename Diagnostics = std::string_view>
 class Result {
  public:
-  Result(T value) : value_(std::move(value)) {}  // NOLINT: implicit, so that `return value;`
+  // Implicit, so that a function returns its value as it is; built in place (a Frame is
+  // large and is parsed once per frame).
+  Result(const T& value) : value_(value) {}        // NOLINT(google-explicit-constructor)
+  Result(T&& value) : value_(std::move(value)) {}  // NOLINT(google-explicit-constructor)
   static Result failure(Diagnostics why) {
     Result r;
     r.diagnostics_ = std::move(why);
