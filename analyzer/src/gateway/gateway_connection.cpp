@@ -1,5 +1,7 @@
 #include "gateway/gateway_connection.h"
 
+#include "pipeline/bus_set.h"
+
 namespace pvtap::analyzer {
 namespace {
 
@@ -10,11 +12,11 @@ Direction other(Direction d) {
 }  // namespace
 
 GatewayTraffic::Connection::Connection(Transport t, const Endpoint& slave_side, State initial,
-                                       const GatewayOptions& o, BusDirectory& d)
+                                       const GatewayOptions& o, BusSource source)
     : transport(t),
       slave(slave_side),
       state(initial),
-      directory(d),
+      bus_source(source),
       probe(o.dialects),
       to_slave_sink(*this, Direction::ToSlave),
       from_slave_sink(*this, Direction::FromSlave),
@@ -74,7 +76,7 @@ void GatewayTraffic::Connection::feed_bus(Direction d, std::span<const std::uint
 
 void GatewayTraffic::Connection::become_bus() {
   state = State::Bus;
-  bus = &directory.gateway_bus(slave);
+  bus = &bus_source.buses.find_or_add(slave.to_string(), bus_source.options);
   // A new connection starts new streams: nothing of the previous one may join its bytes.
   bus->restart(Direction::ToSlave);
   bus->restart(Direction::FromSlave);

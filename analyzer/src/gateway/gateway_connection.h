@@ -29,7 +29,7 @@ struct GatewayTraffic::Connection {
   enum class State { Probing, Bus, Ignored };
 
   Connection(Transport t, const Endpoint& slave_side, State initial, const GatewayOptions& o,
-             BusDirectory& directory);
+             BusSource bus_source);
 
   // Direction of a segment sent from `source`.
   Direction direction_from(const Endpoint& source) const {
@@ -52,7 +52,7 @@ struct GatewayTraffic::Connection {
   Transport transport;
   Endpoint slave;
   State state;
-  BusDirectory& directory;
+  BusSource bus_source;
   BusSession* bus = nullptr;
   FlowProbe probe;
   DirectionSink to_slave_sink;

@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "gateway/gateway_connection.h"
+#include "pipeline/bus_set.h"
 
 namespace pvtap::analyzer {
 namespace {
@@ -35,8 +36,8 @@ std::optional<Endpoint> slave_side(const Segment& s, const std::vector<std::uint
 
 }  // namespace
 
-GatewayTraffic::GatewayTraffic(GatewayOptions options, BusDirectory& buses)
-    : options_(std::move(options)), buses_(buses) {}
+GatewayTraffic::GatewayTraffic(GatewayOptions options, BusSet& buses, BusSessionOptions bus_options)
+    : options_(std::move(options)), buses_(buses), bus_options_(std::move(bus_options)) {}
 
 GatewayTraffic::~GatewayTraffic() = default;
 
@@ -71,7 +72,8 @@ GatewayTraffic::Connection* GatewayTraffic::find_or_open(const Segment& s) {
   const State initial =
       !slave ? State::Ignored : (options_.ports.empty() ? State::Probing : State::Bus);
   const Endpoint side = slave ? *slave : s.destination;
-  auto connection = std::make_unique<Connection>(s.transport, side, initial, options_, buses_);
+  auto connection = std::make_unique<Connection>(s.transport, side, initial, options_,
+                                                 BusSource{buses_, bus_options_});
   last_flow_ = flows_.emplace(key, std::move(connection)).first->second.get();
   last_key_ = key;
   return last_flow_;

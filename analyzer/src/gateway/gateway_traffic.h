@@ -13,13 +13,7 @@
 
 namespace pvtap::analyzer {
 
-// BusDirectory: hands out the bus session of a gateway; one per slave-side endpoint, so that
-// reconnections to the same gateway continue the same bus.
-class BusDirectory {
- public:
-  virtual ~BusDirectory() = default;
-  virtual BusSession& gateway_bus(const Endpoint& slave_side) = 0;
-};
+class BusSet;
 
 // GatewayOptions: which flows are gateway traffic.
 struct GatewayOptions {
@@ -39,9 +33,17 @@ struct NetworkStats {
   std::uint64_t gaps = 0;
 };
 
+// BusSource: where a flow found to be a gateway's gets its bus, and how that bus is made.
+struct BusSource {
+  BusSet& buses;
+  const BusSessionOptions& options;
+};
+
 class GatewayTraffic {
  public:
-  GatewayTraffic(GatewayOptions options, BusDirectory& buses);
+  // A flow found to be a gateway's gets its bus from `buses`, made with `bus_options`: one
+  // bus per slave-side endpoint, so that reconnections to the same gateway continue it.
+  GatewayTraffic(GatewayOptions options, BusSet& buses, BusSessionOptions bus_options);
   ~GatewayTraffic();
   GatewayTraffic(const GatewayTraffic&) = delete;
   GatewayTraffic& operator=(const GatewayTraffic&) = delete;
@@ -63,7 +65,8 @@ class GatewayTraffic {
   void expire_old_state(double now);
 
   GatewayOptions options_;
-  BusDirectory& buses_;
+  BusSet& buses_;
+  BusSessionOptions bus_options_;
   std::map<FlowKey, std::unique_ptr<Connection>> flows_;
   // Packets of one flow come in runs: the last flow found is tried first.
   Connection* last_flow_ = nullptr;

@@ -49,6 +49,11 @@ BusSession& BusSet::add(const std::string& name, const BusSessionOptions& option
   return buses_.back()->session;
 }
 
+BusSession& BusSet::find_or_add(const std::string& name, const BusSessionOptions& options) {
+  if (BusSession* bus = find(name)) return *bus;
+  return add(name, options);
+}
+
 void BusSet::idle(double now) {
   for (auto& bus : buses_) bus->session.idle(now);
 }

@@ -25,6 +25,7 @@ class BusSet {
   // The bus of that name; nullptr before add().
   BusSession* find(const std::string& name);
   BusSession& add(const std::string& name, const BusSessionOptions& options);
+  BusSession& find_or_add(const std::string& name, const BusSessionOptions& options);
 
   // The bus has been silent until `now` on every bus (live capture).
   void idle(double now);

@@ -8,7 +8,8 @@ Pipeline::Pipeline(const PipelineSettings& settings, const RegisterDecoder& deco
                    EventWriter& events)
     : settings_(settings),
       buses_(decoder, events_),
-      gateway_(GatewayOptions{settings.ports, settings.dialects, 2.0}, *this) {
+      gateway_(GatewayOptions{settings.ports, settings.dialects, 2.0}, buses_,
+               bus_options(InputKind::Network)) {
   events_.add(tally_);
   events_.add(events);
 }
@@ -55,12 +56,6 @@ BusSession& Pipeline::add_bus(const std::string& name, const BusSessionOptions& 
 BusSession& Pipeline::serial_bus(InputKind kind) {
   if (BusSession* bus = buses_.find("")) return *bus;
   return buses_.add("", bus_options(kind));
-}
-
-BusSession& Pipeline::gateway_bus(const Endpoint& slave_side) {
-  const std::string name = slave_side.to_string();
-  if (BusSession* bus = buses_.find(name)) return *bus;
-  return buses_.add(name, bus_options(InputKind::Network));
 }
 
 void Pipeline::begin_raw_input() {

@@ -34,11 +34,11 @@ struct PipelineSettings {
   GslIdReading gsl_ids = GslIdReading::Decimal;  // for the report's wording
 };
 
-class Pipeline : public BusDirectory {
+class Pipeline {
  public:
   // Every event goes to `events` (after the run's own tally has seen it).
   Pipeline(const PipelineSettings& settings, const RegisterDecoder& decoder, EventWriter& events);
-  ~Pipeline() override;
+  ~Pipeline();
 
   // Records of the next input have this link type; `batched_serial`: its serial records are
   // read chunks (timestamps batched), not one character each.
@@ -65,8 +65,6 @@ class Pipeline : public BusDirectory {
   ReassemblerTotals totals() const { return buses_.totals(); }
   // The report of what was found; the caller adds its inputs, --write and live sources.
   AuditReport report() const;
-
-  BusSession& gateway_bus(const Endpoint& slave_side) override;
 
  private:
   BusSession& serial_bus(InputKind kind);
