@@ -54,6 +54,15 @@ void append_scaled(std::string& out, std::uint64_t scaled, int decimals) {
   out.append(digits.data() + n - decimals, static_cast<std::size_t>(decimals));
 }
 
+// std::llround for |x| < 2^52 without the library call: x - trunc(x) is exact there.
+long long round_half_away(double x) {
+  auto whole = static_cast<long long>(x);
+  const double fraction = x - static_cast<double>(whole);
+  if (fraction >= 0.5) ++whole;
+  if (fraction <= -0.5) --whole;
+  return whole;
+}
+
 void append_two(std::string& out, int value) {
   out += static_cast<char>('0' + value / 10);
   out += static_cast<char>('0' + value % 10);
@@ -75,7 +84,7 @@ void append_fixed(std::string& out, double value, int decimals) {
   // Most readings are small scaled integers: integer arithmetic formats them far faster than
   // to_chars, with the same rounding. Larger ones take the general path.
   if (decimals >= 0 && decimals <= 9 && std::fabs(value) * kPowers[decimals] < 1e15) {
-    const auto scaled = std::llround(value * kPowers[decimals]);
+    const auto scaled = round_half_away(value * kPowers[decimals]);
     if (scaled < 0) out += '-';  // a value that rounds to zero prints without a sign
     append_scaled(out, static_cast<std::uint64_t>(scaled < 0 ? -scaled : scaled), decimals);
     return;
