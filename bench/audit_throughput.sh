@@ -7,8 +7,8 @@
 #   bench/audit_throughput.sh --big            a 2 GB capture: peak RSS must stay under 64 MB
 #
 # Environment: BUILD (build directory, default build), PVTAP (the binary to time, default
-# $BUILD/analyzer/pvtap), OLD (a second pvtap binary timed in the same run, alternating with
-# PVTAP, to compare two builds on a noisy machine), CAPTURE (where the capture is written,
+# $BUILD/analyzer/pvtap), OLD (a second pvtap binary timed in the same run, run by run
+# alternating with PVTAP, to compare two builds on a noisy machine), CAPTURE (where the capture is written,
 # default /tmp/pvtap-bench.pcap; an existing file of the right size is reused), RUNS (runs
 # per measurement, the median is reported; 3), TSHARK=0 to skip the tshark comparison,
 # NO_BUILD=1 to time the binaries as they are.
@@ -68,31 +68,64 @@ report() {
     printf "\n" }'
 }
 
-# tcpdump first (it also brings the capture into the page cache for every later run).
-measure tcpdump -r "$capture" -w /dev/null >/dev/null
-read -r s_tcpdump rss_tcpdump < <(measure tcpdump -r "$capture" -w /dev/null)
-report "tcpdump -r FILE -w /dev/null" "$s_tcpdump" "$rss_tcpdump"
+# A first read brings the capture into the page cache for every later run.
+tcpdump -r "$capture" -w /dev/null 2>/dev/null
+tcpdump_t=()
+tcpdump_rss=0
+lines=()
 
-# One binary's three runs: summary-only, jsonl, csv; `label` names the binary in the lines.
-audit_runs() {
-  local binary="$1" label="$2" s rss
-  read -r s rss < <(measure "$binary" audit --summary-only "$capture")
-  report "${label}audit --summary-only" "$s" "$rss" "$s_tcpdump"
-  eval "s_summary${3}=$s"
-  read -r s rss < <(measure "$binary" audit --format jsonl "$capture")
-  report "${label}audit --format jsonl" "$s" "$rss" "$s_tcpdump"
-  eval "s_jsonl${3}=$s"
-  read -r s rss < <(measure "$binary" audit --format csv "$capture")
-  report "${label}audit --format csv" "$s" "$rss" "$s_tcpdump"
+# Wall time (s) and peak RSS (KiB) of one run.
+time_once() {
+  local stats line
+  stats="$(mktemp)"
+  /usr/bin/time -f "%e %M" -o "$stats" "$@" >/dev/null 2>&1
+  line="$(tail -1 "$stats")"
+  rm -f "$stats"
+  echo "$line"
 }
 
+median() { printf '%s\n' "$@" | sort -n | sed -n "$((($# + 1) / 2))p"; }
+
+# One kind of audit ($2...) by the binary (and by OLD, alternating run by run so that both
+# see the same load); sets s_<name> (and s_<name>_old) to the median times.
+audit_pair() {
+  local name="$1" new_t=() old_t=() new_rss=0 old_rss=0 t r
+  shift
+  for ((i = 0; i < runs; i++)); do
+    # tcpdump in every round: the ratios compare runs that saw the same load.
+    read -r t r < <(time_once tcpdump -r "$capture" -w /dev/null)
+    tcpdump_t+=("$t")
+    ((r > tcpdump_rss)) && tcpdump_rss=$r
+    if [[ -n "$old" ]]; then
+      read -r t r < <(time_once "$old" audit "$@" "$capture")
+      old_t+=("$t")
+      ((r > old_rss)) && old_rss=$r
+    fi
+    read -r t r < <(time_once "$pvtap" audit "$@" "$capture")
+    new_t+=("$t")
+    ((r > new_rss)) && new_rss=$r
+  done
+  if [[ -n "$old" ]]; then
+    eval "s_${name}_old=$(median "${old_t[@]}")"
+    lines+=("old: audit $*|$(median "${old_t[@]}")|$old_rss")
+  fi
+  eval "s_${name}=$(median "${new_t[@]}")"
+  lines+=("${old:+new: }audit $*|$(median "${new_t[@]}")|$new_rss")
+}
+
+audit_pair summary --summary-only
+audit_pair jsonl --format jsonl
+audit_pair csv --format csv
+s_tcpdump="$(median "${tcpdump_t[@]}")"
+report "tcpdump -r FILE -w /dev/null" "$s_tcpdump" "$tcpdump_rss"
+for line in "${lines[@]}"; do
+  IFS='|' read -r what t r <<<"$line"
+  report "$what" "$t" "$r" "$s_tcpdump"
+done
 if [[ -n "$old" ]]; then
-  audit_runs "$old" "old: " _old
-  audit_runs "$pvtap" "new: " ""
-  awk -v a="$s_summary_old" -v b="$s_summary" -v c="$s_jsonl_old" -v d="$s_jsonl" 'BEGIN {
-    printf "new/old time: summary-only %.2f, jsonl %.2f\n", b / a, d / c }'
-else
-  audit_runs "$pvtap" "pvtap " ""
+  awk -v a="$s_summary_old" -v b="$s_summary" -v c="$s_jsonl_old" -v d="$s_jsonl" \
+    -v e="$s_csv_old" -v f="$s_csv" 'BEGIN {
+    printf "new/old time: summary-only %.2f, jsonl %.2f, csv %.2f\n", b / a, d / c, f / e }'
 fi
 awk -v t="$s_tcpdump" -v p="$s_summary" -v j="$s_jsonl" -v b="$bytes" 'BEGIN {
   printf "ratios: summary-only/tcpdump %.2f (target <= 2.5), jsonl/tcpdump %.2f (target <= 6), ", p / t, j / t

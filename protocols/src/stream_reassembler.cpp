@@ -150,7 +150,8 @@ void StreamReassembler::feed(const BusChunk& chunk) {
   // A silence before this chunk was already judged; decisions now see the new bytes.
   m.silence_after = false;
   m.give_up = false;
-  if (m.noise_begin == m.buffer.size()) {
+  const bool small = chunk.bytes.size() <= kMaxLookahead;
+  if (m.noise_begin == m.buffer.size() && !small) {
     // Everything before was decided and reported: no copy unless a tail stays undecided.
     m.reset_buffer();
     m.timeline.add(m.offset_of(chunk.bytes.size()), chunk.bytes.size(), chunk.time,
@@ -159,6 +160,14 @@ void StreamReassembler::feed(const BusChunk& chunk) {
     return;
   }
   m.compact();
+  // A small chunk (a gateway's segment) is cheaper to copy than to decide in place.
+  if (small) {
+    m.buffer.insert(m.buffer.end(), chunk.bytes.begin(), chunk.bytes.end());
+    m.data = m.buffer;
+    m.timeline.add(m.offset_of(m.buffer.size()), chunk.bytes.size(), chunk.time, chunk.direction);
+    m.process(false);
+    return;
+  }
   // The pending tail is decided with just enough of the chunk behind it for any decision
   // (more than kMaxLookahead bytes force it as the whole chunk would); once decisions pass
   // into the chunk with no noise run open, the rest is decided in place.
@@ -169,10 +178,6 @@ void StreamReassembler::feed(const BusChunk& chunk) {
   m.data = m.buffer;
   m.timeline.add(m.offset_of(tail_end + chunk.bytes.size()), chunk.bytes.size(), chunk.time,
                  chunk.direction);
-  if (window == chunk.bytes.size()) {
-    m.process(false);
-    return;
-  }
   m.process(false, tail_end);
   if (m.head >= tail_end && m.noise_begin >= tail_end) {
     m.buffer_offset += tail_end;
