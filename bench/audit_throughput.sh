@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Throughput of `pvtap audit` on a large generated gateway capture, against libpcap's own read
-# rate (`tcpdump -r FILE -w /dev/null`, timed in the same run), with peak memory; optionally
+# rate (`tcpdump -r FILE -w /dev/null`, timed in the same run), with peak memory. Times are
+# CPU seconds (user + system), medians of RUNS rounds; MB/s are capture bytes per CPU second
+# (one core). Optionally
 # the same capture through tshark with Wireshark's built-in Modbus RTU dissector.
 #
 #   bench/audit_throughput.sh [MEGABYTES]      (default 200; Release build in build/)
@@ -63,7 +65,7 @@ measure() {
 report() {
   local what="$1" seconds="$2" rss="$3" base="${4:-}"
   awk -v w="$what" -v s="$seconds" -v b="$bytes" -v r="$rss" -v t="$base" 'BEGIN {
-    printf "%-40s %7.2f s  %8.1f MB/s  peak RSS %6.1f MB", w, s, b / 1e6 / s, r / 1024
+    printf "%-40s %7.2f s CPU  %8.1f MB/s  peak RSS %6.1f MB", w, s, b / 1e6 / s, r / 1024
     if (t != "" && t > 0) printf "  %5.2fx tcpdump", s / t
     printf "\n" }'
 }
@@ -74,14 +76,14 @@ tcpdump_t=()
 tcpdump_rss=0
 lines=()
 
-# Wall time (s) and peak RSS (KiB) of one run.
+# CPU time (user + system, s) and peak RSS (KiB) of one run. CPU time, not wall time: on a
+# shared machine a run gets a varying share of a core, and its CPU time varies far less.
 time_once() {
-  local stats line
+  local stats
   stats="$(mktemp)"
-  /usr/bin/time -f "%e %M" -o "$stats" "$@" >/dev/null 2>&1
-  line="$(tail -1 "$stats")"
+  /usr/bin/time -f "%U %S %M" -o "$stats" "$@" >/dev/null 2>&1
+  tail -1 "$stats" | awk '{ printf "%.2f %s\n", $1 + $2, $3 }'
   rm -f "$stats"
-  echo "$line"
 }
 
 median() { printf '%s\n' "$@" | sort -n | sed -n "$((($# + 1) / 2))p"; }
