@@ -1,20 +1,20 @@
 #!/usr/bin/env bash
-# Throughput of `pvtap audit` on a large generated gateway capture, against libpcap's own read
-# rate (`tcpdump -r FILE -w /dev/null`, timed in the same run), with peak memory. Times are
-# CPU seconds (user + system), medians of RUNS rounds; MB/s are capture bytes per CPU second
-# (one core). Optionally
-# the same capture through tshark with Wireshark's built-in Modbus RTU dissector.
+# Throughput of `pvtap audit` on a large generated gateway capture against libpcap's own
+# read rate (`tcpdump -r FILE -w /dev/null`, timed in every round next to the audits), with
+# peak memory; optionally the same capture through tshark with Wireshark's built-in Modbus
+# RTU dissector. Audit and tcpdump times are CPU seconds (user + system), medians of RUNS
+# rounds; MB/s are capture bytes per CPU second (one core); tshark's is wall time.
 #
 #   bench/audit_throughput.sh [MEGABYTES]      (default 200; Release build in build/)
 #   bench/audit_throughput.sh --big            a 2 GB capture: peak RSS must stay under 64 MB
 #
 # Environment: BUILD (build directory, default build), PVTAP (the binary to time, default
-# $BUILD/analyzer/pvtap), OLD (a second pvtap binary timed in the same run, run by run
-# alternating with PVTAP, to compare two builds on a noisy machine), CAPTURE (where the capture is written,
-# default /tmp/pvtap-bench.pcap; an existing file of the right size is reused), RUNS (runs
-# per measurement, the median is reported; 3), TSHARK=0 to skip the tshark comparison,
-# NO_BUILD=1 to time the binaries as they are.
-# Figures go to stdout; record them in bench/README.md.
+# $BUILD/analyzer/pvtap), OLD (a second pvtap binary, timed round by round alternating with
+# PVTAP, to compare two builds on a noisy machine), CAPTURE (where the capture is written,
+# default /tmp/pvtap-bench.pcap; one made earlier for the same MEGABYTES is reused), RUNS
+# (rounds, the median is reported; 3, 1 with --big), TSHARK=0 to skip the tshark comparison,
+# NO_BUILD=1 to time the binaries as they are. Figures go to stdout; record them in
+# bench/README.md.
 set -euo pipefail
 
 repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
