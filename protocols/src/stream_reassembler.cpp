@@ -1,6 +1,7 @@
 #include "pvtap/stream_reassembler.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <vector>
 
 #include "chunk_timeline.h"
@@ -35,8 +36,11 @@ struct StreamReassembler::Impl {
   ReassemblerSink& sink;
   detail::ChunkTimeline timeline;
   ReassemblerTotals totals;
+  // Undecided bytes kept between feeds. Decisions read `data`: the buffer, or the caller's
+  // chunk itself when nothing was pending (then only its undecided tail is copied).
   std::vector<std::uint8_t> buffer;
-  std::uint64_t buffer_offset = 0;  // stream offset of buffer[0]
+  std::span<const std::uint8_t> data;
+  std::uint64_t buffer_offset = 0;  // stream offset of data[0]
   std::size_t head = 0;             // first undecided byte
   std::size_t noise_begin = 0;      // pending noise run is [noise_begin, head)
   bool silence_after = false;
@@ -54,11 +58,22 @@ struct StreamReassembler::Impl {
     noise_begin = 0;
   }
 
+  // Decides inside the caller's chunk, then keeps the undecided tail (pending noise included).
+  void process_in_place(std::span<const std::uint8_t> chunk) {
+    data = chunk;
+    process(false);
+    buffer.assign(chunk.begin() + static_cast<std::ptrdiff_t>(noise_begin), chunk.end());
+    buffer_offset += noise_begin;
+    head -= noise_begin;
+    noise_begin = 0;
+    data = buffer;
+  }
+
   void flush_noise() {
     if (noise_begin == head) return;
     NoiseEvent e;
     e.offset = offset_of(noise_begin);
-    e.bytes = std::span(buffer).subspan(noise_begin, head - noise_begin);
+    e.bytes = data.subspan(noise_begin, head - noise_begin);
     const auto times = timeline.span_times(e.offset, offset_of(head - 1));
     e.start_time = times.start;
     e.end_time = times.end;
@@ -72,7 +87,7 @@ struct StreamReassembler::Impl {
     flush_noise();
     FrameEvent e;
     e.offset = offset_of(head);
-    e.bytes = std::span(buffer).subspan(head, d.frame.length);
+    e.bytes = data.subspan(head, d.frame.length);
     const std::uint64_t last = e.offset + d.frame.length - 1;
     const auto times = timeline.span_times(e.offset, last);
     e.start_time = times.start;
@@ -90,10 +105,10 @@ struct StreamReassembler::Impl {
   }
 
   // Decides position after position until the bytes run out or a decision must wait.
-  void process(bool final) {
-    while (head < buffer.size()) {
+  void process(bool final, std::size_t stop = SIZE_MAX) {
+    while (head < data.size() && head < stop) {
       detail::DecisionInput in;
-      in.bytes = std::span(buffer).subspan(head);
+      in.bytes = data.subspan(head);
       in.offset = offset_of(head);
       in.timeline = &timeline;
       in.dialects = options.dialects;
@@ -119,6 +134,7 @@ struct StreamReassembler::Impl {
   void reset_buffer() {
     buffer_offset += buffer.size();
     buffer.clear();
+    data = buffer;
     head = noise_begin = 0;
   }
 };
@@ -131,13 +147,48 @@ StreamReassembler::~StreamReassembler() = default;
 void StreamReassembler::feed(const BusChunk& chunk) {
   if (chunk.bytes.empty()) return;
   Impl& m = *impl_;
-  m.compact();
-  m.buffer.insert(m.buffer.end(), chunk.bytes.begin(), chunk.bytes.end());
   m.totals.bytes_in += chunk.bytes.size();
   // A silence before this chunk was already judged; decisions now see the new bytes.
   m.silence_after = false;
   m.give_up = false;
-  m.timeline.add(m.offset_of(m.buffer.size()), chunk.bytes.size(), chunk.time, chunk.direction);
+  const bool small = chunk.bytes.size() <= kMaxLookahead;
+  if (m.noise_begin == m.buffer.size() && !small) {
+    // Everything before was decided and reported: no copy unless a tail stays undecided.
+    m.reset_buffer();
+    m.timeline.add(m.offset_of(chunk.bytes.size()), chunk.bytes.size(), chunk.time,
+                   chunk.direction);
+    m.process_in_place(chunk.bytes);
+    return;
+  }
+  m.compact();
+  // A small chunk (a gateway's segment) is cheaper to copy than to decide in place.
+  if (small) {
+    m.buffer.insert(m.buffer.end(), chunk.bytes.begin(), chunk.bytes.end());
+    m.data = m.buffer;
+    m.timeline.add(m.offset_of(m.buffer.size()), chunk.bytes.size(), chunk.time, chunk.direction);
+    m.process(false);
+    return;
+  }
+  // The pending tail is decided with just enough of the chunk behind it for any decision
+  // (more than kMaxLookahead bytes force it as the whole chunk would); once decisions pass
+  // into the chunk with no noise run open, the rest is decided in place.
+  const std::size_t tail_end = m.buffer.size();
+  const std::size_t window = std::min(chunk.bytes.size(), kMaxLookahead + 1);
+  const auto window_end = chunk.bytes.begin() + static_cast<std::ptrdiff_t>(window);
+  m.buffer.insert(m.buffer.end(), chunk.bytes.begin(), window_end);
+  m.data = m.buffer;
+  m.timeline.add(m.offset_of(tail_end + chunk.bytes.size()), chunk.bytes.size(), chunk.time,
+                 chunk.direction);
+  m.process(false, tail_end);
+  if (m.head >= tail_end && m.noise_begin >= tail_end) {
+    m.buffer_offset += tail_end;
+    m.head -= tail_end;
+    m.noise_begin -= tail_end;
+    m.process_in_place(chunk.bytes);
+    return;
+  }
+  m.buffer.insert(m.buffer.end(), window_end, chunk.bytes.end());
+  m.data = m.buffer;
   m.process(false);
 }
 

@@ -54,6 +54,35 @@ void append_scaled(std::string& out, std::uint64_t scaled, int decimals) {
   out.append(digits.data() + n - decimals, static_cast<std::size_t>(decimals));
 }
 
+// std::llround for |x| < 2^52 without the library call: x - trunc(x) is exact there.
+long long round_half_away(double x) {
+  auto whole = static_cast<long long>(x);
+  const double fraction = x - static_cast<double>(whole);
+  if (fraction >= 0.5) ++whole;
+  if (fraction <= -0.5) --whole;
+  return whole;
+}
+
+// value * 10^decimals rounded from the exact binary value, ties to even, as to_chars rounds:
+// for capture timestamps (1.7e15 microseconds), where the product in doubles would round.
+// The caller keeps the result below 2^64 and value in [1, 2^53).
+std::uint64_t exact_scaled(double value, int decimals) {
+  __extension__ using Wide = unsigned __int128;
+  static constexpr std::uint64_t kPowers10[] = {1,      10,      100,      1000,      10000,
+                                                100000, 1000000, 10000000, 100000000, 1000000000};
+  int exponent = 0;
+  const double fraction = std::frexp(value, &exponent);  // value = fraction * 2^exponent
+  const auto mantissa = static_cast<std::uint64_t>(std::ldexp(fraction, 53));
+  const int shift = 53 - exponent;  // value = mantissa / 2^shift, 0 <= shift <= 52
+  const Wide scaled = Wide{mantissa} * kPowers10[decimals];
+  if (shift == 0) return static_cast<std::uint64_t>(scaled);
+  auto whole = static_cast<std::uint64_t>(scaled >> shift);
+  const Wide rest = scaled & ((Wide{1} << shift) - 1);
+  const Wide half = Wide{1} << (shift - 1);
+  if (rest > half || (rest == half && (whole & 1) != 0)) ++whole;
+  return whole;
+}
+
 void append_two(std::string& out, int value) {
   out += static_cast<char>('0' + value / 10);
   out += static_cast<char>('0' + value % 10);
@@ -75,9 +104,14 @@ void append_fixed(std::string& out, double value, int decimals) {
   // Most readings are small scaled integers: integer arithmetic formats them far faster than
   // to_chars, with the same rounding. Larger ones take the general path.
   if (decimals >= 0 && decimals <= 9 && std::fabs(value) * kPowers[decimals] < 1e15) {
-    const auto scaled = std::llround(value * kPowers[decimals]);
+    const auto scaled = round_half_away(value * kPowers[decimals]);
     if (scaled < 0) out += '-';  // a value that rounds to zero prints without a sign
     append_scaled(out, static_cast<std::uint64_t>(scaled < 0 ? -scaled : scaled), decimals);
+    return;
+  }
+  if (decimals >= 0 && decimals <= 9 && value > 0 && value * kPowers[decimals] < 1e19 &&
+      value < 0x1p53) {
+    append_scaled(out, exact_scaled(value, decimals), decimals);
     return;
   }
   std::array<char, 64> buf{};

@@ -6,6 +6,7 @@
 #include <optional>
 #include <span>
 
+#include "gateway/endpoint_match.h"
 #include "gateway/flow_probe.h"
 #include "gateway/gateway_traffic.h"
 #include "gateway/tcp_stream.h"
@@ -33,7 +34,7 @@ struct GatewayTraffic::Connection {
 
   // Direction of a segment sent from `source`.
   Direction direction_from(const Endpoint& source) const {
-    return source == slave ? Direction::FromSlave : Direction::ToSlave;
+    return same_endpoint(source, slave) ? Direction::FromSlave : Direction::ToSlave;
   }
   TcpDirectionStream& stream(Direction d) {
     return d == Direction::ToSlave ? to_slave_stream : from_slave_stream;

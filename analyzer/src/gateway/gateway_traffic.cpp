@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <optional>
 
+#include "gateway/endpoint_match.h"
 #include "gateway/gateway_connection.h"
 #include "pipeline/bus_set.h"
 
@@ -47,10 +48,20 @@ GatewayTraffic::FlowKey GatewayTraffic::key_of(const Segment& s) {
                  source_first ? s.destination : s.source};
 }
 
+bool GatewayTraffic::in_last_flow(const Segment& s) const {
+  const auto same = same_endpoint;
+  const Endpoint& low = std::get<1>(last_key_);
+  const Endpoint& high = std::get<2>(last_key_);
+  return s.transport == std::get<0>(last_key_) &&
+         ((same(s.source, low) && same(s.destination, high)) ||
+          (same(s.source, high) && same(s.destination, low)));
+}
+
 GatewayTraffic::Connection* GatewayTraffic::find_or_open(const Segment& s) {
-  const FlowKey key = key_of(s);
   const bool syn = (s.flags & tcp_flag::kSyn) != 0;
-  if (last_flow_ != nullptr && !syn && key == last_key_) return last_flow_;
+  // Packets of one flow come in runs: no key is built for them.
+  if (last_flow_ != nullptr && !syn && in_last_flow(s)) return last_flow_;
+  const FlowKey key = key_of(s);
   auto it = flows_.find(key);
   const bool syn_only = s.transport == Transport::Tcp &&
                         (s.flags & (tcp_flag::kSyn | tcp_flag::kAck)) == tcp_flag::kSyn;

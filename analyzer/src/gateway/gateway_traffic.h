@@ -60,6 +60,7 @@ class GatewayTraffic {
 
   static FlowKey key_of(const Segment& s);
   Connection* find_or_open(const Segment& s);
+  bool in_last_flow(const Segment& s) const;  // the flow of last_key_, either way round
   void close(std::map<FlowKey, std::unique_ptr<Connection>>::iterator it, double time);
   // Gives up TCP holes that waited too long and closes flows silent for long.
   void expire_old_state(double now);

@@ -131,8 +131,13 @@ class JsonlEventWriter : public EventWriter {
   }
   void end_line(std::string& o, const EventContext& c) {
     if (!c.bus.empty()) {
-      o += ",\"bus\":";
-      append_json_string(o, c.bus);
+      // Lines of one bus come in runs: its quoted name is kept, not escaped for every line.
+      if (c.bus != bus_name_) {
+        bus_name_.assign(c.bus);
+        bus_field_ = ",\"bus\":";
+        append_json_string(bus_field_, c.bus);
+      }
+      o += bus_field_;
     }
     o += "}\n";
     out_.done();
@@ -150,6 +155,8 @@ class JsonlEventWriter : public EventWriter {
   OutputStream& out_;
   ValueJsonCache values_;
   std::vector<std::string> issues_;
+  std::string bus_name_;
+  std::string bus_field_;
 };
 
 }  // namespace

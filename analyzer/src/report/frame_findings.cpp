@@ -1,5 +1,8 @@
 #include "report/frame_findings.h"
 
+#include <array>
+#include <iterator>
+
 #include "formatting/json_text.h"
 #include "formatting/number_text.h"
 #include "pvtap/function_codes.h"
@@ -190,13 +193,21 @@ void append_value_json_tail(std::string& out, const DecodedValue& v) {
     append_text_json(out, v);
   }
   if (v.def != nullptr && v.warnings != 0) {
+    // The descriptions are constant: quoted once, not escaped again for every value.
+    static const auto kQuoted = [] {
+      std::array<std::string, std::size(kAllWarnings)> quoted;
+      for (std::size_t i = 0; i < quoted.size(); ++i) {
+        append_json_string(quoted[i], describe(kAllWarnings[i]));
+      }
+      return quoted;
+    }();
     out += ",\"warnings\":[";
     bool first = true;
-    for (const ValueWarning w : kAllWarnings) {
-      if (!v.has(w)) continue;
+    for (std::size_t i = 0; i < kQuoted.size(); ++i) {
+      if (!v.has(kAllWarnings[i])) continue;
       if (!first) out += ',';
       first = false;
-      append_json_string(out, describe(w));
+      out += kQuoted[i];
     }
     out += ']';
   }

@@ -40,6 +40,28 @@ TEST(TextAppend, FixedPointAsRegistersScaleIt) {
   EXPECT_EQ(fixed(NAN, 2), "0.00");
 }
 
+// Capture timestamps (1e9 seconds and more with 6 decimals) are scaled exactly, so the digits
+// are the ones to_chars prints from the binary value, ties and all.
+TEST(TextAppend, FixedPointAgreesWithToCharsOnTimestamps) {
+  std::uint64_t state = 2026;
+  const auto next = [&] {
+    state = state * 6364136223846793005u + 1442695040888963407u;
+    return state >> 11;
+  };
+  for (int i = 0; i < 200000; ++i) {
+    const double seconds = 1e9 + static_cast<double>(next() % 4000000000u);
+    const double v = seconds + static_cast<double>(next() % 1000000000u) * 1e-9;
+    ASSERT_EQ(fixed(v, 6), reference_fixed(v, 6)) << v;
+    ASSERT_EQ(fixed(v, 9), reference_fixed(v, 9)) << v;
+    const double tie = seconds + static_cast<double>(next() % 64) / 128.0;  // exact halves
+    ASSERT_EQ(fixed(tie, 6), reference_fixed(tie, 6)) << tie;
+    ASSERT_EQ(fixed(tie * 1e6, 0), reference_fixed(tie * 1e6, 0)) << tie;
+  }
+  EXPECT_EQ(fixed(1700000000.0078125, 6), "1700000000.007812");  // a tie: to the even digit
+  EXPECT_EQ(fixed(1700000000.0234375, 6), "1700000000.023438");
+  EXPECT_EQ(fixed(1700000000.0000005, 6), reference_fixed(1700000000.0000005, 6));
+}
+
 // Register maps show as many decimals as their scale has, so no value sits halfway between
 // two printed numbers; there the fast path must print what to_chars prints.
 TEST(TextAppend, FixedPointAgreesWithToCharsOnRegisterValues) {
