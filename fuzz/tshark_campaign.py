@@ -23,6 +23,7 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import time
 from concurrent.futures import ThreadPoolExecutor
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -171,6 +172,8 @@ def main():
     p.add_argument("--seed", type=int, default=1)
     p.add_argument("--jobs", type=int, default=1)
     p.add_argument("--out", default="campaign", help="where findings are kept")
+    p.add_argument("--max-seconds", type=float, default=0,
+                   help="start no new variant after this many seconds (0: no limit)")
     p.add_argument("captures", nargs="+", help="captures or folders of captures")
     a = p.parse_args()
 
@@ -188,33 +191,47 @@ def main():
     if not plugin_loaded(home, runtime):
         home.close()
         return 2
-    jobs = []
-    for i in range(a.variants):
-        source = sources[i % len(sources)]
-        variant, how = make_variant(rng, source, home.variants, i)
-        if variant:
-            jobs.append((source, variant, how))
     os.makedirs(os.path.join(a.out, "findings"), exist_ok=True)
     counts = {}
+    per_source = dict.fromkeys(sources, 0)
+    deadline = time.monotonic() + a.max_seconds if a.max_seconds > 0 else None
+    index = 0
     with ThreadPoolExecutor(max_workers=a.jobs) as pool:
-        results = pool.map(lambda j: (j, run_one(home, runtime, a.pvtap, j[1])), jobs)
-        for (source, variant, how), findings in results:
-            for program, kind, whose, text in findings:
-                key = (program, kind, whose)
-                counts[key] = counts.get(key, 0) + 1
-                keep = os.path.join(a.out, "findings", "%s-%s-%s-%s" % (
-                    whose, program, kind, os.path.basename(variant)))
-                shutil.copy(variant, keep)
-                with open(keep + ".txt", "w") as f:
-                    f.write("source: %s\neditcap %s\n\n%s" % (source, how, text[-20000:]))
-                print("campaign: %s %s (%s) on %s: kept as %s" % (program, kind, whose,
-                                                                  how, keep))
-            os.remove(variant)
+        # Variants are made a batch at a time (same order, same seeds as all at once), so a
+        # long campaign neither fills the disk first nor runs past its time.
+        while index < a.variants and not (deadline and time.monotonic() > deadline):
+            jobs = []
+            for _ in range(min(a.jobs, a.variants - index)):
+                source = sources[index % len(sources)]
+                variant, how = make_variant(rng, source, home.variants, index)
+                index += 1
+                if variant:
+                    jobs.append((source, variant, how))
+            results = pool.map(lambda j: (j, run_one(home, runtime, a.pvtap, j[1])), jobs)
+            for (source, variant, how), findings in results:
+                per_source[source] += 1
+                for program, kind, whose, text in findings:
+                    key = (program, kind, whose)
+                    counts[key] = counts.get(key, 0) + 1
+                    keep = os.path.join(a.out, "findings", "%s-%s-%s-%s" % (
+                        whose, program, kind, os.path.basename(variant)))
+                    shutil.copy(variant, keep)
+                    with open(keep + ".txt", "w") as f:
+                        f.write("source: %s\neditcap %s\n\n%s" % (source, how, text[-20000:]))
+                    print("campaign: %s %s (%s) on %s: kept as %s" % (program, kind, whose,
+                                                                      how, keep), flush=True)
+                os.remove(variant)
+            done = sum(per_source.values())
+            if done % 100 < len(jobs):
+                print("campaign: %d variants run" % done, flush=True)
     home.close()
     ours = sum(n for (_, _, whose), n in counts.items() if whose == "ours")
     theirs = sum(n for (_, _, whose), n in counts.items() if whose == "wireshark")
+    done = sum(per_source.values())
     print("campaign: %d variants of %d captures; tshark -nVxr (ASan plugin)%s on each" % (
-        len(jobs), len(sources), " and pvtap audit (ASan)" if a.pvtap else ""))
+        done, len(sources), " and pvtap audit (ASan)" if a.pvtap else ""))
+    print("campaign: variants per capture %d to %d" % (min(per_source.values()),
+                                                       max(per_source.values())))
     print("campaign: findings ours %d, Wireshark's own %d" % (ours, theirs))
     for (program, kind, whose), n in sorted(counts.items()):
         print("campaign:   %-6s %-14s %-9s %d" % (program, kind, whose, n))

@@ -75,9 +75,12 @@ void ExportedPduWriter::write(double time, Direction direction,
   const std::size_t tags = put_tags(record_.data(), direction);
   const std::size_t length = std::min(bytes.size(), record_.size() - tags);
   std::copy_n(bytes.begin(), length, record_.begin() + static_cast<std::ptrdiff_t>(tags));
-  const double seconds = std::floor(time);
+  // A capture timestamp may be any 64-bit value: held to what int64 microseconds can count.
+  constexpr double kMaxSeconds = 9.2e12;  // 9.2e18 us, just under 2^63
+  const double held = std::isnan(time) ? 0 : std::clamp(time, -kMaxSeconds, kMaxSeconds);
+  const double seconds = std::floor(held);
   const std::int64_t micros =
-      static_cast<std::int64_t>(seconds) * 1'000'000 + std::lround((time - seconds) * 1e6);
+      static_cast<std::int64_t>(seconds) * 1'000'000 + std::lround((held - seconds) * 1e6);
   file_.write(micros, std::span(record_).first(tags + length));
   if (flush_each_record_) file_.flush();
   ++records_;
