@@ -43,6 +43,11 @@ BusSession* BusSet::find(const std::string& name) {
   return it == by_name_.end() ? nullptr : &it->second->session;
 }
 
+const BusSession* BusSet::find(const std::string& name) const {
+  const auto it = by_name_.find(name);
+  return it == by_name_.end() ? nullptr : &it->second->session;
+}
+
 BusSession& BusSet::add(const std::string& name, const BusSessionOptions& options) {
   buses_.push_back(std::make_unique<Bus>(name, options, decoder_, events_));
   by_name_[name] = buses_.back().get();

@@ -24,6 +24,7 @@ class BusSet {
 
   // The bus of that name; nullptr before add().
   BusSession* find(const std::string& name);
+  const BusSession* find(const std::string& name) const;
   BusSession& add(const std::string& name, const BusSessionOptions& options);
   BusSession& find_or_add(const std::string& name, const BusSessionOptions& options);
 

@@ -20,7 +20,7 @@ void Pipeline::begin_input(int link_type, bool batched_serial) {
   link_type_ = link_type;
   kind_ = input_kind_of(link_type).value_or(InputKind::Serial);
   // The first input decides how the one serial bus reads its timestamps.
-  if (kind_ == InputKind::Serial && buses_.find("") == nullptr) batched_serial_ = batched_serial;
+  if (kind_ == InputKind::Serial && serial_timing_open()) batched_serial_ = batched_serial;
   network_ = network_ || kind_ == InputKind::Network;
 }
 

@@ -43,6 +43,9 @@ class Pipeline {
   // Records of the next input have this link type; `batched_serial`: its serial records are
   // read chunks (timestamps batched), not one character each.
   void begin_input(int link_type, bool batched_serial);
+  // True until the one serial bus exists: only the first serial input decides its timing, so
+  // later inputs need not be probed for it.
+  bool serial_timing_open() const { return buses_.find("") == nullptr; }
   void record(const CapturedPacket& packet);
   // A plain dump of bus bytes follows (--raw): its bus is reported even when it is empty.
   void begin_raw_input();

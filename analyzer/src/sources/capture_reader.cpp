@@ -97,9 +97,12 @@ bool CaptureReader::read_capture(const std::string& path, std::uint64_t done_bef
     return false;
   }
   in.link_type = file.link_type_name();
-  const bool serial = input_kind_of(file.link_type()) == InputKind::Serial;
+  // Reading ahead to tell read chunks from characters costs a second open of the file: only
+  // the input that decides the serial bus's timing is probed.
+  const bool probe =
+      input_kind_of(file.link_type()) == InputKind::Serial && pipeline_.serial_timing_open();
   pipeline_.begin_input(file.link_type(),
-                        serial && largest_early_record(path, kTimingProbeRecords) > 1);
+                        probe && largest_early_record(path, kTimingProbeRecords) > 1);
   CapturedPacket packet;
   for (;;) {
     const CaptureFile::Next next = file.next(packet);

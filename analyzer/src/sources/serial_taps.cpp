@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "pvtap/bus_timing.h"
 #include "pvtap/carrier_timing.h"
 #include "sources/device_tap.h"
 #include "sources/wall_clock.h"
