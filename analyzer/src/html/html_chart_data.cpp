@@ -6,13 +6,13 @@
 #include <map>
 #include <set>
 
-#include "report/frame_findings.h"
-#include "html/html_sections.h"
-#include "report/poll_block_text.h"
-#include "pvtap/function_codes.h"
-#include "formatting/number_text.h"
-#include "formatting/json_text.h"
 #include "formatting/csv_text.h"
+#include "formatting/json_text.h"
+#include "formatting/number_text.h"
+#include "html/html_sections.h"
+#include "pvtap/function_codes.h"
+#include "report/frame_findings.h"
+#include "report/poll_block_text.h"
 #include "report/report_line.h"
 
 namespace pvtap::analyzer {
@@ -30,8 +30,10 @@ void optional_number(std::string& o, const std::optional<std::uint16_t>& v) {
   }
 }
 
-// [[index,count],...] of a counting series.
-void counts(std::string& o, const BucketSeries& s) {
+// [[index,...],...]: one row per bucket that saw something, its fields after the index
+// written by `fields`.
+template <typename Fields>
+void bucket_rows(std::string& o, const BucketSeries& s, Fields fields) {
   o += '[';
   bool first = true;
   for (std::size_t i = 0; i < s.buckets().size(); ++i) {
@@ -41,51 +43,38 @@ void counts(std::string& o, const BucketSeries& s) {
     first = false;
     o += '[';
     append_uint(o, i);
-    o += ',';
-    append_uint(o, b.count);
+    fields(b);
     o += ']';
   }
   o += ']';
+}
+
+// [[index,count],...] of a counting series.
+void counts(std::string& o, const BucketSeries& s) {
+  bucket_rows(o, s, [&o](const Bucket& b) {
+    o += ',';
+    append_uint(o, b.count);
+  });
 }
 
 // [[index,sum],...].
 void sums(std::string& o, const BucketSeries& s) {
-  o += '[';
-  bool first = true;
-  for (std::size_t i = 0; i < s.buckets().size(); ++i) {
-    const Bucket& b = s.buckets()[i];
-    if (b.count == 0) continue;
-    if (!first) o += ',';
-    first = false;
-    o += '[';
-    append_uint(o, i);
+  bucket_rows(o, s, [&o](const Bucket& b) {
     o += ',';
     append_fixed(o, b.sum, 0);
-    o += ']';
-  }
-  o += ']';
+  });
 }
 
 // [[index,min,last,max],...] scaled by `factor`, with `decimals` digits.
 void ranges(std::string& o, const BucketSeries& s, double factor, int decimals, bool mean) {
-  o += '[';
-  bool first = true;
-  for (std::size_t i = 0; i < s.buckets().size(); ++i) {
-    const Bucket& b = s.buckets()[i];
-    if (b.count == 0) continue;
-    if (!first) o += ',';
-    first = false;
-    o += '[';
-    append_uint(o, i);
+  bucket_rows(o, s, [&](const Bucket& b) {
     o += ',';
     append_fixed(o, b.min * factor, decimals);
     o += ',';
     append_fixed(o, (mean ? b.sum / b.count : b.last) * factor, decimals);
     o += ',';
     append_fixed(o, b.max * factor, decimals);
-    o += ']';
-  }
-  o += ']';
+  });
 }
 
 std::string lane_label(const AuditReport& r, const Lane& lane) {
