@@ -306,6 +306,42 @@ def mode_version(options, checks):
                 re.fullmatch(pattern, result.stdout) is not None)
 
 
+def mode_threads(options, checks):
+    """--threads 2 (a second thread reads ahead, the default) prints what --threads 1 prints,
+    byte for byte: on every test capture, on one of many read-ahead batches, on that capture
+    cut inside a record, and on several files read as one capture."""
+    work = tempfile.mkdtemp(prefix="pvtap-threads-")
+    try:
+        big = os.path.join(work, "big.pcap")
+        generated = subprocess.run([options.gen, "bench", big, "2"], capture_output=True,
+                                   text=True, timeout=110)
+        checks.equal(f"generating a 2 MB capture ({generated.stderr.strip()})",
+                     generated.returncode, 0)
+        cut = os.path.join(work, "cut.pcap")
+        with open(big, "rb") as f:
+            data = f.read()
+        with open(cut, "wb") as f:
+            f.write(data[:len(data) * 3 // 5])  # a cut this deep falls inside a record
+        inputs = [[big], [cut], [big, capture_path(options.dir, "eth_tcp")]]
+        inputs += [[os.path.join(options.dir, name)] for name in sorted(os.listdir(options.dir))
+                   if name.endswith((".pcap", ".pcapng"))]
+        for files in inputs:
+            for output in (["--format", "jsonl"], ["--summary-only"]):
+                one = run(options.pvtap, ["--threads", "1", *output, *files])
+                two = run(options.pvtap, ["--threads", "2", *output, *files])
+                what = " ".join([*output, *(os.path.basename(f) for f in files)])
+                checks.equal(f"exit status, {what}", two.returncode, one.returncode)
+                checks.true(f"stdout is the same, {what}", two.stdout == one.stdout)
+                checks.equal(f"stderr, {what}", two.stderr, one.stderr)
+                if files == [cut]:
+                    checks.true(f"the cut capture is reported truncated, {what}",
+                                "truncated capture" in one.stderr and one.returncode == 2)
+                    checks.true(f"the cut capture still gives frames, {what}",
+                                len(one.stdout) > 1000)
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+
+
 def mode_formats(options, checks):
     expected = load_expectation(options.dir, options.name)
     args = input_args(options.dir, options.name, expected)
@@ -385,13 +421,14 @@ def main():
     parser.add_argument("--pvtap", required=True)
     parser.add_argument("--dir", required=True)
     parser.add_argument("--plugin", default="")
+    parser.add_argument("--gen", default="", help="pvtap-capture-gen, for mode threads")
     parser.add_argument("mode")
     parser.add_argument("name", nargs="?")
     options = parser.parse_args()
     checks = Checks()
     modes = {"expect": mode_expect, "roundtrip": mode_roundtrip, "fail-on": mode_fail_on,
              "bad-inputs": mode_bad_inputs, "usage": mode_usage, "formats": mode_formats,
-             "tshark": mode_tshark, "user-maps": mode_user_maps, "version": mode_version}
+             "tshark": mode_tshark, "user-maps": mode_user_maps, "version": mode_version, "threads": mode_threads}
     if modes[options.mode](options, checks) == SKIP:
         return SKIP
     return checks.finish()

@@ -1,6 +1,9 @@
 #include "cli/audit_command.h"
 
+#include <sched.h>
 #include <unistd.h>
+
+#include <algorithm>
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
@@ -68,6 +71,20 @@ void add_input_options(CLI::App& audit, AuditOptions& o) {
       ->type_name("PORT")
       ->delimiter(',')
       ->allow_extra_args(false);
+  audit
+      .add_option("--threads", o.threads,
+                  "1: read and analyse on one thread; 2: read capture files ahead on a second "
+                  "thread (output is the same). Default: 2 when more than one CPU is available")
+      ->type_name("N")
+      ->check(CLI::Range(1, 2));
+}
+
+// The CPUs this process may run on (taskset narrows them), at least 1.
+unsigned available_cpus() {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (::sched_getaffinity(0, sizeof set, &set) != 0) return 1;
+  return static_cast<unsigned>(std::max(1, CPU_COUNT(&set)));
 }
 
 }  // namespace
@@ -99,6 +116,7 @@ int run_audit(AuditOptions& options) {
   RegisterDecoder decoder(DecoderOptions{options.gsl_ids, PairRule::Binary});
   if (!load_maps(options, decoder)) return kExitBadInput;
   options.progress = ::isatty(STDERR_FILENO) == 1;
+  if (options.threads == 0) options.threads = available_cpus() > 1 ? 2 : 1;
   OutputStream out(stdout);
   const int status = audit(options, decoder, out);
   out.flush();
@@ -116,7 +134,7 @@ int audit(const AuditOptions& options, const RegisterDecoder& decoder, OutputStr
   settings.has_timestamps = options.raw_dumps.empty();
   Pipeline pipeline(settings, decoder, output.events());
   ProgressBar progress(options.progress, total_size(options.captures, options.raw_dumps));
-  CaptureReader reader(pipeline, progress);
+  CaptureReader reader(pipeline, progress, options.threads > 1);
   const bool complete = reader.read(options.captures, options.raw_dumps);
   pipeline.finish(reader.last_time());
   output.end_of_input(reader.last_time());

@@ -50,6 +50,9 @@ struct AuditOptions : CommonOptions {
   std::vector<std::string> captures;   // pcap/pcapng files, read in order as one capture
   std::vector<std::string> raw_dumps;  // plain bus byte dumps (--raw)
   bool progress = false;               // draw a progress bar on stderr
+  // --threads: 2 reads capture files ahead on a second thread, 1 reads and analyses on one;
+  // 0 (the default) picks 2 when this process may run on more than one CPU.
+  unsigned threads = 0;
 };
 
 // SniffOptions: `pvtap sniff` (and the extcap capture): live sources.

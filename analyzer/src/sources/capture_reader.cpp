@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <cstring>
 
+#include "pvtap/capture/read_ahead_capture.h"
+
 namespace pvtap::analyzer {
 namespace {
 
@@ -57,8 +59,8 @@ std::uint64_t total_size(const std::vector<std::string>& captures,
   return total;
 }
 
-CaptureReader::CaptureReader(Pipeline& pipeline, ProgressBar& progress)
-    : pipeline_(pipeline), progress_(progress) {}
+CaptureReader::CaptureReader(Pipeline& pipeline, ProgressBar& progress, bool read_ahead)
+    : pipeline_(pipeline), progress_(progress), read_ahead_(read_ahead) {}
 
 bool CaptureReader::read(const std::vector<std::string>& captures,
                          const std::vector<std::string>& raw_dumps) {
@@ -87,7 +89,7 @@ void CaptureReader::report_truncation() const {
 }
 
 bool CaptureReader::read_capture(const std::string& path, std::uint64_t done_before) {
-  CaptureFile file;
+  ReadAheadCapture file(read_ahead_);
   InputReport in;
   in.path = path;
   if (!file.open(path)) {

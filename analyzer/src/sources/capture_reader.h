@@ -19,7 +19,8 @@ std::optional<std::string> check_inputs(const std::vector<std::string>& captures
 
 class CaptureReader {
  public:
-  CaptureReader(Pipeline& pipeline, ProgressBar& progress);
+  // `read_ahead`: capture files are read on a second thread (ReadAheadCapture).
+  CaptureReader(Pipeline& pipeline, ProgressBar& progress, bool read_ahead = false);
 
   // Reads every input; false when one ended early (truncated): what came before is fed.
   bool read(const std::vector<std::string>& captures, const std::vector<std::string>& raw_dumps);
@@ -35,6 +36,7 @@ class CaptureReader {
 
   Pipeline& pipeline_;
   ProgressBar& progress_;
+  bool read_ahead_;
   std::vector<InputReport> inputs_;
   double last_time_ = 0;
 };
