@@ -70,10 +70,7 @@ std::span<const Timeout> TransactionMatcher::finish() {
 }
 
 std::size_t TransactionMatcher::pending_count() const {
-  const auto pending = [](const Slot& s) { return s.state == SlotState::Pending; };
-  return static_cast<std::size_t>(
-             std::count_if(station_slots_.begin(), station_slots_.end(), pending)) +
-         (pending(broadcast_) ? 1u : 0u);
+  return pending_.size();
 }
 
 void TransactionMatcher::on_request(const ObservedFrame& in) {
@@ -84,6 +81,7 @@ void TransactionMatcher::on_request(const ObservedFrame& in) {
   }
   const double deadline = in.end_time + config_.timeout;
   slot.state = SlotState::Pending;
+  pending_.insert(index_of(slot));
   slot.request = RequestRecord{in.id, in.frame, in.end_time, deadline, in.check_ok};
   if (broadcast) broadcast_answered_by_.reset();
   next_deadline_ = std::min(next_deadline_, deadline);
@@ -100,7 +98,7 @@ bool TransactionMatcher::try_answer(const ObservedFrame& in, FrameMatch& out) {
   Slot& own = station_slots_[station];
   if (own.state == SlotState::Pending && answers(own.request.frame, in.frame)) {
     complete(own, in, out);
-    own.state = SlotState::Answered;
+    settle(own, SlotState::Answered);
     return true;
   }
   if (broadcast_.state == SlotState::Pending && !broadcast_answered_by_[station] &&
@@ -117,19 +115,12 @@ bool TransactionMatcher::try_answer(const ObservedFrame& in, FrameMatch& out) {
     return false;
   }
   complete(*only, in, out);
-  only->state = SlotState::Answered;
+  settle(*only, SlotState::Answered);
   return true;
 }
 
 TransactionMatcher::Slot* TransactionMatcher::only_pending() {
-  Slot* found = nullptr;
-  for (std::size_t i = 0; i < kSlots; ++i) {
-    Slot& slot = slot_at(i);
-    if (slot.state != SlotState::Pending) continue;
-    if (found != nullptr) return nullptr;
-    found = &slot;
-  }
-  return found;
+  return pending_.size() == 1 ? &slot_at(pending_[0]) : nullptr;
 }
 
 bool TransactionMatcher::try_duplicate(const ObservedFrame& in, FrameMatch& out) {
@@ -193,10 +184,10 @@ void TransactionMatcher::give_up(Slot& slot, TimeoutReason reason, double waited
                                  std::optional<std::uint64_t> next_request_id) {
   // A broadcast that somebody answered has simply closed its window; it did not fail.
   if (is_broadcast(slot) && broadcast_answered_by_.any()) {
-    slot.state = SlotState::Answered;
+    settle(slot, SlotState::Answered);
     return;
   }
-  slot.state = SlotState::TimedOut;
+  settle(slot, SlotState::TimedOut);
   const FrameSummary& f = slot.request.frame;
   timeouts_[timeout_count_++] =
       Timeout{slot.request.id, f.dialect, f.station,       f.function,
@@ -209,11 +200,8 @@ void TransactionMatcher::expire_overdue() {
     give_up(*due_[i], TimeoutReason::NoReply, config_.timeout, std::nullopt);
   }
   next_deadline_ = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < kSlots; ++i) {
-    const Slot& slot = slot_at(i);
-    if (slot.state == SlotState::Pending) {
-      next_deadline_ = std::min(next_deadline_, slot.request.deadline);
-    }
+  for (std::size_t k = 0; k < pending_.size(); ++k) {
+    next_deadline_ = std::min(next_deadline_, slot_at(pending_[k]).request.deadline);
   }
 }
 
@@ -221,9 +209,8 @@ void TransactionMatcher::expire_overdue() {
 // so that timeouts are reported in the order they fell due.
 std::size_t TransactionMatcher::collect_pending(bool only_overdue) {
   std::size_t n = 0;
-  for (std::size_t i = 0; i < kSlots; ++i) {
-    Slot& slot = slot_at(i);
-    if (slot.state != SlotState::Pending) continue;
+  for (std::size_t k = 0; k < pending_.size(); ++k) {
+    Slot& slot = slot_at(pending_[k]);
     if (only_overdue && !(slot.request.deadline < now_)) continue;
     due_[n++] = &slot;
   }
@@ -235,6 +222,11 @@ std::size_t TransactionMatcher::collect_pending(bool only_overdue) {
               return a->request.id < b->request.id;
             });
   return n;
+}
+
+void TransactionMatcher::settle(Slot& slot, SlotState outcome) {
+  slot.state = outcome;
+  pending_.erase(index_of(slot));
 }
 
 }  // namespace pvtap

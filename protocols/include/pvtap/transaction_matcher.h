@@ -31,6 +31,34 @@ struct ObservedFrame {
   bool role_known = false;
 };
 
+// IndexSet: a set of indices below N with constant-time insert and erase, iterated in no
+// particular order; used to visit only the requests that wait instead of every address.
+template <std::size_t N>
+class IndexSet {
+ public:
+  void insert(std::uint16_t i) {
+    if (contains(i)) return;
+    position_[i] = static_cast<std::uint16_t>(size_);
+    members_[size_++] = i;
+  }
+  void erase(std::uint16_t i) {
+    if (!contains(i)) return;
+    const std::uint16_t last = members_[--size_];
+    members_[position_[i]] = last;
+    position_[last] = position_[i];
+  }
+  bool contains(std::uint16_t i) const {
+    return position_[i] < size_ && members_[position_[i]] == i;
+  }
+  std::size_t size() const { return size_; }
+  std::uint16_t operator[](std::size_t k) const { return members_[k]; }
+
+ private:
+  std::array<std::uint16_t, N> members_{};
+  std::array<std::uint16_t, N> position_{};
+  std::size_t size_ = 0;
+};
+
 // TransactionMatcher: pairs requests with replies and returns, as values, the timeouts,
 // unsolicited and duplicate replies, length mismatches and corrected roles it decided.
 //
@@ -97,6 +125,7 @@ class TransactionMatcher {
   void complete(const Slot& slot, const ObservedFrame& reply, FrameMatch& out) const;
   void give_up(Slot& slot, TimeoutReason reason, double waited,
                std::optional<std::uint64_t> next_request_id);
+  void settle(Slot& slot, SlotState outcome);  // Pending -> Answered or TimedOut
   void move_time_to(double now);
   void expire_overdue();
   std::span<const Timeout> timeouts() const { return {timeouts_.data(), timeout_count_}; }
@@ -105,11 +134,18 @@ class TransactionMatcher {
   Slot& slot_at(std::size_t i) {
     return i < station_slots_.size() ? station_slots_[i] : broadcast_;
   }
+  std::uint16_t index_of(const Slot& slot) const {
+    return is_broadcast(slot) ? static_cast<std::uint16_t>(station_slots_.size())
+                              : static_cast<std::uint16_t>(&slot - station_slots_.data());
+  }
 
   MatcherConfig config_;
   std::array<Slot, 256> station_slots_{};
   Slot broadcast_;
   std::bitset<256> broadcast_answered_by_;
+  // The slots in state Pending: a polled bus has one or two, and the per-frame deadline work
+  // visits those only.
+  IndexSet<kSlots> pending_;
   double now_ = -std::numeric_limits<double>::infinity();
   // A lower bound on the earliest deadline; stale-early is harmless (one extra scan).
   double next_deadline_ = std::numeric_limits<double>::infinity();
