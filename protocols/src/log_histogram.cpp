@@ -9,48 +9,62 @@
 namespace pvtap {
 namespace {
 
+// A value's bucket is looked up by its top bits: the exponent and kSliceBits of the mantissa
+// cut each power of two into 2^kSliceBits slices, each narrower than a bucket (2^(1/128) =
+// 1.0054 < gamma = 1.0202), so a slice holds at most one bucket bound and the table entry,
+// the bucket of the slice's lowest value, is either the value's bucket or the one before.
+constexpr int kSliceBits = 7;
+constexpr int kSliceShift = 52 - kSliceBits;
+
+std::uint64_t slice_of(double value) {
+  std::uint64_t bits = 0;
+  std::memcpy(&bits, &value, sizeof bits);
+  return bits >> kSliceShift;
+}
+
+double slice_start(std::uint64_t slice) {
+  const std::uint64_t bits = slice << kSliceShift;
+  double value = 0;
+  std::memcpy(&value, &bits, sizeof value);
+  return value;
+}
+
 // Built on first use rather than at namespace scope, so that no static initializer elsewhere
 // can see it unset.
 struct Geometry {
   double gamma;
-  double log_gamma;
   std::size_t regular;  // buckets 1..regular cover (kMinValue, kMinValue * gamma^regular]
   std::size_t overflow;
   std::size_t buckets;
-  // Upper bound of each bucket 0..regular, computed once: finding a value's bucket is then a
-  // binary search instead of a log and a pow per value (a latency is added for every reply).
-  std::vector<double> bounds;
-  double log2_min;  // log2(kMinValue)
-  double per_log2;  // buckets per unit of log2
-};
+  std::vector<double> bounds;                  // upper bound of each bucket 0..regular
+  std::uint64_t first_slice;                   // the slice of kMinValue
+  std::vector<std::uint16_t> bucket_by_slice;  // from first_slice up to the last bound's slice
 
-// log2 of a positive normal number to within about 0.01, from its exponent bits and a
-// quadratic for the mantissa: a fraction of the cost of std::log.
-double approximate_log2(double x) {
-  std::uint64_t bits = 0;
-  std::memcpy(&bits, &x, sizeof bits);
-  const int exponent = static_cast<int>((bits >> 52) & 0x7FF) - 1023;
-  bits = (bits & 0xFFFFFFFFFFFFFull) | 0x3FF0000000000000ull;  // the mantissa, in [1, 2)
-  double mantissa = 0;
-  std::memcpy(&mantissa, &bits, sizeof mantissa);
-  const double f = mantissa - 1.0;
-  return exponent + f * (1.3465553 - 0.3465553 * f);
-}
+  // The bucket by binary search over the bounds: what the table is built from.
+  std::size_t search(double value) const {
+    return static_cast<std::size_t>(std::lower_bound(bounds.begin(), bounds.end(), value) -
+                                    bounds.begin());
+  }
+};
 
 const Geometry& geometry() {
   static const Geometry g = [] {
     Geometry r{};
     r.gamma = (1.0 + LogHistogram::kRelativeError) / (1.0 - LogHistogram::kRelativeError);
-    r.log_gamma = std::log(r.gamma);
     r.regular = static_cast<std::size_t>(
-        std::ceil(std::log(LogHistogram::kMaxValue / LogHistogram::kMinValue) / r.log_gamma));
-    r.log2_min = std::log2(LogHistogram::kMinValue);
-    r.per_log2 = std::log(2.0) / r.log_gamma;
+        std::ceil(std::log(LogHistogram::kMaxValue / LogHistogram::kMinValue) / std::log(r.gamma)));
     r.overflow = r.regular + 1;
     r.buckets = r.regular + 2;
     r.bounds.resize(r.regular + 1);
     for (std::size_t b = 0; b <= r.regular; ++b) {
       r.bounds[b] = LogHistogram::kMinValue * std::pow(r.gamma, static_cast<double>(b));
+    }
+    r.first_slice = slice_of(LogHistogram::kMinValue);
+    const std::uint64_t last_slice = slice_of(r.bounds[r.regular]);
+    const double above_min = std::nextafter(LogHistogram::kMinValue, 1.0);
+    for (std::uint64_t slice = r.first_slice; slice <= last_slice; ++slice) {
+      const double lowest = std::max(slice_start(slice), above_min);
+      r.bucket_by_slice.push_back(static_cast<std::uint16_t>(r.search(lowest)));
     }
     return r;
   }();
@@ -83,12 +97,9 @@ std::size_t LogHistogram::bucket_of(double value) {
   const Geometry& g = geometry();
   if (!(value > kMinValue)) return 0;
   if (value > g.bounds[g.regular]) return g.overflow;
-  // Bucket b holds (bounds[b - 1], bounds[b]]. An approximate logarithm lands on b or a
-  // bucket or two from it; the table settles which, so the result is exact.
-  const double estimate = std::ceil((approximate_log2(value) - g.log2_min) * g.per_log2);
-  auto b = static_cast<std::size_t>(std::clamp(estimate, 1.0, static_cast<double>(g.regular)));
-  while (b < g.regular && value > g.bounds[b]) ++b;
-  while (b > 1 && value <= g.bounds[b - 1]) --b;
+  // Bucket b holds (bounds[b - 1], bounds[b]].
+  std::size_t b = g.bucket_by_slice[slice_of(value) - g.first_slice];
+  if (value > g.bounds[b]) ++b;
   return b;
 }
 

@@ -88,6 +88,36 @@ TEST(TimingHistogramTest, ValuesOnBucketBoundariesKeepTheBound) {
   }
 }
 
+TEST(TimingHistogramTest, EveryBoundBelongsToItsBucketAndTheNextValueToTheNext) {
+  // The bucket of a value is looked up by its leading bits and settled against the bounds:
+  // on every bound, and one representable value above it, the value must land exactly. A
+  // bucket's representative is 2 * upper / (gamma + 1), which tells the buckets apart.
+  const double gamma = (1 + LogHistogram::kRelativeError) / (1 - LogHistogram::kRelativeError);
+  const auto representative = [&](int b) {
+    return 2.0 * LogHistogram::kMinValue * std::pow(gamma, b) / (gamma + 1.0);
+  };
+  const auto median_of = [](double v) {
+    LogHistogram h;
+    h.add(v);
+    return h.quantile(0.5);
+  };
+  int checked = 0;
+  for (int b = 1;; ++b) {
+    const double bound = LogHistogram::kMinValue * std::pow(gamma, b);
+    if (bound > LogHistogram::kMaxValue) break;
+    ASSERT_EQ(median_of(bound), representative(b)) << "bound " << b;
+    ASSERT_EQ(median_of(std::nextafter(bound, 0.0)), representative(b)) << "below bound " << b;
+    if (LogHistogram::kMinValue * std::pow(gamma, b + 1) <= LogHistogram::kMaxValue) {
+      ASSERT_EQ(median_of(std::nextafter(bound, 1e9)), representative(b + 1))
+          << "above bound " << b;
+    }
+    ++checked;
+  }
+  EXPECT_GT(checked, 1100);
+  EXPECT_EQ(median_of(LogHistogram::kMinValue), LogHistogram::kMinValue / 2);
+  EXPECT_EQ(median_of(std::nextafter(LogHistogram::kMinValue, 1.0)), representative(1));
+}
+
 TEST(TimingStatisticsTest, KnownLatenciesGiveExactExtremesAndMean) {
   TimingStatistics stats(BusTiming(9600));
   std::vector<double> values;
