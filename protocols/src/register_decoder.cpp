@@ -27,7 +27,7 @@ struct Block {
 // A word no entry covers is still reported, so that nothing on the wire goes unseen.
 void append_unmapped(const Block& b, std::size_t index, std::optional<std::uint16_t> written,
                      std::vector<DecodedValue>& out) {
-  DecodedValue v;
+  DecodedValue& v = out.emplace_back();
   v.origin = b.origin;
   v.wire_address = static_cast<std::uint16_t>(b.wire_of(index));
   v.address = written.value_or(v.wire_address);
@@ -37,7 +37,6 @@ void append_unmapped(const Block& b, std::size_t index, std::optional<std::uint1
   v.value = v.raw;
   v.add(ValueWarning::NotInMap);
   if (!written) v.add(ValueWarning::NoWrittenAddress);
-  out.push_back(v);
 }
 
 // Appends the value whose word is at `index`; returns how many words of the block it used.
@@ -53,7 +52,7 @@ std::size_t append_value(const Block& b, std::size_t index, std::vector<DecodedV
     return 1;
   }
   const RegisterDef& def = *slot->def;
-  DecodedValue v;
+  DecodedValue& v = out.emplace_back();  // filled in place: a value is over 100 bytes
   v.def = &def;
   v.origin = b.origin;
   v.address = slot->value_address;
@@ -81,7 +80,6 @@ std::size_t append_value(const Block& b, std::size_t index, std::vector<DecodedV
   } else {
     v.add(ValueWarning::Incomplete);
   }
-  out.push_back(v);
   return present;
 }
 

@@ -111,12 +111,12 @@ const RegisterDef* RegisterMap::find_kind(RegisterKind kind) const {
 }
 
 std::optional<RegisterSlot> RegisterMap::locate(std::uint16_t address) const {
-  if (!data_) return std::nullopt;
-  const auto& slots = data_->slots;
-  auto it =
-      std::lower_bound(slots.begin(), slots.end(), address,
-                       [](const RegisterSlotEntry& s, std::uint16_t a) { return s.address < a; });
-  if (it == slots.end() || it->address != address) return std::nullopt;
+  if (!data_ || address < data_->first_address) return std::nullopt;
+  const std::size_t offset = address - data_->first_address;
+  if (offset >= data_->slot_by_address.size()) return std::nullopt;
+  const std::uint32_t index = data_->slot_by_address[offset];
+  if (index == Data::kNoSlot) return std::nullopt;
+  const RegisterSlotEntry* it = &data_->slots[index];
   const RegisterDef& def = data_->defs[it->def_index];
   const unsigned step = address_step(data_->dialect);
   const auto value_address = static_cast<std::uint16_t>(address - it->word * step);

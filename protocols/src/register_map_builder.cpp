@@ -174,6 +174,19 @@ class MapLayout {
     }
     data_->slots.reserve(slots.size());
     for (const auto& entry : slots) data_->slots.push_back(entry.second);
+    index_addresses();
+  }
+
+  void index_addresses() {
+    const auto& slots = data_->slots;
+    if (slots.empty()) return;
+    data_->first_address = slots.front().address;
+    data_->slot_by_address.assign(slots.back().address - slots.front().address + 1u,
+                                  RegisterMap::Data::kNoSlot);
+    for (std::size_t i = 0; i < slots.size(); ++i) {
+      data_->slot_by_address[slots[i].address - data_->first_address] =
+          static_cast<std::uint32_t>(i);
+    }
   }
 
   std::shared_ptr<RegisterMap::Data> data_;
