@@ -4,6 +4,7 @@
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <cstring>
 #include <ctime>
 
 namespace pvtap::analyzer {
@@ -11,11 +12,62 @@ namespace {
 
 constexpr char kHexDigits[] = "0123456789abcdef";
 
-template <typename T>
-void append_integer(std::string& out, T value) {
-  std::array<char, 24> buf{};
-  const auto r = std::to_chars(buf.data(), buf.data() + buf.size(), value);
-  out.append(buf.data(), r.ptr);
+// "00" .. "99": numbers are written two digits per division.
+constexpr auto kDigitPairs = [] {
+  std::array<char, 200> pairs{};
+  for (std::size_t i = 0; i < 100; ++i) {
+    pairs[2 * i] = static_cast<char>('0' + i / 10);
+    pairs[2 * i + 1] = static_cast<char>('0' + i % 10);
+  }
+  return pairs;
+}();
+
+// Writes `value` in decimal so that it ends just before `end`, with a decimal point
+// `decimals` (0..9) digits from the right and at least one digit before the point; returns
+// where the text starts. The caller appends it at once: one append per number.
+char* write_scaled(char* end, std::uint64_t value, int decimals) {
+  char* p = end;
+  const auto pair = [&p](std::uint64_t two) {
+    p -= 2;
+    std::memcpy(p, &kDigitPairs[2 * two], 2);
+  };
+  int left = decimals;
+  for (; left >= 2; left -= 2) {
+    pair(value % 100);
+    value /= 100;
+  }
+  if (left == 1) {
+    *--p = static_cast<char>('0' + value % 10);
+    value /= 10;
+  }
+  if (decimals > 0) *--p = '.';
+  for (; value >= 100; value /= 100) pair(value % 100);
+  if (value >= 10) {
+    pair(value);
+  } else {
+    *--p = static_cast<char>('0' + value);
+  }
+  return p;
+}
+
+constexpr std::size_t kNumberText = 32;  // 20 digits, a sign and a point, with room
+
+void append_integer(std::string& out, std::uint64_t value) {
+  std::array<char, kNumberText> buf;
+  char* end = buf.data() + buf.size();
+  const char* start = write_scaled(end, value, 0);
+  out.append(start, static_cast<std::size_t>(end - start));
+}
+
+void append_integer(std::string& out, std::int64_t value) {
+  std::array<char, kNumberText> buf;
+  char* end = buf.data() + buf.size();
+  // The magnitude as unsigned: -INT64_MIN does not fit in int64.
+  const std::uint64_t magnitude =
+      value < 0 ? ~static_cast<std::uint64_t>(value) + 1 : static_cast<std::uint64_t>(value);
+  char* start = write_scaled(end, magnitude, 0);
+  if (value < 0) *--start = '-';
+  out.append(start, static_cast<std::size_t>(end - start));
 }
 
 // Splits epoch seconds into whole seconds and microseconds, rounding once. A capture's
@@ -34,24 +86,14 @@ void split_time(double epoch_seconds, std::time_t& seconds, long& micros) {
   }
 }
 
-// `scaled` with a decimal point `decimals` digits from the right ("523", 1 -> "52.3").
-void append_scaled(std::string& out, std::uint64_t scaled, int decimals) {
-  std::array<char, 24> digits{};
-  const auto r = std::to_chars(digits.data(), digits.data() + digits.size(), scaled);
-  auto n = static_cast<int>(r.ptr - digits.data());
-  if (decimals == 0) {
-    out.append(digits.data(), static_cast<std::size_t>(n));
-    return;
-  }
-  if (n <= decimals) {  // 0.0xy: leading zeros
-    out += "0.";
-    out.append(static_cast<std::size_t>(decimals - n), '0');
-    out.append(digits.data(), static_cast<std::size_t>(n));
-    return;
-  }
-  out.append(digits.data(), static_cast<std::size_t>(n - decimals));
-  out += '.';
-  out.append(digits.data() + n - decimals, static_cast<std::size_t>(decimals));
+// `scaled` with a decimal point `decimals` digits from the right ("523", 1 -> "52.3"), and a
+// minus sign first when asked.
+void append_scaled(std::string& out, std::uint64_t scaled, int decimals, bool negative = false) {
+  std::array<char, kNumberText> buf;
+  char* end = buf.data() + buf.size();
+  char* start = write_scaled(end, scaled, decimals);
+  if (negative) *--start = '-';
+  out.append(start, static_cast<std::size_t>(end - start));
 }
 
 // std::llround for |x| < 2^52 without the library call: x - trunc(x) is exact there.
@@ -105,8 +147,9 @@ void append_fixed(std::string& out, double value, int decimals) {
   // to_chars, with the same rounding. Larger ones take the general path.
   if (decimals >= 0 && decimals <= 9 && std::fabs(value) * kPowers[decimals] < 1e15) {
     const auto scaled = round_half_away(value * kPowers[decimals]);
-    if (scaled < 0) out += '-';  // a value that rounds to zero prints without a sign
-    append_scaled(out, static_cast<std::uint64_t>(scaled < 0 ? -scaled : scaled), decimals);
+    // A value that rounds to zero prints without a sign.
+    append_scaled(out, static_cast<std::uint64_t>(scaled < 0 ? -scaled : scaled), decimals,
+                  scaled < 0);
     return;
   }
   if (decimals >= 0 && decimals <= 9 && value > 0 && value * kPowers[decimals] < 1e19 &&
@@ -171,7 +214,7 @@ void append_utc_date_time(std::string& out, double epoch_seconds) {
   split_time(epoch_seconds, seconds, micros);
   std::tm tm{};
   gmtime_r(&seconds, &tm);
-  append_integer(out, tm.tm_year + 1900);
+  append_integer(out, std::int64_t{tm.tm_year} + 1900);
   out += '-';
   append_two(out, tm.tm_mon + 1);
   out += '-';

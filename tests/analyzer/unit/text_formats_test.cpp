@@ -9,6 +9,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -38,6 +39,30 @@ TEST(TextAppend, FixedPointAsRegistersScaleIt) {
   EXPECT_EQ(fixed(266, 0), "266");
   EXPECT_EQ(fixed(1e20, 1), "100000000000000000000.0");
   EXPECT_EQ(fixed(NAN, 2), "0.00");
+}
+
+// Integers are written two digits at a time: every digit count, each edge of a pair, and the
+// extremes must read as std::to_string writes them.
+TEST(TextAppend, IntegersAgreeWithToString) {
+  std::vector<std::uint64_t> values = {
+      0, 1, 9, 10, 11, 99, 100, 101, 999, 1000, std::numeric_limits<std::uint64_t>::max()};
+  for (std::uint64_t p = 10; p < 1000000000000000000u; p *= 10) {
+    for (const std::uint64_t v : {p - 1, p, p + 1, 7 * p + 3}) values.push_back(v);
+  }
+  for (const std::uint64_t v : values) {
+    std::string out = "x";  // appended after what is there
+    append_uint(out, v);
+    ASSERT_EQ(out.substr(1), std::to_string(v));
+    ASSERT_EQ(out[0], 'x');
+    if (v > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())) continue;
+    const auto s = static_cast<std::int64_t>(v);
+    std::string neg;
+    append_int(neg, -s);
+    ASSERT_EQ(neg, std::to_string(-s));
+  }
+  std::string lowest;
+  append_int(lowest, std::numeric_limits<std::int64_t>::min());
+  EXPECT_EQ(lowest, std::to_string(std::numeric_limits<std::int64_t>::min()));
 }
 
 // Capture timestamps (1e9 seconds and more with 6 decimals) are scaled exactly, so the digits
