@@ -20,7 +20,8 @@ bool ReadAheadCapture::open(const std::string& path) {
     auto batch = std::make_unique<Batch>();
     // Room for the record that crosses kBatchBytes, at the usual sizes: a batch's buffer is
     // then allocated once.
-    batch->bytes.reserve(kBatchBytes + kBatchBytes / 8);
+    batch->capacity = kBatchBytes + kBatchBytes / 8;
+    batch->bytes = std::make_unique_for_overwrite<std::uint8_t[]>(batch->capacity);
     free_.push_back(std::move(batch));
   }
   reader_ = std::thread([this] { read_batches(); });
@@ -43,7 +44,7 @@ void ReadAheadCapture::read_batches() {
 
 // Only the reading thread touches file_ while it runs; a batch is handed over whole.
 CaptureFile::Next ReadAheadCapture::fill(Batch& batch) {
-  batch.bytes.clear();
+  batch.used = 0;
   batch.slots.clear();
   CapturedPacket packet;
   for (;;) {
@@ -53,18 +54,26 @@ CaptureFile::Next ReadAheadCapture::fill(Batch& batch) {
       batch.error = file_.error();
       break;
     }
-    const std::size_t offset = batch.bytes.size();
-    batch.bytes.resize(offset + packet.bytes.size());
-    if (!packet.bytes.empty()) {
-      std::memcpy(batch.bytes.data() + offset, packet.bytes.data(), packet.bytes.size());
-    }
-    batch.slots.push_back(Slot{packet.time, static_cast<std::uint32_t>(offset),
+    batch.slots.push_back(Slot{packet.time, static_cast<std::uint32_t>(batch.used),
                                static_cast<std::uint32_t>(packet.bytes.size()),
                                packet.length_on_wire});
-    if (batch.bytes.size() >= kBatchBytes) break;
+    append(batch, packet.bytes);
+    if (batch.used >= kBatchBytes) break;
   }
   batch.position = file_.position();
   return batch.after;
+}
+
+void ReadAheadCapture::append(Batch& batch, std::span<const std::uint8_t> bytes) {
+  if (batch.used + bytes.size() > batch.capacity) {
+    const std::size_t capacity = batch.used + bytes.size();
+    auto grown = std::make_unique_for_overwrite<std::uint8_t[]>(capacity);
+    if (batch.used > 0) std::memcpy(grown.get(), batch.bytes.get(), batch.used);
+    batch.bytes = std::move(grown);
+    batch.capacity = capacity;
+  }
+  if (!bytes.empty()) std::memcpy(batch.bytes.get() + batch.used, bytes.data(), bytes.size());
+  batch.used += bytes.size();
 }
 
 std::unique_ptr<ReadAheadCapture::Batch> ReadAheadCapture::take_free_batch() {
@@ -100,7 +109,7 @@ CaptureFile::Next ReadAheadCapture::next(CapturedPacket& packet) {
   }
   const Slot& slot = current_->slots[next_slot_++];
   packet.time = slot.time;
-  packet.bytes = std::span<const std::uint8_t>(current_->bytes.data() + slot.offset, slot.size);
+  packet.bytes = std::span<const std::uint8_t>(current_->bytes.get() + slot.offset, slot.size);
   packet.length_on_wire = slot.length_on_wire;
   ++packets_;
   return CaptureFile::Next::Packet;

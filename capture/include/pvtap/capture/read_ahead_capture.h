@@ -7,6 +7,7 @@
 #include <deque>
 #include <memory>
 #include <mutex>
+#include <span>
 #include <string>
 #include <thread>
 #include <vector>
@@ -51,15 +52,20 @@ class ReadAheadCapture {
   };
   // Batch: consecutive records, and how the file went on after the last of them.
   struct Batch {
-    std::vector<std::uint8_t> bytes;
+    // Records' bytes, back to back; a plain buffer, since a vector's resize would zero what
+    // the copy overwrites at once. `capacity` grows only for a record larger than a batch.
+    std::unique_ptr<std::uint8_t[]> bytes;
+    std::size_t capacity = 0;
+    std::size_t used = 0;
     std::vector<Slot> slots;
     std::uint64_t position = 0;
     CaptureFile::Next after = CaptureFile::Next::Packet;  // End or Truncated: the last batch
     std::string error;
   };
 
-  void read_batches();                       // the reading thread
-  CaptureFile::Next fill(Batch& batch);      // reads records until the batch is full
+  void read_batches();                   // the reading thread
+  CaptureFile::Next fill(Batch& batch);  // reads records until the batch is full
+  static void append(Batch& batch, std::span<const std::uint8_t> bytes);
   std::unique_ptr<Batch> take_free_batch();  // nullptr once stopped
   void take_full_batch();                    // the caller's side: waits for the next batch
 
