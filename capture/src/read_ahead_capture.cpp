@@ -14,7 +14,10 @@ ReadAheadCapture::~ReadAheadCapture() {
 }
 
 bool ReadAheadCapture::open(const std::string& path) {
-  if (!file_.open(path)) return false;
+  if (!file_.open(path)) {
+    error_ = file_.error();
+    return false;
+  }
   if (!read_ahead_) return true;
   for (std::size_t i = 0; i < kBatches; ++i) {
     auto batch = std::make_unique<Batch>();

@@ -37,6 +37,8 @@ class ReadAheadCapture {
 
   int link_type() const { return file_.link_type(); }
   std::string link_type_name() const { return file_.link_type_name(); }
+  // Why open() failed or next() returned Truncated. The reading thread's own copy is not
+  // looked at while it runs: the batch that ends the file carries its error.
   const std::string& error() const { return read_ahead_ ? error_ : file_.error(); }
   std::uint64_t packets() const { return read_ahead_ ? packets_ : file_.packets(); }
   std::uint64_t size() const { return file_.size(); }
