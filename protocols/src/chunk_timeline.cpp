@@ -69,16 +69,30 @@ std::optional<double> ChunkTimeline::silence_proven_at(double delay) const {
 }
 
 void ChunkTimeline::drop_before(std::uint64_t offset) {
-  // Keep the last mark: the next chunk's gap is measured from it.
+  // Keep the last mark: the next chunk's gap is measured from it. Popping the front leaves
+  // the other marks where they are, so the cached one stays valid unless it goes.
   while (marks_.size() > 1 && marks_.front().end <= offset) {
+    if (last_ == &marks_.front()) last_ = nullptr;
     marks_.pop_front();
-    last_ = nullptr;
   }
 }
 
 const ChunkTimeline::Mark* ChunkTimeline::search(std::uint64_t offset) const {
   if (marks_.empty()) return nullptr;
   // (A deque keeps element addresses stable on push_back; drop_before resets the cache.)
+  // The reassembler keeps a few chunks buffered: walking them beats a binary search over a
+  // deque's iterators, which stays for the long buffers of noise.
+  constexpr std::size_t kWalk = 8;
+  if (marks_.size() <= kWalk) {
+    last_ = &marks_.back();
+    for (const Mark& m : marks_) {
+      if (offset < m.end) {
+        last_ = &m;
+        break;
+      }
+    }
+    return last_;
+  }
   auto it = std::upper_bound(marks_.begin(), marks_.end(), offset,
                              [](std::uint64_t o, const Mark& m) { return o < m.end; });
   last_ = it == marks_.end() ? &marks_.back() : &*it;
