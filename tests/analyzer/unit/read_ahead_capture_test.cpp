@@ -28,22 +28,24 @@ std::string temp_path(const char* name) {
   return std::string(::testing::TempDir()) + name;
 }
 
-// Sizes around a batch's bound and beyond it (libpcap allows 256 KiB for Ethernet).
+// Records up to libpcap's largest (256 KiB for Ethernet) in an order that crosses several
+// batches and makes one record overflow a batch's buffer (620 x 1500 bytes, then 256 KiB).
+constexpr std::size_t kLargest = 262144;
+
 std::vector<std::size_t> record_sizes() {
-  std::vector<std::size_t> sizes;
-  for (int i = 0; i < 3000; ++i) sizes.push_back(static_cast<std::size_t>(i * 37 % 300));
+  std::vector<std::size_t> sizes(620, 1500);
+  sizes.push_back(kLargest);
+  for (std::size_t i = 0; i < 3000; ++i) sizes.push_back(i * 37 % 1500);
   sizes.push_back(0);
-  sizes.push_back(ReadAheadCapture::kBatchBytes - 1);
-  sizes.push_back(ReadAheadCapture::kBatchBytes);
-  sizes.push_back(3 * ReadAheadCapture::kBatchBytes + 5);  // larger than any batch
-  for (int i = 0; i < 2000; ++i) sizes.push_back(static_cast<std::size_t>(60 + i % 9));
+  for (int i = 0; i < 5; ++i) sizes.push_back(kLargest);
+  for (std::size_t i = 0; i < 2000; ++i) sizes.push_back(60 + i % 9);
   return sizes;
 }
 
 std::string write_capture(const char* name) {
   const std::string path = temp_path(name);
   PcapWriter writer;
-  EXPECT_TRUE(writer.open(path, dlt::kEthernet, 262144)) << writer.error();
+  EXPECT_TRUE(writer.open(path, dlt::kEthernet, static_cast<int>(kLargest))) << writer.error();
   std::int64_t micros = 1790000000000000;
   for (const std::size_t size : record_sizes()) {
     std::vector<std::uint8_t> bytes(size);
@@ -93,6 +95,12 @@ TEST(ReadAheadCapture, GivesEveryRecordInOrderAcrossBatches) {
   const std::string path = write_capture("pvtap_read_ahead.pcap");
   expect_same_as_capture_file(path, true);
   expect_same_as_capture_file(path, false);
+  ReadAheadCapture reader(true);
+  ASSERT_TRUE(reader.open(path));
+  CaptureFile::Next end{};
+  EXPECT_EQ(read_all(reader, end).size(), record_sizes().size());
+  EXPECT_EQ(end, CaptureFile::Next::End);
+  EXPECT_GT(reader.position(), 3 * ReadAheadCapture::kBatchBytes);
 }
 
 TEST(ReadAheadCapture, AFileCutInsideARecordEndsTruncatedAfterTheRecordsBefore) {

@@ -20,8 +20,8 @@ class ReadAheadCapture {
  public:
   // Records are copied into batches of about this many bytes (a batch ends with the record
   // that reaches it); at most kBatches exist, so memory is bounded whatever the capture's size.
-  static constexpr std::size_t kBatchBytes = 64 * 1024;
-  static constexpr std::size_t kBatches = 8;
+  static constexpr std::size_t kBatchBytes = 1024 * 1024;
+  static constexpr std::size_t kBatches = 4;
 
   // `read_ahead` false reads on the caller's thread, record by record, as CaptureFile does.
   explicit ReadAheadCapture(bool read_ahead) : read_ahead_(read_ahead) {}
