@@ -28,6 +28,18 @@ class WordList {
   WordList(std::initializer_list<std::uint16_t> words) {
     for (auto w : words) push_back(w);
   }
+  // A frame is copied a few times on its way (parsed, kept as a request): only the words in
+  // use are, not the whole 512-byte array.
+  WordList(const WordList& o) : size_(o.size_) {
+    std::copy_n(o.words_.data(), size_, words_.data());
+  }
+  WordList& operator=(const WordList& o) {
+    if (this != &o) {
+      size_ = o.size_;
+      std::copy_n(o.words_.data(), size_, words_.data());
+    }
+    return *this;
+  }
   bool push_back(std::uint16_t w) {
     if (size_ == kCapacity) return false;
     words_[size_++] = w;
