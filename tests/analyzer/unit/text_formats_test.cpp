@@ -110,6 +110,45 @@ TEST(TextAppend, JsonStringsAreEscaped) {
   EXPECT_EQ(out, "\"a\\\"b\\\\c\\nd\\te\\u0001 °C\"");
 }
 
+// Plain text is scanned eight bytes at a time: every byte value, at every place of a block and
+// of the tail after it, is escaped as one character at a time would escape it.
+TEST(TextAppend, JsonStringsAreEscapedWhereverTheByteIs) {
+  const auto reference = [](std::string_view text) {
+    std::string r = "\"";
+    for (const char ch : text) {
+      const auto c = static_cast<unsigned char>(ch);
+      if (c == '"' || c == '\\') {
+        r += '\\';
+        r += ch;
+      } else if (c == '\n') {
+        r += "\\n";
+      } else if (c == '\r') {
+        r += "\\r";
+      } else if (c == '\t') {
+        r += "\\t";
+      } else if (c < 0x20) {
+        static constexpr char kHex[] = "0123456789abcdef";
+        r += "\\u00";
+        r += kHex[c >> 4];
+        r += kHex[c & 0xF];
+      } else {
+        r += ch;
+      }
+    }
+    return r + "\"";
+  };
+  for (int c = 0; c < 256; ++c) {
+    for (std::size_t at = 0; at < 19; ++at) {
+      std::string text(19, 'a');
+      text[at] = static_cast<char>(c);
+      if (at + 1 < text.size()) text[at + 1] = static_cast<char>(255 - c);  // a neighbour too
+      std::string out;
+      append_json_string(out, text);
+      ASSERT_EQ(out, reference(text)) << "byte " << c << " at " << at;
+    }
+  }
+}
+
 TEST(TextAppend, CsvFieldsAreQuotedOnlyWhenNeeded) {
   std::string out;
   append_csv_field(out, "plain");
