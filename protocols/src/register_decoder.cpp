@@ -22,6 +22,17 @@ struct Block {
   std::uint32_t wire_of(std::size_t index) const {
     return wire_start + static_cast<std::uint32_t>(index) * step;
   }
+  // Only GSL with hex IDs maps addresses; for every other block the wire address is the
+  // written one, without a call per word.
+  bool identity() const {
+    return dialect != Dialect::Gsl || options.gsl_ids == GslIdReading::Decimal;
+  }
+  std::optional<std::uint16_t> written_of(std::uint16_t wire) const {
+    return identity() ? wire : written_address_of(dialect, wire, options.gsl_ids);
+  }
+  std::optional<std::uint16_t> wire_of_written(std::uint16_t written) const {
+    return identity() ? written : wire_address_of(dialect, written, options.gsl_ids);
+  }
 };
 
 // A word no entry covers is still reported, so that nothing on the wire goes unseen.
@@ -44,7 +55,7 @@ std::size_t append_value(const Block& b, std::size_t index, std::vector<DecodedV
   const std::uint32_t wire = b.wire_of(index);
   std::optional<std::uint16_t> written;
   if (wire <= 0xFFFF) {
-    written = written_address_of(b.dialect, static_cast<std::uint16_t>(wire), b.options.gsl_ids);
+    written = b.written_of(static_cast<std::uint16_t>(wire));
   }
   const std::optional<RegisterSlot> slot = written ? b.map.locate(*written) : std::nullopt;
   if (!slot) {
@@ -66,8 +77,7 @@ std::size_t append_value(const Block& b, std::size_t index, std::vector<DecodedV
   for (std::size_t k = slot->word; k < def.words; ++k) {
     const std::size_t j = index + (k - slot->word);
     if (j >= b.words.size()) break;
-    const auto expected = wire_address_of(
-        b.dialect, static_cast<std::uint16_t>(v.address + k * b.step), b.options.gsl_ids);
+    const auto expected = b.wire_of_written(static_cast<std::uint16_t>(v.address + k * b.step));
     if (!expected || *expected != b.wire_of(j)) break;
     parts[k] = b.words[j];
     ++present;
