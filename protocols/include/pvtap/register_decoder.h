@@ -109,6 +109,10 @@ class SetBits {
 struct DecodedValue {
   static constexpr std::size_t kTextCapacity = 32;
 
+  // Provided, so that a new value (one per decoded register) is built member by member
+  // instead of being zeroed whole first (value-initialization of an implicit constructor).
+  DecodedValue() noexcept {}  // NOLINT(modernize-use-equals-default)
+
   const RegisterDef* def = nullptr;  // null when no map entry covers the word
   std::uint16_t address = 0;         // written address of the value's first word
   std::uint16_t wire_address = 0;    // wire address of the first word present
