@@ -1,5 +1,6 @@
 // One JSON object per line: frames, timeouts, noise and gaps (the summary line is written by
 // json_summary.cpp).
+#include <array>
 #include <string>
 #include <vector>
 
@@ -25,25 +26,33 @@ std::string_view direction_key(Direction d) {
 
 class JsonlEventWriter : public EventWriter {
  public:
-  explicit JsonlEventWriter(OutputStream& out) : out_(out) {}
+  explicit JsonlEventWriter(OutputStream& out) : out_(out) {
+    for (const Dialect d : {Dialect::Ascii, Dialect::Hybrid, Dialect::Gsl}) {
+      for (const Role r : {Role::Request, Role::Response}) {
+        std::string& head = frame_heads_[head_index(d, r)];
+        head = ",\"dialect\":\"";
+        head += to_string(d);
+        head += "\",\"role\":\"";
+        head += to_string(r);
+        head += "\",\"station\":";
+      }
+    }
+  }
 
   void frame(const EventContext& c, const SessionFrame& f) override {
     std::string& o = out_.buffer();
     begin_line(o, "frame", c, f.start_time);
-    o += ",\"dialect\":\"";
-    o += to_string(f.dialect);
-    o += "\",\"role\":\"";
-    o += to_string(f.role);
-    o += "\",\"station\":";
+    o += frame_heads_[head_index(f.dialect, f.role)];
     append_station_and_function(o, f);
     o += ",\"length\":";
     append_uint(o, f.bytes.size());
-    o += f.check.ok ? ",\"check\":\"ok\"" : ",\"check\":\"bad\",\"check_expected\":\"";
-    if (!f.check.ok) {
+    if (f.check.ok) {
+      o += ",\"check\":\"ok\",\"raw\":\"";
+    } else {
+      o += ",\"check\":\"bad\",\"check_expected\":\"";
       append_hex(o, check_wire_bytes(f.dialect, f.check.expected));
-      o += '"';
+      o += "\",\"raw\":\"";
     }
-    o += ",\"raw\":\"";
     append_hex(o, f.bytes);
     o += '"';
     if (f.latency) {
@@ -55,13 +64,17 @@ class JsonlEventWriter : public EventWriter {
       if (i > 0) o += ',';
       values_.append(o, f.values[i], f.dialect);
     }
-    o += "],\"issues\":[";
     collect_issues(f, issues_);
-    for (std::size_t i = 0; i < issues_.size(); ++i) {
-      if (i > 0) o += ',';
-      append_json_string(o, issues_[i]);
+    if (issues_.empty()) {
+      o += "],\"issues\":[]";
+    } else {
+      o += "],\"issues\":[";
+      for (std::size_t i = 0; i < issues_.size(); ++i) {
+        if (i > 0) o += ',';
+        append_json_string(o, issues_[i]);
+      }
+      o += ']';
     }
-    o += ']';
     end_line(o, c);
   }
 
@@ -142,6 +155,9 @@ class JsonlEventWriter : public EventWriter {
     o += "}\n";
     out_.done();
   }
+  static std::size_t head_index(Dialect d, Role r) {
+    return static_cast<std::size_t>(d) * 2 + static_cast<std::size_t>(r);
+  }
   static void append_station_and_function(std::string& o, const SessionFrame& f) {
     if (f.frame == nullptr) {
       o += "null,\"function\":null";
@@ -153,6 +169,8 @@ class JsonlEventWriter : public EventWriter {
   }
 
   OutputStream& out_;
+  // ,"dialect":"gsl","role":"response","station": for each dialect and role, written once.
+  std::array<std::string, 6> frame_heads_;
   ValueJsonCache values_;
   std::vector<std::string> issues_;
   std::string bus_name_;
