@@ -43,7 +43,9 @@ void ChunkTimeline::add(std::uint64_t end, std::size_t size, double time, Direct
     gap = std::max(gap, 0.0);
   }
   if (!marks_.empty() && direction != marks_.back().direction) mixed_directions_ = true;
-  marks_.push_back(Mark{end - size, end, time, previous_time_, gap, direction});
+  if (marks_.push_back(Mark{end - size, end, time, previous_time_, gap, direction})) {
+    last_ = nullptr;  // the marks moved
+  }
   previous_time_ = time;
   have_previous_ = true;
 }
@@ -79,24 +81,31 @@ void ChunkTimeline::drop_before(std::uint64_t offset) {
 
 const ChunkTimeline::Mark* ChunkTimeline::search(std::uint64_t offset) const {
   if (marks_.empty()) return nullptr;
-  // (A deque keeps element addresses stable on push_back; drop_before resets the cache.)
-  // The reassembler keeps a few chunks buffered: walking them beats a binary search over a
-  // deque's iterators, which stays for the long buffers of noise.
+  // The reassembler keeps a few chunks buffered: walking them beats a binary search, which
+  // stays for the long buffers of noise.
   constexpr std::size_t kWalk = 8;
+  std::size_t i = 0;
   if (marks_.size() <= kWalk) {
-    last_ = &marks_.back();
-    for (const Mark& m : marks_) {
-      if (offset < m.end) {
-        last_ = &m;
-        break;
-      }
-    }
-    return last_;
+    while (i < marks_.size() && !(offset < marks_[i].end)) ++i;
+  } else {
+    i = first_ending_after(offset);
   }
-  auto it = std::upper_bound(marks_.begin(), marks_.end(), offset,
-                             [](std::uint64_t o, const Mark& m) { return o < m.end; });
-  last_ = it == marks_.end() ? &marks_.back() : &*it;
+  last_ = i == marks_.size() ? &marks_.back() : &marks_[i];
   return last_;
+}
+
+std::size_t ChunkTimeline::first_ending_after(std::uint64_t offset) const {
+  std::size_t low = 0;
+  std::size_t high = marks_.size();
+  while (low < high) {
+    const std::size_t mid = low + (high - low) / 2;
+    if (offset < marks_[mid].end) {
+      high = mid;
+    } else {
+      low = mid + 1;
+    }
+  }
+  return low;
 }
 
 double ChunkTimeline::byte_end_time(std::uint64_t offset) const {
@@ -116,10 +125,9 @@ double ChunkTimeline::max_gap_inside(std::uint64_t first, std::uint64_t last) co
 
 double ChunkTimeline::widest_gap_inside(std::uint64_t first, std::uint64_t last) const {
   double widest = 0.0;
-  auto it = std::upper_bound(marks_.begin(), marks_.end(), first,
-                             [](std::uint64_t o, const Mark& m) { return o < m.end; });
-  for (; it != marks_.end() && it->start <= last; ++it) {
-    if (it->start > first) widest = std::max(widest, it->gap_before);
+  for (std::size_t i = first_ending_after(first); i < marks_.size() && marks_[i].start <= last;
+       ++i) {
+    if (marks_[i].start > first) widest = std::max(widest, marks_[i].gap_before);
   }
   return widest;
 }

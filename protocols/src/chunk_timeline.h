@@ -2,12 +2,12 @@
 #pragma once
 
 #include <cstdint>
-#include <deque>
 #include <optional>
 #include <string_view>
 
 #include "pvtap/bus_timing.h"
 #include "pvtap/stream_reassembler.h"
+#include "ring_buffer.h"
 
 namespace pvtap::detail {
 
@@ -86,6 +86,8 @@ class ChunkTimeline {
     return search(offset);
   }
   const Mark* search(std::uint64_t offset) const;
+  std::size_t first_ending_after(
+      std::uint64_t offset) const;  // index of the first mark whose end > offset
   double widest_gap_inside(std::uint64_t first, std::uint64_t last) const;
   bool proves_boundary(double gap) const {
     if (trusted_) return gap + kGapToleranceChars * timing_.char_time >= timing_.t35;
@@ -109,7 +111,7 @@ class ChunkTimeline {
   bool segment_ends_pin_;
   bool trusted_;
   std::string_view reason_;
-  std::deque<Mark> marks_;
+  RingBuffer<Mark> marks_;
   mutable const Mark* last_ = nullptr;  // the mark that answered the last query
   bool mixed_directions_ = false;       // false while every chunk had the same direction
   bool have_previous_ = false;
