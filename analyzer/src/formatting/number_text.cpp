@@ -52,21 +52,13 @@ char* write_scaled(char* end, std::uint64_t value, int decimals) {
 
 constexpr std::size_t kNumberText = 32;  // 20 digits, a sign and a point, with room
 
-void append_integer(std::string& out, std::uint64_t value) {
+// `scaled` with a decimal point `decimals` digits from the right ("523", 1 -> "52.3"), and a
+// minus sign first when asked.
+void append_scaled(std::string& out, std::uint64_t scaled, int decimals, bool negative = false) {
   std::array<char, kNumberText> buf;
   char* end = buf.data() + buf.size();
-  const char* start = write_scaled(end, value, 0);
-  out.append(start, static_cast<std::size_t>(end - start));
-}
-
-void append_integer(std::string& out, std::int64_t value) {
-  std::array<char, kNumberText> buf;
-  char* end = buf.data() + buf.size();
-  // The magnitude as unsigned: -INT64_MIN does not fit in int64.
-  const std::uint64_t magnitude =
-      value < 0 ? ~static_cast<std::uint64_t>(value) + 1 : static_cast<std::uint64_t>(value);
-  char* start = write_scaled(end, magnitude, 0);
-  if (value < 0) *--start = '-';
+  char* start = write_scaled(end, scaled, decimals);
+  if (negative) *--start = '-';
   out.append(start, static_cast<std::size_t>(end - start));
 }
 
@@ -84,16 +76,6 @@ void split_time(double epoch_seconds, std::time_t& seconds, long& micros) {
     micros += 1000000;
     seconds -= 1;
   }
-}
-
-// `scaled` with a decimal point `decimals` digits from the right ("523", 1 -> "52.3"), and a
-// minus sign first when asked.
-void append_scaled(std::string& out, std::uint64_t scaled, int decimals, bool negative = false) {
-  std::array<char, kNumberText> buf;
-  char* end = buf.data() + buf.size();
-  char* start = write_scaled(end, scaled, decimals);
-  if (negative) *--start = '-';
-  out.append(start, static_cast<std::size_t>(end - start));
 }
 
 // std::llround for |x| < 2^52 without the library call: x - trunc(x) is exact there.
@@ -130,14 +112,33 @@ void append_two(std::string& out, int value) {
   out += static_cast<char>('0' + value % 10);
 }
 
+// hh:mm:ss.uuuuuu
+void append_clock(std::string& out, const std::tm& tm, long micros) {
+  append_two(out, tm.tm_hour);
+  out += ':';
+  append_two(out, tm.tm_min);
+  out += ':';
+  append_two(out, tm.tm_sec);
+  out += '.';
+  std::array<char, 8> digits{};
+  for (int i = 5; i >= 0; --i) {
+    digits[static_cast<std::size_t>(i)] = static_cast<char>('0' + micros % 10);
+    micros /= 10;
+  }
+  out.append(digits.data(), 6);
+}
+
 }  // namespace
 
 void append_uint(std::string& out, std::uint64_t value) {
-  append_integer(out, value);
+  append_scaled(out, value, 0);
 }
 
 void append_int(std::string& out, std::int64_t value) {
-  append_integer(out, value);
+  // The magnitude as unsigned: -INT64_MIN does not fit in int64.
+  const std::uint64_t magnitude =
+      value < 0 ? ~static_cast<std::uint64_t>(value) + 1 : static_cast<std::uint64_t>(value);
+  append_scaled(out, magnitude, 0, value < 0);
 }
 
 void append_fixed(std::string& out, double value, int decimals) {
@@ -194,18 +195,7 @@ void append_time_of_day(std::string& out, double epoch_seconds) {
   split_time(epoch_seconds, seconds, micros);
   std::tm tm{};
   gmtime_r(&seconds, &tm);
-  append_two(out, tm.tm_hour);
-  out += ':';
-  append_two(out, tm.tm_min);
-  out += ':';
-  append_two(out, tm.tm_sec);
-  out += '.';
-  std::array<char, 8> digits{};
-  for (int i = 5; i >= 0; --i) {
-    digits[static_cast<std::size_t>(i)] = static_cast<char>('0' + micros % 10);
-    micros /= 10;
-  }
-  out.append(digits.data(), 6);
+  append_clock(out, tm, micros);
 }
 
 void append_utc_date_time(std::string& out, double epoch_seconds) {
@@ -214,13 +204,13 @@ void append_utc_date_time(std::string& out, double epoch_seconds) {
   split_time(epoch_seconds, seconds, micros);
   std::tm tm{};
   gmtime_r(&seconds, &tm);
-  append_integer(out, std::int64_t{tm.tm_year} + 1900);
+  append_int(out, std::int64_t{tm.tm_year} + 1900);
   out += '-';
   append_two(out, tm.tm_mon + 1);
   out += '-';
   append_two(out, tm.tm_mday);
   out += ' ';
-  append_time_of_day(out, epoch_seconds);
+  append_clock(out, tm, micros);
 }
 
 }  // namespace pvtap::analyzer
