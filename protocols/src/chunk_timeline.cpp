@@ -81,20 +81,20 @@ void ChunkTimeline::drop_before(std::uint64_t offset) {
 
 const ChunkTimeline::Mark* ChunkTimeline::search(std::uint64_t offset) const {
   if (marks_.empty()) return nullptr;
-  // The reassembler keeps a few chunks buffered: walking them beats a binary search, which
-  // stays for the long buffers of noise.
-  constexpr std::size_t kWalk = 8;
-  std::size_t i = 0;
-  if (marks_.size() <= kWalk) {
-    while (i < marks_.size() && !(offset < marks_[i].end)) ++i;
-  } else {
-    i = first_ending_after(offset);
-  }
+  const std::size_t i = first_ending_after(offset);
   last_ = i == marks_.size() ? &marks_.back() : &marks_[i];
   return last_;
 }
 
 std::size_t ChunkTimeline::first_ending_after(std::uint64_t offset) const {
+  // The reassembler keeps a few chunks buffered: walking them beats a binary search, which
+  // stays for the long buffers of noise.
+  constexpr std::size_t kWalk = 8;
+  if (marks_.size() <= kWalk) {
+    std::size_t i = 0;
+    while (i < marks_.size() && !(offset < marks_[i].end)) ++i;
+    return i;
+  }
   std::size_t low = 0;
   std::size_t high = marks_.size();
   while (low < high) {

@@ -86,8 +86,8 @@ class ChunkTimeline {
     return search(offset);
   }
   const Mark* search(std::uint64_t offset) const;
-  std::size_t first_ending_after(
-      std::uint64_t offset) const;  // index of the first mark whose end > offset
+  // The index of the first mark that ends after `offset` (marks_.size() when none does).
+  std::size_t first_ending_after(std::uint64_t offset) const;
   double widest_gap_inside(std::uint64_t first, std::uint64_t last) const;
   bool proves_boundary(double gap) const {
     if (trusted_) return gap + kGapToleranceChars * timing_.char_time >= timing_.t35;
