@@ -64,17 +64,13 @@ class JsonlEventWriter : public EventWriter {
       if (i > 0) o += ',';
       values_.append(o, f.values[i], f.dialect);
     }
+    o += "],\"issues\":[";
     collect_issues(f, issues_);
-    if (issues_.empty()) {
-      o += "],\"issues\":[]";
-    } else {
-      o += "],\"issues\":[";
-      for (std::size_t i = 0; i < issues_.size(); ++i) {
-        if (i > 0) o += ',';
-        append_json_string(o, issues_[i]);
-      }
-      o += ']';
+    for (std::size_t i = 0; i < issues_.size(); ++i) {
+      if (i > 0) o += ',';
+      append_json_string(o, issues_[i]);
     }
+    o += ']';
     end_line(o, c);
   }
 
