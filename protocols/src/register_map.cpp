@@ -116,11 +116,11 @@ std::optional<RegisterSlot> RegisterMap::locate(std::uint16_t address) const {
   if (offset >= data_->slot_by_address.size()) return std::nullopt;
   const std::uint32_t index = data_->slot_by_address[offset];
   if (index == Data::kNoSlot) return std::nullopt;
-  const RegisterSlotEntry* it = &data_->slots[index];
-  const RegisterDef& def = data_->defs[it->def_index];
+  const RegisterSlotEntry& entry = data_->slots[index];
+  const RegisterDef& def = data_->defs[entry.def_index];
   const unsigned step = address_step(data_->dialect);
-  const auto value_address = static_cast<std::uint16_t>(address - it->word * step);
-  return RegisterSlot{&def, it->word, it->instance, value_address};
+  const auto value_address = static_cast<std::uint16_t>(address - entry.word * step);
+  return RegisterSlot{&def, entry.word, entry.instance, value_address};
 }
 
 std::string MapDiagnostic::to_string() const {
