@@ -46,7 +46,9 @@ std::optional<std::span<const std::uint8_t>> counted_body(std::span<const std::u
   return b.subspan(3, n);
 }
 
-ParseOutcome parse_hybrid_request(std::span<const std::uint8_t> b, Frame f) {
+// The parsers below fill in the frame they are given: passing a Frame by value copies its
+// disengaged optionals, which g++ 14 reports as a read of uninitialized memory.
+ParseOutcome parse_hybrid_request(std::span<const std::uint8_t> b, Frame& f) {
   if (b.size() != kFixedLength) return fail("Hybrid request is not 8 bytes");
   f.start = be16(b, 2);
   if (f.function == fc::kHybridWriteParameter) {
@@ -59,7 +61,7 @@ ParseOutcome parse_hybrid_request(std::span<const std::uint8_t> b, Frame f) {
   return f;
 }
 
-ParseOutcome parse_hybrid_reply(std::span<const std::uint8_t> b, Frame f) {
+ParseOutcome parse_hybrid_reply(std::span<const std::uint8_t> b, Frame& f) {
   const auto body = counted_body(b, f);
   if (!body) return fail("Hybrid reply length disagrees with its byte count");
   if (body->size() < kDeviceNumberLength) return fail("Hybrid reply shorter than a device number");
@@ -80,7 +82,7 @@ ParseOutcome parse_hybrid_reply(std::span<const std::uint8_t> b, Frame f) {
   return f;
 }
 
-ParseOutcome parse_gsl_request(std::span<const std::uint8_t> b, Frame f) {
+ParseOutcome parse_gsl_request(std::span<const std::uint8_t> b, Frame& f) {
   if (f.function == fc::kGslWriteMultiple) {
     if (b.size() < 9 || b.size() != 9u + b[6]) return fail("GSL 0x10 length disagrees with n");
     f.start = be16(b, 2);
@@ -101,7 +103,7 @@ ParseOutcome parse_gsl_request(std::span<const std::uint8_t> b, Frame f) {
   return f;
 }
 
-ParseOutcome parse_gsl_reply(std::span<const std::uint8_t> b, Frame f) {
+ParseOutcome parse_gsl_reply(std::span<const std::uint8_t> b, Frame& f) {
   if (fc::is_gsl_exception(f.function)) {
     if (b.size() != 5) return fail("GSL exception is not 5 bytes");
     f.exception_code = b[2];
