@@ -139,7 +139,7 @@ void analyze(std::span<const std::uint8_t> bytes, const AnalysisContext& ctx, Fr
   plan.dialect = r.dialect;
   plan.role = r.role;
   plan.check = verify_check(bytes, r.dialect);
-  plan.check_verified = ctx.protocol->settings.verify_check != FALSE;
+  plan.check_verified = ctx.protocol->settings.verify_check;
   ParseOutcome parsed = parse_frame(bytes, r.dialect, r.role);
   if (!parsed) {
     plan_check_span(bytes.size(), r.dialect, plan);

@@ -5,6 +5,7 @@
 #include <epan/packet.h>
 
 #include "pvtap/dialect.h"
+#include "wireshark_api/preference_types.h"
 
 namespace pvtap::dissector {
 
@@ -61,8 +62,8 @@ struct Subtrees {
 
 // ProtocolSettings: preference values; Wireshark writes them through pointers.
 struct ProtocolSettings {
-  gboolean verify_check = TRUE;
-  gboolean desegment = TRUE;
+  PreferenceBool verify_check = true;
+  PreferenceBool desegment = true;
   guint reply_timeout_ms = 1000;
   guint baud = 9600;          // of the bus behind the gateway: wire times of segments
   guint gateway_gap_ms = 50;  // silence between segments that proves a frame boundary

@@ -26,12 +26,12 @@ void register_rtu_options(module_t* module, ProtocolSettings& s) {
                                  "How the GSL seed's written register IDs go on the wire: "
                                  "decimal (ID 1050 is wire address 0x041A, the reference's "
                                  "reading) or hex (ID 1050 is wire address 0x1050)",
-                                 &s.gsl_ids, kGslIdReadings, FALSE);
+                                 &s.gsl_ids, kGslIdReadings, false);
   prefs_register_enum_preference(
       module, "pair_rule", "GSL 32-bit pairs",
       "How the two words of the GSL 32-bit values (total energy, CO2 reduction) combine: "
       "binary (high x 65536 + low) or decimal (high x 10000 + low)",
-      &s.pair_rule, kPairRules, FALSE);
+      &s.pair_rule, kPairRules, false);
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include "conversation_state.h"
 #include "pvtap/framing_probe.h"
 #include "stream_dissection.h"
+#include "wireshark_api/heuristic_verdict.h"
 
 namespace pvtap::dissector {
 namespace {
@@ -52,16 +53,16 @@ std::optional<Role> leading_frame_role(tvbuff_t* tvb, packet_info* pinfo, Dialec
   return probe.role;
 }
 
-gboolean try_heuristic(InverterProtocol& p, tvbuff_t* tvb, packet_info* pinfo, proto_tree* tree,
-                       const tcpinfo* tcp) {
+HeuristicVerdict try_heuristic(InverterProtocol& p, tvbuff_t* tvb, packet_info* pinfo,
+                               proto_tree* tree, const tcpinfo* tcp) {
   const std::optional<Role> role = leading_frame_role(tvb, pinfo, p.dialects);
-  if (!role) return FALSE;
+  if (!role) return kDeclined;
   conversation_t* conversation = find_or_create_conversation(pinfo);
   conversation_set_dissector(conversation, tcp != nullptr ? p.stream_handle : p.datagram_handle);
   ConversationState& state = conversation_state(pinfo, p);
   if (!state.slave_known) set_slave_side(state, pinfo, *role == Role::Response);
   dissect_bound(p, tvb, pinfo, tree, tcp);
-  return TRUE;
+  return kClaimed;
 }
 
 // TCP hands its subdissectors the segment's struct tcpinfo as their data.
@@ -80,13 +81,13 @@ int datagram_entry(tvbuff_t* tvb, packet_info* pinfo, proto_tree* tree, void*) {
 }
 
 template <ProtocolOf P>
-gboolean tcp_heuristic(tvbuff_t* tvb, packet_info* pinfo, proto_tree* tree, void* data) {
-  if (data == nullptr) return FALSE;
+HeuristicVerdict tcp_heuristic(tvbuff_t* tvb, packet_info* pinfo, proto_tree* tree, void* data) {
+  if (data == nullptr) return kDeclined;
   return try_heuristic(P(), tvb, pinfo, tree, tcp_info(data));
 }
 
 template <ProtocolOf P>
-gboolean udp_heuristic(tvbuff_t* tvb, packet_info* pinfo, proto_tree* tree, void*) {
+HeuristicVerdict udp_heuristic(tvbuff_t* tvb, packet_info* pinfo, proto_tree* tree, void*) {
   return try_heuristic(P(), tvb, pinfo, tree, nullptr);
 }
 

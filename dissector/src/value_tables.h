@@ -1,7 +1,7 @@
 // Value strings for fields whose values have names, built once from the core's tables.
 #pragma once
 
-#include <epan/value_string.h>
+#include "wireshark_api/value_string.h"
 
 #include "pvtap/dialect.h"
 #include "pvtap/register_map.h"
