@@ -27,8 +27,9 @@ import time
 from concurrent.futures import ThreadPoolExecutor
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(REPO, "tests", "dissector"))
+from tshark_runner import plugin_subdir  # noqa: E402  (the personal folder of tshark's series)
 NOBODY = 65534
-PLUGIN_SUBDIR = ".local/lib/wireshark/plugins/4.0/epan"
 OUR_PROTOCOLS = ("invascii", "invrtu", "pvtap")
 OUR_FRAMES = ("pvtap.so", "/dissector/src/", "/protocols/src/", "pvtap::")
 SANITIZER = re.compile(r"ERROR: AddressSanitizer|runtime error:|ERROR: LeakSanitizer")
@@ -48,7 +49,7 @@ class Home:
     def __init__(self, plugin):
         self.dir = tempfile.mkdtemp(prefix="pvtap-campaign-")
         os.chmod(self.dir, 0o755)
-        plugins = os.path.join(self.dir, PLUGIN_SUBDIR)
+        plugins = os.path.join(self.dir, plugin_subdir())
         os.makedirs(plugins)
         shutil.copy(plugin, os.path.join(plugins, "pvtap.so"))
         self.variants = os.path.join(self.dir, "variants")

@@ -370,7 +370,6 @@ def mode_formats(options, checks):
 
 
 NOBODY = 65534
-PLUGIN_SUBDIR = os.path.join(".local", "lib", "wireshark", "plugins", "4.0", "epan")
 
 
 def run_tshark(home, args):
@@ -397,8 +396,9 @@ def mode_tshark(options, checks):
     try:
         written = os.path.join(home, "frames.pcap")
         lines = audit_jsonl(options, ["--write", written, *args], checks)
-        os.makedirs(os.path.join(home, PLUGIN_SUBDIR))
-        shutil.copy(options.plugin, os.path.join(home, PLUGIN_SUBDIR, "pvtap.so"))
+        plugins = os.path.join(home, tshark_runner.plugin_subdir())
+        os.makedirs(plugins)
+        shutil.copy(options.plugin, os.path.join(plugins, "pvtap.so"))
         if os.geteuid() == 0:
             for root, dirs, files in os.walk(home):
                 for name in [root] + [os.path.join(root, n) for n in dirs + files]:

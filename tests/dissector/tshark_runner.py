@@ -12,12 +12,12 @@ import functools
 import glob
 import json
 import os
+import re
 import shutil
 import subprocess
 import tempfile
 
 NOBODY = 65534
-PLUGIN_SUBDIR = ".local/lib/wireshark/plugins/4.0/epan"
 
 
 def plugin_path():
@@ -25,6 +25,24 @@ def plugin_path():
     if not path or not os.path.isfile(path):
         raise RuntimeError("PVTAP_PLUGIN must name the built pvtap.so (got %r)" % path)
     return path
+
+
+@functools.lru_cache(maxsize=None)
+def wireshark_series():
+    """The major.minor of the tshark on PATH ("4.4"): a plugin loads only from the personal
+    folder of the series it was built for."""
+    banner = subprocess.run(["env", "-i", "PATH=/usr/sbin:/usr/bin:/sbin:/bin", "LC_ALL=C.UTF-8",
+                             "tshark", "--version"], capture_output=True, text=True,
+                            timeout=60).stdout
+    match = re.search(r"TShark \(Wireshark\) (\d+)\.(\d+)\.", banner)
+    if not match:
+        raise RuntimeError("tshark --version names no Wireshark version:\n" + banner[:200])
+    return "%s.%s" % match.groups()
+
+
+def plugin_subdir():
+    """The personal plugin folder for epan plugins, relative to HOME."""
+    return os.path.join(".local", "lib", "wireshark", "plugins", wireshark_series(), "epan")
 
 
 @functools.lru_cache(maxsize=None)
@@ -64,7 +82,7 @@ class TsharkHome:
     def __init__(self, user_maps=None):
         refuse_system_plugin()
         self.home = tempfile.mkdtemp(prefix="pvtap-tshark-")
-        plugins = os.path.join(self.home, PLUGIN_SUBDIR)
+        plugins = os.path.join(self.home, plugin_subdir())
         os.makedirs(plugins)
         shutil.copy(plugin_path(), os.path.join(plugins, "pvtap.so"))
         config = os.path.join(self.home, ".config", "wireshark")
