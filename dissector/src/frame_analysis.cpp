@@ -125,13 +125,12 @@ std::string summary_text(const FramePlan& plan, const InverterProtocol& protocol
   return text;
 }
 
-// A frame that does not parse still shows its check, which lies at its end.
-void plan_check_span(std::size_t length, Dialect d, FramePlan& plan) {
-  const std::size_t width = d == Dialect::Ascii ? 4 : 2;
-  const std::size_t trailer = d == Dialect::Ascii ? 1 : 0;  // EOT
-  if (length < width + trailer) return;
-  plan.layout.check = FieldSpan{static_cast<std::uint16_t>(length - width - trailer),
-                                static_cast<std::uint16_t>(width)};
+// A frame that does not parse still shows what every frame of its dialect has: the station
+// and function the bus decided it by, and its check, which lies at its end.
+void plan_unparsed_header(std::size_t length, const FrameRecord& r, FramePlan& plan) {
+  plan.layout = header_layout(r.dialect, length);
+  plan.station = r.station;
+  plan.function = r.function;
 }
 
 void analyze(std::span<const std::uint8_t> bytes, const AnalysisContext& ctx, FramePlan& plan) {
@@ -142,7 +141,7 @@ void analyze(std::span<const std::uint8_t> bytes, const AnalysisContext& ctx, Fr
   plan.check_verified = ctx.protocol->settings.verify_check;
   ParseOutcome parsed = parse_frame(bytes, r.dialect, r.role);
   if (!parsed) {
-    plan_check_span(bytes.size(), r.dialect, plan);
+    plan_unparsed_header(bytes.size(), r, plan);
     plan.parse_error = pool_text(ctx.pool, parsed.diagnostics());
     plan.summary = pool_text(ctx.pool, "malformed frame: " + parsed.error_text());
     return;

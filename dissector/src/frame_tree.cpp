@@ -259,6 +259,8 @@ void add_frame_tree(const TreeTarget& t, const FramePlan& plan, const FrameRecor
   if (!plan.parsed) {
     expert_add_info_format(t.pinfo, top, &b.ei().malformed, "Malformed frame: %s",
                            plan.parse_error);
+    b.uint(b.hf().station, plan.layout.station, plan.station);
+    b.uint(b.hf().function, plan.layout.function, plan.function);
     add_check(b, plan);
     add_matching(b, record);
     return;

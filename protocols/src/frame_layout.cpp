@@ -15,22 +15,40 @@ struct Cursor {
   }
 };
 
-FrameLayout ascii_layout(const Frame& f, std::size_t length) {
+// The spans of a header of `size` bytes from `offset`, when the frame holds them.
+FieldSpan within(std::size_t length, std::uint16_t offset, std::uint16_t size) {
+  return length >= std::size_t{offset} + size ? FieldSpan{offset, size} : FieldSpan{};
+}
+
+FrameLayout ascii_header_layout(std::size_t length) {
   FrameLayout l;
   l.word_size = kAsciiWordDigits;
-  Cursor c;
-  l.start_delimiter = c.take(1);
-  l.station = c.take(2);
-  l.function = c.take(1);
+  l.start_delimiter = within(length, 0, 1);
+  l.station = within(length, 1, 2);
+  l.function = within(length, 3, 1);
+  if (length >= 5) {
+    l.check = {static_cast<std::uint16_t>(length - 5), 4};
+    l.end_delimiter = {static_cast<std::uint16_t>(length - 1), 1};
+  }
+  return l;
+}
+
+FrameLayout rtu_header_layout(std::size_t length) {
+  FrameLayout l;
+  l.station = within(length, 0, 1);
+  l.function = within(length, 1, 1);
+  if (length >= 2) l.check = {static_cast<std::uint16_t>(length - 2), 2};
+  return l;
+}
+
+FrameLayout ascii_layout(const Frame& f, std::size_t length) {
+  FrameLayout l = ascii_header_layout(length);
+  Cursor c{4};  // after ENQ/ACK, station and function
   l.start = c.take(4);
   if (f.role == Role::Request) {
     l.count = c.take(2);
   } else {
     l.words = c.take(f.words.size() * kAsciiWordDigits);
-  }
-  if (length >= 5) {
-    l.check = {static_cast<std::uint16_t>(length - 5), 4};
-    l.end_delimiter = {static_cast<std::uint16_t>(length - 1), 1};
   }
   return l;
 }
@@ -58,10 +76,8 @@ void plain_layout(const Frame& f, Cursor& c, FrameLayout& l) {
 }
 
 FrameLayout rtu_layout(const Frame& f, std::size_t length) {
-  FrameLayout l;
-  Cursor c;
-  l.station = c.take(1);
-  l.function = c.take(1);
+  FrameLayout l = rtu_header_layout(length);
+  Cursor c{2};  // after station and function
   const bool counted_reply = f.role == Role::Response && (f.byte_count || f.device);
   if (counted_reply) {
     counted_reply_layout(f, c, l);
@@ -69,7 +85,6 @@ FrameLayout rtu_layout(const Frame& f, std::size_t length) {
     plain_layout(f, c, l);
   }
   if (!f.words.empty()) l.words = c.take(f.words.size() * 2);
-  if (length >= 2) l.check = {static_cast<std::uint16_t>(length - 2), 2};
   return l;
 }
 
@@ -81,6 +96,10 @@ FieldSpan FrameLayout::word_span(std::size_t index, std::size_t n) const {
   if (n == 0 || index >= words_in_frame || n > words_in_frame - index) return {};
   return {static_cast<std::uint16_t>(words.offset + index * size),
           static_cast<std::uint16_t>(n * size)};
+}
+
+FrameLayout header_layout(Dialect dialect, std::size_t length) {
+  return dialect == Dialect::Ascii ? ascii_header_layout(length) : rtu_header_layout(length);
 }
 
 FrameLayout frame_layout(const Frame& frame, std::size_t length) {

@@ -36,6 +36,11 @@ struct FrameLayout {
   FieldSpan word_span(std::size_t index, std::size_t n = 1) const;
 };
 
+// The spans every frame of a dialect has, whatever its function: delimiters, station,
+// function and check, those that fit in `length` bytes. A frame that does not parse shows
+// these.
+FrameLayout header_layout(Dialect dialect, std::size_t length);
+
 // The layout of a frame that parse_frame produced from `length` wire bytes.
 FrameLayout frame_layout(const Frame& frame, std::size_t length);
 
