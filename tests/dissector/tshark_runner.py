@@ -18,6 +18,8 @@ import subprocess
 import tempfile
 
 NOBODY = 65534
+# tshark -T fields writes a boolean field as 1/0 up to 4.0 and as True/False from 4.2 on.
+BOOLEANS = {"True": "1", "False": "0"}
 
 
 def plugin_path():
@@ -141,7 +143,8 @@ class TsharkHome:
         rows = []
         for line in self.run(list(options) + args).stdout.splitlines():
             cells = line.split("\t")
-            rows.append([cell.split("|") if cell else [] for cell in cells])
+            rows.append([[BOOLEANS.get(v, v) for v in cell.split("|")] if cell else []
+                         for cell in cells])
         return rows
 
     def json(self, capture, options=()):
