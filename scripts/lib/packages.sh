@@ -1,6 +1,17 @@
 # shellcheck shell=bash
-# The Debian 12 packages pvtap needs, in one place, and the install step shared by
-# scripts/test and scripts/demo. Source this file; it defines functions only.
+# The Debian packages pvtap needs on each supported release, in one place, and the install
+# step shared by scripts/test, scripts/demo, scripts/package and scripts/fuzz. Source this
+# file; it defines variables and functions only.
+
+# What differs between the releases pvtap supports, by codename (VERSION_CODENAME of
+# /etc/os-release). The Wireshark ABI package (libwireshark16, 18, 19) is not listed: it
+# comes with wireshark-dev, and the .deb's dependency on it is read from the plugin's
+# linkage (packaging/PackageDeb.cmake).
+#   tag: the release tag in the package version (pvtap_<version>~deb13_amd64.deb)
+#   clang: the clang series with libFuzzer and the sanitizer runtimes (scripts/fuzz)
+declare -A PVTAP_RELEASE_NAME=([bookworm]="Debian 12" [trixie]="Debian 13" [forky]="Debian testing")
+declare -A PVTAP_RELEASE_TAG=([bookworm]=deb12 [trixie]=deb13 [forky]=deb14)
+declare -A PVTAP_RELEASE_CLANG=([bookworm]=14 [trixie]=19 [forky]=21)
 
 # Build and test toolchain, the core's libraries, and what the analyzer and the
 # Wireshark plugin need (wireshark-dev, tshark, libpcap-dev, libcli11-dev); python3 runs the
@@ -26,9 +37,8 @@ PVTAP_PACKAGES=(
   lintian
   man-db
   bash-completion
-  # scripts/fuzz: the libFuzzer targets are built with clang and its runtimes.
-  clang-14
-  libclang-rt-14-dev
+  # scripts/fuzz: the libFuzzer targets are built with clang and its runtimes (the
+  # release's clang-N and libclang-rt-N-dev, added by pvtap_packages).
   # The real-peer capture test (captures/real-peer/record): software we did not write.
   mbpoll
   python3-pymodbus
@@ -50,10 +60,62 @@ PVTAP_PACKAGES=(
   python3-paho-mqtt
 )
 
-# Prints the packages of PVTAP_PACKAGES that are not installed, one per line.
+# The codename of the running Debian release if pvtap supports it; fails otherwise.
+pvtap_release() {
+  local codename="" id=""
+  if [[ -r /etc/os-release ]]; then
+    # shellcheck disable=SC1091
+    codename="$(. /etc/os-release && echo "${VERSION_CODENAME:-}")"
+    # shellcheck disable=SC1091
+    id="$(. /etc/os-release && echo "${ID:-}")"
+  fi
+  [[ "$id" == debian && -n "$codename" && -n "${PVTAP_RELEASE_TAG[$codename]:-}" ]] || return 1
+  echo "$codename"
+}
+
+# The package tag of the running release (deb12, deb13, deb14).
+pvtap_release_tag() {
+  local release
+  release="$(pvtap_release)" || return 1
+  echo "${PVTAP_RELEASE_TAG[$release]}"
+}
+
+# The clang command of the running release (clang-14, clang-19, clang-21).
+pvtap_clang() {
+  local release
+  release="$(pvtap_release)" || return 1
+  echo "clang-${PVTAP_RELEASE_CLANG[$release]}"
+}
+
+# Prints every package pvtap needs on the running release, one per line.
+pvtap_packages() {
+  local release
+  release="$(pvtap_release)" || return 1
+  printf '%s\n' "${PVTAP_PACKAGES[@]}"
+  printf '%s\n' "clang-${PVTAP_RELEASE_CLANG[$release]}" "libclang-rt-${PVTAP_RELEASE_CLANG[$release]}-dev"
+}
+
+# On a system that is not one of the supported releases: what pvtap needs, and exit 2.
+pvtap_unsupported_system() {
+  local pretty="an unknown system" release
+  # shellcheck disable=SC1091
+  [[ -r /etc/os-release ]] && pretty="$(. /etc/os-release && echo "${PRETTY_NAME:-$pretty}")"
+  {
+    echo "pvtap: this is $pretty; the package step knows only these Debian releases:"
+    for release in bookworm trixie forky; do
+      echo "  ${PVTAP_RELEASE_NAME[$release]} ($release), clang-${PVTAP_RELEASE_CLANG[$release]}"
+    done
+    echo "pvtap: elsewhere, install the equivalents of these Debian packages yourself:"
+    printf '%s\n' "${PVTAP_PACKAGES[@]}" "clang and its sanitizer/libFuzzer runtimes" | paste -sd' ' | fold -s -w 88 | sed 's/^/  /'
+    echo "pvtap: needed: a C++20 compiler, CMake >= 3.25 and Wireshark 4.0, 4.2, 4.4 or 4.6 with its development files"
+  } >&2
+  exit 2
+}
+
+# Prints the packages pvtap needs that are not installed, one per line.
 pvtap_missing_packages() {
   local pkg status
-  for pkg in "${PVTAP_PACKAGES[@]}"; do
+  for pkg in $(pvtap_packages); do
     status=$(dpkg-query -W -f='${db:Status-Status}' "$pkg" 2>/dev/null || true)
     if [[ "$status" != "installed" ]]; then
       printf '%s\n' "$pkg"
@@ -65,6 +127,7 @@ pvtap_missing_packages() {
 # prompting, also with no stdin); otherwise it prints the command to run and fails.
 pvtap_ensure_packages() {
   local missing=()
+  pvtap_release >/dev/null || pvtap_unsupported_system
   mapfile -t missing < <(pvtap_missing_packages)
   if ((${#missing[@]} == 0)); then
     return 0
