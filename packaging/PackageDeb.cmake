@@ -1,8 +1,9 @@
-# CPack's DEB generator: pvtap_<version>_<arch>.deb (scripts/package runs it on a clean build).
+# CPack's DEB generator: pvtap_<version>[~<release tag>]_<arch>.deb (scripts/package runs it on a
+# clean build, with the tag of the Debian release it runs on).
 
 set(CPACK_GENERATOR DEB)
 set(CPACK_PACKAGE_NAME pvtap)
-set(CPACK_PACKAGE_VERSION ${PROJECT_VERSION})
+set(CPACK_PACKAGE_VERSION ${PVTAP_PACKAGE_VERSION})
 set(CPACK_PACKAGE_CONTACT "${PVTAP_PACKAGE_MAINTAINER}")
 set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "${PROJECT_DESCRIPTION}")
 # The extended description, wrapped at 80 columns as Debian wants it (CPack does not wrap).

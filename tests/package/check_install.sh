@@ -84,6 +84,8 @@ mkdir -p "$scratch/home"
 contents() { dpkg-deb --fsys-tarfile "$deb" | tar -t | sed -e 's|^\./|/|' -e 's|/$||' | grep -v '^$' | grep -v '^/$'; }
 plugin_file="$(contents | grep '/epan/pvtap\.so$')"
 version="$(dpkg-deb -f "$deb" Version)"
+# pvtap --version prints the upstream version, without the Debian release tag (0.1.0~deb12).
+upstream_version="${version%%~*}"
 
 echo "== check_install: lintian"
 # Errors fail the test; warnings are listed.
@@ -113,7 +115,7 @@ echo "== check_install: dpkg -i $(basename "$deb")"
 installed=1
 dpkg -i "$deb"
 
-python3 "$here/check_installed.py" --version "$version" --home "$scratch/home"
+python3 "$here/check_installed.py" --version "$upstream_version" --home "$scratch/home"
 
 if [[ -n "$build_plugin" ]]; then
   echo "== check_install: a plugin test refuses to run next to the installed plugin"
