@@ -19,11 +19,11 @@
 #include <vector>
 
 #include "pvtap/bus_timing.h"
-#include "pvtap/dialect.h"
-#include "pvtap/frame.h"
-#include "pvtap/frame_codec.h"
+#include "pvtap/codec/dialect.h"
+#include "pvtap/codec/frame.h"
+#include "pvtap/codec/frame_codec.h"
+#include "pvtap/codec/function_codes.h"
 #include "pvtap/framing_probe.h"
-#include "pvtap/function_codes.h"
 #include "pvtap/register_decoder.h"
 #include "pvtap/register_format.h"
 #include "pvtap/stream_reassembler.h"

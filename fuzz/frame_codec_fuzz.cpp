@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "fuzz_input.h"
-#include "pvtap/frame_codec.h"
-#include "pvtap/frame_layout.h"
+#include "pvtap/codec/frame_codec.h"
+#include "pvtap/codec/frame_layout.h"
 #include "pvtap/framing_probe.h"
 
 namespace {

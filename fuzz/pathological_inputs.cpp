@@ -24,7 +24,7 @@
 #include "pvtap/capture/exported_pdu_reader.h"
 #include "pvtap/capture/packet_builder.h"
 #include "pvtap/capture/rtac_record.h"
-#include "pvtap/frame_codec.h"
+#include "pvtap/codec/frame_codec.h"
 #include "pvtap/register_map.h"
 
 namespace {

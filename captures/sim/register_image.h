@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "bus_event.h"
-#include "pvtap/frame.h"
+#include "pvtap/codec/frame.h"
 #include "pvtap/register_map.h"
 
 namespace pvtap::sim {

@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "pvtap/codec/function_codes.h"
 #include "pvtap/frame_summary.h"
-#include "pvtap/function_codes.h"
 #include "pvtap/register_format.h"
 #include "register_decoding.h"
 

@@ -5,8 +5,8 @@
 
 #include <type_traits>
 
-#include "pvtap/frame_codec.h"
-#include "pvtap/frame_layout.h"
+#include "pvtap/codec/frame_codec.h"
+#include "pvtap/codec/frame_layout.h"
 #include "pvtap/register_decoder.h"
 #include "register_fields.h"
 

@@ -7,7 +7,7 @@
 #include <type_traits>
 
 #include "pvtap/bus_session.h"
-#include "pvtap/dialect.h"
+#include "pvtap/codec/dialect.h"
 #include "pvtap/match_events.h"
 
 namespace pvtap::dissector {

@@ -3,7 +3,7 @@
 #include <epan/expert.h>
 #include <epan/proto.h>
 
-#include "pvtap/function_codes.h"
+#include "pvtap/codec/function_codes.h"
 #include "pvtap/register_format.h"
 
 namespace pvtap::dissector {

@@ -3,7 +3,7 @@
 
 #include <epan/value_string.h>
 
-#include "pvtap/dialect.h"
+#include "pvtap/codec/dialect.h"
 #include "pvtap/register_map.h"
 
 namespace pvtap::dissector {

@@ -1,8 +1,8 @@
 #include "ascii_candidates.h"
 
-#include "ascii_codec.h"
-#include "hex_digits.h"
-#include "pvtap/function_codes.h"
+#include "codec/ascii_codec.h"
+#include "codec/hex_digits.h"
+#include "pvtap/codec/function_codes.h"
 
 namespace pvtap::detail {
 namespace {

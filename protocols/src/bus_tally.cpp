@@ -1,6 +1,6 @@
 #include "bus_tally.h"
 
-#include "pvtap/function_codes.h"
+#include "pvtap/codec/function_codes.h"
 
 namespace pvtap::detail {
 namespace {

@@ -4,7 +4,7 @@
 #include <optional>
 
 #include "length_repair.h"
-#include "pvtap/checksums.h"
+#include "pvtap/codec/checksums.h"
 
 namespace pvtap::detail {
 namespace {

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "pvtap/bus_report.h"
-#include "pvtap/frame.h"
+#include "pvtap/codec/frame.h"
 #include "pvtap/register_decoder.h"
 
 namespace pvtap::detail {

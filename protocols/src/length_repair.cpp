@@ -3,8 +3,8 @@
 #include <array>
 #include <cstdint>
 
-#include "pvtap/checksums.h"
-#include "pvtap/function_codes.h"
+#include "pvtap/codec/checksums.h"
+#include "pvtap/codec/function_codes.h"
 
 namespace pvtap::detail {
 namespace {

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "pvtap/function_codes.h"
+#include "pvtap/codec/function_codes.h"
 #include "register_entry_rules.h"
 #include "register_value_conversion.h"
 

@@ -1,6 +1,6 @@
 #include "pvtap/reply_rules.h"
 
-#include "pvtap/function_codes.h"
+#include "pvtap/codec/function_codes.h"
 
 namespace pvtap {
 namespace {

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "pvtap/function_codes.h"
+#include "pvtap/codec/function_codes.h"
 #include "pvtap/reply_rules.h"
 
 namespace pvtap {

@@ -9,7 +9,7 @@
 #include "frame_builders.h"
 #include "hex_bytes.h"
 #include "pvtap/bus_timing.h"
-#include "pvtap/frame_codec.h"
+#include "pvtap/codec/frame_codec.h"
 
 namespace pvtap {
 namespace {

@@ -8,7 +8,7 @@
 
 #include "hex_bytes.h"
 #include "pvtap/bus_timing.h"
-#include "pvtap/frame_codec.h"
+#include "pvtap/codec/frame_codec.h"
 #include "pvtap/register_decoder.h"
 #include "pvtap/register_map.h"
 #include "pvtap/stream_reassembler.h"

@@ -8,7 +8,7 @@
 #include "hex_bytes.h"
 #include "pvtap/bus_session.h"
 #include "pvtap/bus_timing.h"
-#include "pvtap/frame_codec.h"
+#include "pvtap/codec/frame_codec.h"
 #include "pvtap/stream_reassembler.h"
 
 namespace pvtap {

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "hex_bytes.h"
-#include "pvtap/frame_codec.h"
+#include "pvtap/codec/frame_codec.h"
 #include "pvtap/framing_probe.h"
 
 namespace pvtap {

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "frame_builders.h"
-#include "pvtap/function_codes.h"
+#include "pvtap/codec/function_codes.h"
 #include "pvtap/register_format.h"
 
 namespace pvtap {

@@ -6,7 +6,7 @@
 
 #include "bus_script.h"
 #include "hex_bytes.h"
-#include "pvtap/checksums.h"
+#include "pvtap/codec/checksums.h"
 #include "pvtap/register_decoder.h"
 
 namespace pvtap {

@@ -10,7 +10,7 @@
 
 #include "bus_script.h"
 #include "pvtap/bus_timing.h"
-#include "pvtap/function_codes.h"
+#include "pvtap/codec/function_codes.h"
 #include "pvtap/stream_reassembler.h"
 
 namespace pvtap {

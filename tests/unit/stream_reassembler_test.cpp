@@ -8,7 +8,7 @@
 #include "bus_script.h"
 #include "hex_bytes.h"
 #include "pvtap/bus_timing.h"
-#include "pvtap/checksums.h"
+#include "pvtap/codec/checksums.h"
 
 namespace pvtap {
 namespace {

@@ -9,9 +9,9 @@
 #include <span>
 #include <vector>
 
-#include "pvtap/frame.h"
+#include "pvtap/codec/frame.h"
+#include "pvtap/codec/function_codes.h"
 #include "pvtap/frame_summary.h"
-#include "pvtap/function_codes.h"
 #include "pvtap/match_events.h"
 
 namespace pvtap {

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "pvtap/dialect.h"
+#include "pvtap/codec/dialect.h"
+#include "pvtap/codec/frame_codec.h"
 #include "pvtap/distribution_summary.h"
-#include "pvtap/frame_codec.h"
 #include "pvtap/match_events.h"
 #include "pvtap/register_decoder.h"
 #include "pvtap/stream_reassembler.h"

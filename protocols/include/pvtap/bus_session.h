@@ -9,8 +9,8 @@
 #include <string_view>
 
 #include "pvtap/bus_report.h"
-#include "pvtap/frame.h"
-#include "pvtap/frame_codec.h"
+#include "pvtap/codec/frame.h"
+#include "pvtap/codec/frame_codec.h"
 #include "pvtap/match_events.h"
 #include "pvtap/register_decoder.h"
 #include "pvtap/stream_reassembler.h"

@@ -4,8 +4,8 @@
 #include <cstdint>
 #include <optional>
 
-#include "pvtap/dialect.h"
-#include "pvtap/frame.h"
+#include "pvtap/codec/dialect.h"
+#include "pvtap/codec/frame.h"
 
 namespace pvtap {
 

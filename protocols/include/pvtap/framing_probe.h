@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <span>
 
-#include "pvtap/dialect.h"
-#include "pvtap/frame_codec.h"
+#include "pvtap/codec/dialect.h"
+#include "pvtap/codec/frame_codec.h"
 
 namespace pvtap {
 

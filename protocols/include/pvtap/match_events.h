@@ -5,7 +5,7 @@
 #include <optional>
 #include <span>
 
-#include "pvtap/dialect.h"
+#include "pvtap/codec/dialect.h"
 
 namespace pvtap {
 

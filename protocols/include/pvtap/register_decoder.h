@@ -11,7 +11,7 @@
 #include <string_view>
 #include <vector>
 
-#include "pvtap/frame.h"
+#include "pvtap/codec/frame.h"
 #include "pvtap/register_map.h"
 
 namespace pvtap {

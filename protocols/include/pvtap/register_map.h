@@ -12,8 +12,8 @@
 #include <string_view>
 #include <vector>
 
-#include "pvtap/dialect.h"
-#include "pvtap/result.h"
+#include "pvtap/codec/dialect.h"
+#include "pvtap/codec/result.h"
 
 namespace pvtap {
 

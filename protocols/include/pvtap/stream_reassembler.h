@@ -8,8 +8,8 @@
 #include <span>
 #include <string_view>
 
-#include "pvtap/dialect.h"
-#include "pvtap/frame_codec.h"
+#include "pvtap/codec/dialect.h"
+#include "pvtap/codec/frame_codec.h"
 
 namespace pvtap {
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "pvtap/capture/packet_builder.h"
-#include "pvtap/frame.h"
+#include "pvtap/codec/frame.h"
 #include "pvtap/stream_reassembler.h"
 
 namespace pvtap::forge {

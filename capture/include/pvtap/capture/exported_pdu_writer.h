@@ -10,7 +10,7 @@
 #include <string>
 
 #include "pvtap/capture/pcap_writer.h"
-#include "pvtap/dialect.h"
+#include "pvtap/codec/dialect.h"
 #include "pvtap/stream_reassembler.h"
 
 namespace pvtap {

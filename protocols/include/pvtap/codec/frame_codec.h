@@ -7,8 +7,8 @@
 #include <string_view>
 #include <vector>
 
-#include "pvtap/frame.h"
-#include "pvtap/result.h"
+#include "pvtap/codec/frame.h"
+#include "pvtap/codec/result.h"
 
 namespace pvtap {
 

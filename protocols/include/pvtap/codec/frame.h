@@ -8,7 +8,7 @@
 #include <optional>
 #include <span>
 
-#include "pvtap/dialect.h"
+#include "pvtap/codec/dialect.h"
 
 namespace pvtap {
 

@@ -1,4 +1,4 @@
-#include "pvtap/function_codes.h"
+#include "pvtap/codec/function_codes.h"
 
 namespace pvtap::fc {
 

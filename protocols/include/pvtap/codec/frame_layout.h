@@ -4,7 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "pvtap/frame.h"
+#include "pvtap/codec/frame.h"
 
 namespace pvtap {
 

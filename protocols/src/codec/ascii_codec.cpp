@@ -1,8 +1,8 @@
-#include "ascii_codec.h"
+#include "codec/ascii_codec.h"
 
-#include "hex_digits.h"
-#include "pvtap/checksums.h"
-#include "pvtap/function_codes.h"
+#include "codec/hex_digits.h"
+#include "pvtap/codec/checksums.h"
+#include "pvtap/codec/function_codes.h"
 
 namespace pvtap::detail {
 namespace {

@@ -1,7 +1,7 @@
-#include "pvtap/unknown_function_frame.h"
+#include "pvtap/codec/unknown_function_frame.h"
 
-#include "pvtap/checksums.h"
-#include "pvtap/function_codes.h"
+#include "pvtap/codec/checksums.h"
+#include "pvtap/codec/function_codes.h"
 
 namespace pvtap {
 namespace {

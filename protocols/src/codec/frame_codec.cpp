@@ -1,8 +1,8 @@
-#include "pvtap/frame_codec.h"
+#include "pvtap/codec/frame_codec.h"
 
-#include "ascii_codec.h"
-#include "hex_digits.h"
-#include "rtu_codec.h"
+#include "codec/ascii_codec.h"
+#include "codec/hex_digits.h"
+#include "codec/rtu_codec.h"
 
 namespace pvtap {
 

@@ -5,7 +5,7 @@
 #include <span>
 #include <vector>
 
-#include "pvtap/frame_codec.h"
+#include "pvtap/codec/frame_codec.h"
 
 namespace pvtap::detail {
 

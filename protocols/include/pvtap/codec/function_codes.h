@@ -5,7 +5,7 @@
 #include <optional>
 #include <string_view>
 
-#include "pvtap/dialect.h"
+#include "pvtap/codec/dialect.h"
 
 namespace pvtap::fc {
 

@@ -1,4 +1,4 @@
-#include "pvtap/frame_layout.h"
+#include "pvtap/codec/frame_layout.h"
 
 namespace pvtap {
 namespace {

@@ -1,7 +1,7 @@
-#include "rtu_codec.h"
+#include "codec/rtu_codec.h"
 
-#include "pvtap/checksums.h"
-#include "pvtap/function_codes.h"
+#include "pvtap/codec/checksums.h"
+#include "pvtap/codec/function_codes.h"
 
 namespace pvtap::detail {
 namespace {
