@@ -23,10 +23,10 @@
 #include "pvtap/codec/frame.h"
 #include "pvtap/codec/frame_codec.h"
 #include "pvtap/codec/function_codes.h"
-#include "pvtap/framing_probe.h"
+#include "pvtap/framing/framing_probe.h"
+#include "pvtap/framing/stream_reassembler.h"
 #include "pvtap/register_decoder.h"
 #include "pvtap/register_format.h"
-#include "pvtap/stream_reassembler.h"
 
 namespace {
 

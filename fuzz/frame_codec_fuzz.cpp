@@ -8,7 +8,7 @@
 #include "fuzz_input.h"
 #include "pvtap/codec/frame_codec.h"
 #include "pvtap/codec/frame_layout.h"
-#include "pvtap/framing_probe.h"
+#include "pvtap/framing/framing_probe.h"
 
 namespace {
 

@@ -3,7 +3,7 @@
 #include <cstdint>
 
 #include "pvtap/bus_report.h"
-#include "pvtap/stream_reassembler.h"
+#include "pvtap/framing/stream_reassembler.h"
 
 namespace pvtap {
 namespace {

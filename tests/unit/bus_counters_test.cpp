@@ -7,7 +7,7 @@
 #include <type_traits>
 
 #include "pvtap/bus_report.h"
-#include "pvtap/stream_reassembler.h"
+#include "pvtap/framing/stream_reassembler.h"
 
 namespace pvtap {
 namespace {

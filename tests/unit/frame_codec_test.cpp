@@ -6,7 +6,7 @@
 #include "frame_builders.h"
 
 #include "pvtap/codec/function_codes.h"
-#include "pvtap/framing_probe.h"
+#include "pvtap/framing/framing_probe.h"
 
 namespace pvtap {
 namespace {

@@ -9,7 +9,7 @@
 #include "pvtap/bus_session.h"
 #include "pvtap/bus_timing.h"
 #include "pvtap/codec/frame_codec.h"
-#include "pvtap/stream_reassembler.h"
+#include "pvtap/framing/stream_reassembler.h"
 
 namespace pvtap {
 namespace {

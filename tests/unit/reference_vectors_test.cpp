@@ -6,7 +6,7 @@
 
 #include "hex_bytes.h"
 #include "pvtap/codec/frame_codec.h"
-#include "pvtap/framing_probe.h"
+#include "pvtap/framing/framing_probe.h"
 
 namespace pvtap {
 namespace {

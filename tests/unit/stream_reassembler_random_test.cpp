@@ -11,7 +11,7 @@
 #include "bus_script.h"
 #include "pvtap/bus_timing.h"
 #include "pvtap/codec/function_codes.h"
-#include "pvtap/stream_reassembler.h"
+#include "pvtap/framing/stream_reassembler.h"
 
 namespace pvtap {
 namespace {

@@ -1,5 +1,5 @@
 // Specific behaviours of the stream reassembler: silence, data loss, timing, noise runs.
-#include "pvtap/stream_reassembler.h"
+#include "pvtap/framing/stream_reassembler.h"
 
 #include <gtest/gtest.h>
 

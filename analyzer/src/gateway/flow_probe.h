@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "pvtap/codec/dialect.h"
-#include "pvtap/stream_reassembler.h"
+#include "pvtap/framing/stream_reassembler.h"
 
 namespace pvtap::analyzer {
 

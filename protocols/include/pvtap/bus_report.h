@@ -10,9 +10,9 @@
 #include "pvtap/codec/dialect.h"
 #include "pvtap/codec/frame_codec.h"
 #include "pvtap/distribution_summary.h"
+#include "pvtap/framing/stream_reassembler.h"
 #include "pvtap/match_events.h"
 #include "pvtap/register_decoder.h"
-#include "pvtap/stream_reassembler.h"
 #include "pvtap/timing_statistics.h"
 
 namespace pvtap {

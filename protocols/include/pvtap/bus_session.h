@@ -11,9 +11,9 @@
 #include "pvtap/bus_report.h"
 #include "pvtap/codec/frame.h"
 #include "pvtap/codec/frame_codec.h"
+#include "pvtap/framing/stream_reassembler.h"
 #include "pvtap/match_events.h"
 #include "pvtap/register_decoder.h"
-#include "pvtap/stream_reassembler.h"
 #include "pvtap/transaction_matcher.h"
 
 namespace pvtap {

@@ -10,7 +10,7 @@
 
 #include "pvtap/capture/packet_builder.h"
 #include "pvtap/codec/frame.h"
-#include "pvtap/stream_reassembler.h"
+#include "pvtap/framing/stream_reassembler.h"
 
 namespace pvtap::forge {
 

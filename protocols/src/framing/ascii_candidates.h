@@ -3,7 +3,7 @@
 
 #include <span>
 
-#include "pvtap/framing_probe.h"
+#include "pvtap/framing/framing_probe.h"
 
 namespace pvtap::detail {
 

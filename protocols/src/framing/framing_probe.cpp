@@ -1,7 +1,7 @@
-#include "pvtap/framing_probe.h"
+#include "pvtap/framing/framing_probe.h"
 
-#include "ascii_candidates.h"
-#include "rtu_candidates.h"
+#include "framing/ascii_candidates.h"
+#include "framing/rtu_candidates.h"
 
 namespace pvtap {
 

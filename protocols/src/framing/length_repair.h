@@ -4,7 +4,7 @@
 #include <optional>
 #include <span>
 
-#include "pvtap/framing_probe.h"
+#include "pvtap/framing/framing_probe.h"
 
 namespace pvtap::detail {
 

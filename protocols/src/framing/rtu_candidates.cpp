@@ -1,4 +1,4 @@
-#include "rtu_candidates.h"
+#include "framing/rtu_candidates.h"
 
 #include "pvtap/codec/function_codes.h"
 

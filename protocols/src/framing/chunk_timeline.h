@@ -5,9 +5,9 @@
 #include <optional>
 #include <string_view>
 
+#include "framing/ring_buffer.h"
 #include "pvtap/bus_timing.h"
-#include "pvtap/stream_reassembler.h"
-#include "ring_buffer.h"
+#include "pvtap/framing/stream_reassembler.h"
 
 namespace pvtap::detail {
 

@@ -1,9 +1,9 @@
-#include "frame_decision.h"
+#include "framing/frame_decision.h"
 
 #include <algorithm>
 #include <optional>
 
-#include "length_repair.h"
+#include "framing/length_repair.h"
 #include "pvtap/codec/checksums.h"
 
 namespace pvtap::detail {

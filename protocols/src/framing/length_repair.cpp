@@ -1,4 +1,4 @@
-#include "length_repair.h"
+#include "framing/length_repair.h"
 
 #include <array>
 #include <cstdint>

@@ -4,8 +4,8 @@
 #include <cstdint>
 #include <span>
 
-#include "chunk_timeline.h"
-#include "pvtap/framing_probe.h"
+#include "framing/chunk_timeline.h"
+#include "pvtap/framing/framing_probe.h"
 
 namespace pvtap::detail {
 

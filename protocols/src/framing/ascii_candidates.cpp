@@ -1,4 +1,4 @@
-#include "ascii_candidates.h"
+#include "framing/ascii_candidates.h"
 
 #include "codec/ascii_codec.h"
 #include "codec/hex_digits.h"

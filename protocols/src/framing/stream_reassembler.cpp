@@ -1,11 +1,11 @@
-#include "pvtap/stream_reassembler.h"
+#include "pvtap/framing/stream_reassembler.h"
 
 #include <algorithm>
 #include <cstdint>
 #include <vector>
 
-#include "chunk_timeline.h"
-#include "frame_decision.h"
+#include "framing/chunk_timeline.h"
+#include "framing/frame_decision.h"
 
 namespace pvtap {
 namespace {

@@ -1,4 +1,4 @@
-#include "chunk_timeline.h"
+#include "framing/chunk_timeline.h"
 
 #include <algorithm>
 #include <cmath>
