@@ -25,8 +25,8 @@
 #include "pvtap/codec/function_codes.h"
 #include "pvtap/framing/framing_probe.h"
 #include "pvtap/framing/stream_reassembler.h"
-#include "pvtap/register_decoder.h"
-#include "pvtap/register_format.h"
+#include "pvtap/registers/register_decoder.h"
+#include "pvtap/registers/register_format.h"
 
 namespace {
 

@@ -25,7 +25,7 @@
 #include "pvtap/capture/packet_builder.h"
 #include "pvtap/capture/rtac_record.h"
 #include "pvtap/codec/frame_codec.h"
-#include "pvtap/register_map.h"
+#include "pvtap/registers/register_map.h"
 
 namespace {
 

@@ -10,7 +10,7 @@
 
 #include "bus_event.h"
 #include "pvtap/codec/frame.h"
-#include "pvtap/register_map.h"
+#include "pvtap/registers/register_map.h"
 
 namespace pvtap::sim {
 

@@ -6,7 +6,7 @@
 
 #include "pvtap/codec/function_codes.h"
 #include "pvtap/frame_summary.h"
-#include "pvtap/register_format.h"
+#include "pvtap/registers/register_format.h"
 #include "register_decoding.h"
 
 namespace pvtap::dissector {

@@ -4,7 +4,7 @@
 #include <epan/proto.h>
 
 #include "pvtap/codec/function_codes.h"
-#include "pvtap/register_format.h"
+#include "pvtap/registers/register_format.h"
 
 namespace pvtap::dissector {
 namespace {

@@ -4,7 +4,7 @@
 #include <epan/value_string.h>
 
 #include "pvtap/codec/dialect.h"
-#include "pvtap/register_map.h"
+#include "pvtap/registers/register_map.h"
 
 namespace pvtap::dissector {
 

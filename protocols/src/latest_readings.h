@@ -11,7 +11,7 @@
 
 #include "pvtap/bus_report.h"
 #include "pvtap/codec/frame.h"
-#include "pvtap/register_decoder.h"
+#include "pvtap/registers/register_decoder.h"
 
 namespace pvtap::detail {
 

@@ -1,5 +1,5 @@
 // Display text of decoded register values, for every kind and the doubtful cases.
-#include "pvtap/register_format.h"
+#include "pvtap/registers/register_format.h"
 
 #include <gtest/gtest.h>
 

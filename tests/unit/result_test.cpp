@@ -8,7 +8,7 @@
 
 #include "hex_bytes.h"
 #include "pvtap/codec/frame_codec.h"
-#include "pvtap/register_map.h"
+#include "pvtap/registers/register_map.h"
 
 namespace pvtap {
 namespace {

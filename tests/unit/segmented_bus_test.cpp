@@ -7,7 +7,7 @@
 #include "bus_script.h"
 #include "hex_bytes.h"
 #include "pvtap/codec/checksums.h"
-#include "pvtap/register_decoder.h"
+#include "pvtap/registers/register_decoder.h"
 
 namespace pvtap {
 namespace {

@@ -9,7 +9,7 @@
 #include "formatting/number_text.h"
 #include "html/html_text.h"
 #include "pvtap/codec/function_codes.h"
-#include "pvtap/register_format.h"
+#include "pvtap/registers/register_format.h"
 #include "report/frame_findings.h"
 #include "report/poll_block_text.h"
 #include "report/report_line.h"

@@ -12,7 +12,7 @@
 
 #include "html/time_buckets.h"
 #include "pvtap/codec/dialect.h"
-#include "pvtap/register_map.h"
+#include "pvtap/registers/register_map.h"
 
 namespace pvtap::analyzer {
 

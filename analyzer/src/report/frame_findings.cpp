@@ -6,7 +6,7 @@
 #include "formatting/json_text.h"
 #include "formatting/number_text.h"
 #include "pvtap/codec/function_codes.h"
-#include "pvtap/register_format.h"
+#include "pvtap/registers/register_format.h"
 
 namespace pvtap::analyzer {
 namespace {

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "pvtap/bus_session.h"
-#include "pvtap/register_decoder.h"
+#include "pvtap/registers/register_decoder.h"
 
 namespace pvtap::analyzer {
 

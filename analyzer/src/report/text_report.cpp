@@ -5,9 +5,9 @@
 
 #include "formatting/number_text.h"
 #include "pvtap/codec/function_codes.h"
-#include "pvtap/register_decoder.h"
-#include "pvtap/register_format.h"
-#include "pvtap/register_map.h"
+#include "pvtap/registers/register_decoder.h"
+#include "pvtap/registers/register_format.h"
+#include "pvtap/registers/register_map.h"
 #include "pvtap/timing_statistics.h"
 #include "report/frame_findings.h"
 #include "report/poll_block_text.h"

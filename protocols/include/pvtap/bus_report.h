@@ -12,7 +12,7 @@
 #include "pvtap/distribution_summary.h"
 #include "pvtap/framing/stream_reassembler.h"
 #include "pvtap/match_events.h"
-#include "pvtap/register_decoder.h"
+#include "pvtap/registers/register_decoder.h"
 #include "pvtap/timing_statistics.h"
 
 namespace pvtap {

@@ -13,7 +13,7 @@
 #include "pvtap/codec/frame_codec.h"
 #include "pvtap/framing/stream_reassembler.h"
 #include "pvtap/match_events.h"
-#include "pvtap/register_decoder.h"
+#include "pvtap/registers/register_decoder.h"
 #include "pvtap/transaction_matcher.h"
 
 namespace pvtap {

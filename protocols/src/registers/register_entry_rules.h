@@ -3,8 +3,8 @@
 
 #include <string>
 
-#include "map_diagnostics.h"
-#include "register_map_builder.h"
+#include "registers/map_diagnostics.h"
+#include "registers/register_map_builder.h"
 
 namespace pvtap::detail {
 

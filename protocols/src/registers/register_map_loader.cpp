@@ -5,9 +5,9 @@
 #include <map>
 #include <sstream>
 
-#include "map_diagnostics.h"
-#include "pvtap/register_map.h"
-#include "register_map_builder.h"
+#include "pvtap/registers/register_map.h"
+#include "registers/map_diagnostics.h"
+#include "registers/register_map_builder.h"
 
 namespace pvtap {
 namespace {

@@ -2,8 +2,8 @@
 #include <set>
 #include <string>
 
-#include "pvtap/register_map.h"
-#include "register_map_builder.h"
+#include "pvtap/registers/register_map.h"
+#include "registers/register_map_builder.h"
 
 namespace pvtap {
 namespace {

@@ -1,12 +1,12 @@
-#include "register_map_builder.h"
+#include "registers/register_map_builder.h"
 
 #include <algorithm>
 #include <cmath>
 #include <map>
 
-#include "map_diagnostics.h"
-#include "register_entry_rules.h"
-#include "register_map_data.h"
+#include "registers/map_diagnostics.h"
+#include "registers/register_entry_rules.h"
+#include "registers/register_map_data.h"
 
 namespace pvtap {
 namespace {

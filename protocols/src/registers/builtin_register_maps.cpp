@@ -3,7 +3,7 @@
 #include <cstddef>
 #include <string>
 
-#include "pvtap/register_map.h"
+#include "pvtap/registers/register_map.h"
 
 namespace pvtap::embedded {
 extern const unsigned char map_ascii[];

@@ -1,4 +1,4 @@
-#include "register_entry_rules.h"
+#include "registers/register_entry_rules.h"
 
 #include <algorithm>
 #include <cmath>

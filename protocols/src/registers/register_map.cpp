@@ -1,10 +1,10 @@
-#include "pvtap/register_map.h"
+#include "pvtap/registers/register_map.h"
 
 #include <algorithm>
 #include <array>
 #include <charconv>
 
-#include "register_map_data.h"
+#include "registers/register_map_data.h"
 
 namespace pvtap {
 namespace {

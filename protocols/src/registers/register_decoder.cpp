@@ -1,10 +1,10 @@
-#include "pvtap/register_decoder.h"
+#include "pvtap/registers/register_decoder.h"
 
 #include <algorithm>
 
 #include "pvtap/codec/function_codes.h"
-#include "register_entry_rules.h"
-#include "register_value_conversion.h"
+#include "registers/register_entry_rules.h"
+#include "registers/register_value_conversion.h"
 
 namespace pvtap {
 namespace {

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "pvtap/codec/frame.h"
-#include "pvtap/register_map.h"
+#include "pvtap/registers/register_map.h"
 
 namespace pvtap {
 

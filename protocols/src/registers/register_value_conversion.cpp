@@ -1,4 +1,4 @@
-#include "register_value_conversion.h"
+#include "registers/register_value_conversion.h"
 
 namespace pvtap::detail {
 namespace {

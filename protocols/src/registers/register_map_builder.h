@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "pvtap/register_map.h"
+#include "pvtap/registers/register_map.h"
 
 namespace pvtap::detail {
 

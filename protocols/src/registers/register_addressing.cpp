@@ -1,5 +1,5 @@
 // Written register addresses versus wire addresses (only GSL IDs read as hex differ).
-#include "pvtap/register_decoder.h"
+#include "pvtap/registers/register_decoder.h"
 
 namespace pvtap {
 

@@ -1,4 +1,4 @@
-#include "pvtap/register_format.h"
+#include "pvtap/registers/register_format.h"
 
 #include <array>
 #include <charconv>

@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <span>
 
-#include "pvtap/register_decoder.h"
+#include "pvtap/registers/register_decoder.h"
 
 namespace pvtap::detail {
 
