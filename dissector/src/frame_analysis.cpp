@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "pvtap/codec/function_codes.h"
-#include "pvtap/frame_summary.h"
+#include "pvtap/matching/frame_summary.h"
 #include "pvtap/registers/register_format.h"
 #include "register_decoding.h"
 

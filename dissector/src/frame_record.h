@@ -8,7 +8,7 @@
 
 #include "pvtap/bus_session.h"
 #include "pvtap/codec/dialect.h"
-#include "pvtap/match_events.h"
+#include "pvtap/matching/match_events.h"
 
 namespace pvtap::dissector {
 

@@ -7,9 +7,9 @@
 
 #include "bus_tally.h"
 #include "latest_readings.h"
-#include "pvtap/reply_rules.h"
+#include "matching/request_book.h"
+#include "pvtap/matching/reply_rules.h"
 #include "pvtap/timing_statistics.h"
-#include "request_book.h"
 
 namespace pvtap {
 struct BusSession::Impl {

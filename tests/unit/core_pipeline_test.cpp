@@ -10,9 +10,9 @@
 #include "pvtap/bus_timing.h"
 #include "pvtap/codec/frame_codec.h"
 #include "pvtap/framing/stream_reassembler.h"
+#include "pvtap/matching/transaction_matcher.h"
 #include "pvtap/registers/register_decoder.h"
 #include "pvtap/registers/register_map.h"
-#include "pvtap/transaction_matcher.h"
 
 namespace pvtap {
 namespace {

@@ -11,7 +11,7 @@
 #include "pvtap/codec/frame_codec.h"
 #include "pvtap/distribution_summary.h"
 #include "pvtap/framing/stream_reassembler.h"
-#include "pvtap/match_events.h"
+#include "pvtap/matching/match_events.h"
 #include "pvtap/registers/register_decoder.h"
 #include "pvtap/timing_statistics.h"
 

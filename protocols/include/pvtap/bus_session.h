@@ -12,9 +12,9 @@
 #include "pvtap/codec/frame.h"
 #include "pvtap/codec/frame_codec.h"
 #include "pvtap/framing/stream_reassembler.h"
-#include "pvtap/match_events.h"
+#include "pvtap/matching/match_events.h"
+#include "pvtap/matching/transaction_matcher.h"
 #include "pvtap/registers/register_decoder.h"
-#include "pvtap/transaction_matcher.h"
 
 namespace pvtap {
 

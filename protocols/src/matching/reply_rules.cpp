@@ -1,4 +1,4 @@
-#include "pvtap/reply_rules.h"
+#include "pvtap/matching/reply_rules.h"
 
 #include "pvtap/codec/function_codes.h"
 

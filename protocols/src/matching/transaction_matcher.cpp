@@ -1,10 +1,10 @@
-#include "pvtap/transaction_matcher.h"
+#include "pvtap/matching/transaction_matcher.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include "pvtap/codec/function_codes.h"
-#include "pvtap/reply_rules.h"
+#include "pvtap/matching/reply_rules.h"
 
 namespace pvtap {
 namespace {

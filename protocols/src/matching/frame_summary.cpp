@@ -1,4 +1,4 @@
-#include "pvtap/frame_summary.h"
+#include "pvtap/matching/frame_summary.h"
 
 namespace pvtap {
 

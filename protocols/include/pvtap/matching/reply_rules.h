@@ -3,8 +3,8 @@
 
 #include <optional>
 
-#include "pvtap/frame_summary.h"
-#include "pvtap/match_events.h"
+#include "pvtap/matching/frame_summary.h"
+#include "pvtap/matching/match_events.h"
 
 namespace pvtap {
 
