@@ -18,7 +18,6 @@
 #include <utility>
 #include <vector>
 
-#include "pvtap/bus_timing.h"
 #include "pvtap/codec/dialect.h"
 #include "pvtap/codec/frame.h"
 #include "pvtap/codec/frame_codec.h"
@@ -27,6 +26,7 @@
 #include "pvtap/framing/stream_reassembler.h"
 #include "pvtap/registers/register_decoder.h"
 #include "pvtap/registers/register_format.h"
+#include "pvtap/statistics/bus_timing.h"
 
 namespace {
 

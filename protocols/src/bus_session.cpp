@@ -9,7 +9,7 @@
 #include "latest_readings.h"
 #include "matching/request_book.h"
 #include "pvtap/matching/reply_rules.h"
-#include "pvtap/timing_statistics.h"
+#include "pvtap/statistics/timing_statistics.h"
 
 namespace pvtap {
 struct BusSession::Impl {

@@ -4,7 +4,7 @@
 #include <string>
 #include <utility>
 
-#include "pvtap/bus_timing.h"
+#include "pvtap/statistics/bus_timing.h"
 
 namespace pvtap {
 namespace {

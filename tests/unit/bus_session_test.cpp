@@ -8,8 +8,8 @@
 
 #include "frame_builders.h"
 #include "hex_bytes.h"
-#include "pvtap/bus_timing.h"
 #include "pvtap/codec/frame_codec.h"
+#include "pvtap/statistics/bus_timing.h"
 
 namespace pvtap {
 namespace {

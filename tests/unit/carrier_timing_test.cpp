@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include "pvtap/bus_timing.h"
+#include "pvtap/statistics/bus_timing.h"
 
 namespace pvtap {
 namespace {

@@ -7,9 +7,9 @@
 #include "frame_builders.h"
 #include "hex_bytes.h"
 #include "pvtap/bus_session.h"
-#include "pvtap/bus_timing.h"
 #include "pvtap/codec/frame_codec.h"
 #include "pvtap/framing/stream_reassembler.h"
+#include "pvtap/statistics/bus_timing.h"
 
 namespace pvtap {
 namespace {

@@ -7,8 +7,8 @@
 
 #include "bus_script.h"
 #include "hex_bytes.h"
-#include "pvtap/bus_timing.h"
 #include "pvtap/codec/checksums.h"
+#include "pvtap/statistics/bus_timing.h"
 
 namespace pvtap {
 namespace {

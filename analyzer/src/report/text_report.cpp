@@ -8,7 +8,7 @@
 #include "pvtap/registers/register_decoder.h"
 #include "pvtap/registers/register_format.h"
 #include "pvtap/registers/register_map.h"
-#include "pvtap/timing_statistics.h"
+#include "pvtap/statistics/timing_statistics.h"
 #include "report/frame_findings.h"
 #include "report/poll_block_text.h"
 #include "report/report_line.h"

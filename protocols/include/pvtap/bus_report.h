@@ -9,11 +9,11 @@
 
 #include "pvtap/codec/dialect.h"
 #include "pvtap/codec/frame_codec.h"
-#include "pvtap/distribution_summary.h"
 #include "pvtap/framing/stream_reassembler.h"
 #include "pvtap/matching/match_events.h"
 #include "pvtap/registers/register_decoder.h"
-#include "pvtap/timing_statistics.h"
+#include "pvtap/statistics/distribution_summary.h"
+#include "pvtap/statistics/timing_statistics.h"
 
 namespace pvtap {
 

@@ -6,8 +6,8 @@
 #include <string_view>
 
 #include "framing/ring_buffer.h"
-#include "pvtap/bus_timing.h"
 #include "pvtap/framing/stream_reassembler.h"
+#include "pvtap/statistics/bus_timing.h"
 
 namespace pvtap::detail {
 

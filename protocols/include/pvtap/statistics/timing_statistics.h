@@ -7,11 +7,11 @@
 #include <optional>
 #include <vector>
 
-#include "pvtap/bus_gap_statistics.h"
-#include "pvtap/bus_timing.h"
-#include "pvtap/distribution_summary.h"
-#include "pvtap/frame_timing.h"
-#include "pvtap/interval_series.h"
+#include "pvtap/statistics/bus_gap_statistics.h"
+#include "pvtap/statistics/bus_timing.h"
+#include "pvtap/statistics/distribution_summary.h"
+#include "pvtap/statistics/frame_timing.h"
+#include "pvtap/statistics/interval_series.h"
 
 namespace pvtap {
 

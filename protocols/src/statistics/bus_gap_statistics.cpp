@@ -1,4 +1,4 @@
-#include "pvtap/bus_gap_statistics.h"
+#include "pvtap/statistics/bus_gap_statistics.h"
 
 namespace pvtap {
 namespace {

@@ -1,4 +1,4 @@
-#include "pvtap/log_histogram.h"
+#include "pvtap/statistics/log_histogram.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "pvtap/distribution_summary.h"
+#include "pvtap/statistics/distribution_summary.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "pvtap/interval_series.h"
+#include "pvtap/statistics/interval_series.h"
 
 #include <algorithm>
 #include <cmath>

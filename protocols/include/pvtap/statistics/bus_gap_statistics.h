@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "pvtap/bus_timing.h"
-#include "pvtap/distribution_summary.h"
-#include "pvtap/frame_timing.h"
+#include "pvtap/statistics/bus_timing.h"
+#include "pvtap/statistics/distribution_summary.h"
+#include "pvtap/statistics/frame_timing.h"
 
 namespace pvtap {
 

@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <limits>
 
-#include "pvtap/log_histogram.h"
+#include "pvtap/statistics/log_histogram.h"
 
 namespace pvtap {
 

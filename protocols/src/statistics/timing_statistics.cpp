@@ -1,4 +1,4 @@
-#include "pvtap/timing_statistics.h"
+#include "pvtap/statistics/timing_statistics.h"
 
 namespace pvtap {
 
