@@ -1,5 +1,5 @@
 // BusSession: the core pipeline for one bus, as the analyzer and the live sniffer drive it.
-#include "pvtap/bus_session.h"
+#include "pvtap/session/bus_session.h"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // apply_carrier_timing: what each way of reaching pvtap lets the timestamps prove.
-#include "pvtap/carrier_timing.h"
+#include "pvtap/session/carrier_timing.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // What a dissector shows of each call's bytes (SegmentedBus), and the property that, for any
 // byte stream and any split into segments, it cuts exactly as the stream reassembler does.
-#include "pvtap/segmented_bus.h"
+#include "pvtap/session/segmented_bus.h"
 
 #include <gtest/gtest.h>
 

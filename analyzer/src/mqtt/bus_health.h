@@ -7,7 +7,7 @@
 #include <string>
 #include <string_view>
 
-#include "pvtap/bus_session.h"
+#include "pvtap/session/bus_session.h"
 #include "pvtap/statistics/distribution_summary.h"
 #include "report/live_report.h"
 

@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "gateway/gateway_traffic.h"
-#include "pvtap/bus_report.h"
 #include "pvtap/registers/register_decoder.h"
+#include "pvtap/session/bus_report.h"
 #include "pvtap/statistics/distribution_summary.h"
 #include "report/live_report.h"
 

@@ -1,15 +1,15 @@
-#include "pvtap/bus_session.h"
+#include "pvtap/session/bus_session.h"
 
 #include <algorithm>
 #include <array>
 #include <limits>
 #include <vector>
 
-#include "bus_tally.h"
-#include "latest_readings.h"
 #include "matching/request_book.h"
 #include "pvtap/matching/reply_rules.h"
 #include "pvtap/statistics/timing_statistics.h"
+#include "session/bus_tally.h"
+#include "session/latest_readings.h"
 
 namespace pvtap {
 struct BusSession::Impl {

@@ -2,8 +2,8 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "pvtap/bus_report.h"
 #include "pvtap/framing/stream_reassembler.h"
+#include "pvtap/session/bus_report.h"
 
 namespace pvtap {
 namespace {

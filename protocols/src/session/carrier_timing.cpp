@@ -1,5 +1,5 @@
 // apply_carrier_timing: which silences a carrier's timestamps can prove.
-#include "pvtap/carrier_timing.h"
+#include "pvtap/session/carrier_timing.h"
 
 #include <string>
 #include <utility>

@@ -1,4 +1,4 @@
-#include "bus_tally.h"
+#include "session/bus_tally.h"
 
 #include "pvtap/codec/function_codes.h"
 

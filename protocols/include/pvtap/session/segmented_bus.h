@@ -8,7 +8,7 @@
 #include <span>
 #include <vector>
 
-#include "pvtap/bus_session.h"
+#include "pvtap/session/bus_session.h"
 
 namespace pvtap {
 

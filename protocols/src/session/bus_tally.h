@@ -8,8 +8,8 @@
 #include <utility>
 #include <vector>
 
-#include "pvtap/bus_report.h"
-#include "pvtap/bus_session.h"
+#include "pvtap/session/bus_report.h"
+#include "pvtap/session/bus_session.h"
 
 namespace pvtap::detail {
 

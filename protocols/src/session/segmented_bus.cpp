@@ -1,4 +1,4 @@
-#include "pvtap/segmented_bus.h"
+#include "pvtap/session/segmented_bus.h"
 
 #include <algorithm>
 

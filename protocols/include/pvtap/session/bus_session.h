@@ -8,13 +8,13 @@
 #include <string>
 #include <string_view>
 
-#include "pvtap/bus_report.h"
 #include "pvtap/codec/frame.h"
 #include "pvtap/codec/frame_codec.h"
 #include "pvtap/framing/stream_reassembler.h"
 #include "pvtap/matching/match_events.h"
 #include "pvtap/matching/transaction_matcher.h"
 #include "pvtap/registers/register_decoder.h"
+#include "pvtap/session/bus_report.h"
 
 namespace pvtap {
 

@@ -1,4 +1,4 @@
-#include "latest_readings.h"
+#include "session/latest_readings.h"
 
 #include <algorithm>
 #include <utility>

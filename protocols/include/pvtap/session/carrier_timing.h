@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <optional>
 
-#include "pvtap/bus_session.h"
+#include "pvtap/session/bus_session.h"
 
 namespace pvtap {
 

@@ -9,9 +9,9 @@
 #include <unordered_map>
 #include <vector>
 
-#include "pvtap/bus_report.h"
 #include "pvtap/codec/frame.h"
 #include "pvtap/registers/register_decoder.h"
+#include "pvtap/session/bus_report.h"
 
 namespace pvtap::detail {
 
