@@ -4,7 +4,7 @@
 #include <random>
 #include <vector>
 
-#include "pvtap/checksums.h"
+#include "pvtap/codec/checksums.h"
 
 namespace {
 

@@ -18,15 +18,15 @@
 #include <utility>
 #include <vector>
 
-#include "pvtap/bus_timing.h"
-#include "pvtap/dialect.h"
-#include "pvtap/frame.h"
-#include "pvtap/frame_codec.h"
-#include "pvtap/framing_probe.h"
-#include "pvtap/function_codes.h"
-#include "pvtap/register_decoder.h"
-#include "pvtap/register_format.h"
-#include "pvtap/stream_reassembler.h"
+#include "pvtap/codec/dialect.h"
+#include "pvtap/codec/frame.h"
+#include "pvtap/codec/frame_codec.h"
+#include "pvtap/codec/function_codes.h"
+#include "pvtap/framing/framing_probe.h"
+#include "pvtap/framing/stream_reassembler.h"
+#include "pvtap/registers/register_decoder.h"
+#include "pvtap/registers/register_format.h"
+#include "pvtap/statistics/bus_timing.h"
 
 namespace {
 

@@ -7,8 +7,8 @@
 
 #include "chunk_script.h"
 #include "fuzz_input.h"
-#include "pvtap/bus_session.h"
-#include "pvtap/register_decoder.h"
+#include "pvtap/registers/register_decoder.h"
+#include "pvtap/session/bus_session.h"
 
 namespace {
 

@@ -14,9 +14,9 @@
 #include "cli/audit_command.h"
 #include "cli/common_options.h"
 #include "cli/exit_status.h"
-#include "fuzz_input.h"
 #include "formatting/output_stream.h"
-#include "pvtap/register_decoder.h"
+#include "fuzz_input.h"
+#include "pvtap/registers/register_decoder.h"
 #include "sources/capture_reader.h"
 
 namespace {

@@ -12,8 +12,8 @@
 #include <span>
 
 #include "fuzz_input.h"
-#include "pvtap/framing_probe.h"
-#include "pvtap/stream_reassembler.h"
+#include "pvtap/framing/framing_probe.h"
+#include "pvtap/framing/stream_reassembler.h"
 
 namespace pvtap::fuzz {
 

@@ -6,9 +6,9 @@
 #include <vector>
 
 #include "fuzz_input.h"
-#include "pvtap/frame_codec.h"
-#include "pvtap/frame_layout.h"
-#include "pvtap/framing_probe.h"
+#include "pvtap/codec/frame_codec.h"
+#include "pvtap/codec/frame_layout.h"
+#include "pvtap/framing/framing_probe.h"
 
 namespace {
 

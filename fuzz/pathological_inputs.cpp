@@ -19,13 +19,13 @@
 #include "cli/exit_status.h"
 #include "fuzz_input.h"
 #include "gateway/tcp_stream.h"
-#include "pvtap/bus_session.h"
 #include "pvtap/capture/capture_writer.h"
 #include "pvtap/capture/exported_pdu_reader.h"
 #include "pvtap/capture/packet_builder.h"
 #include "pvtap/capture/rtac_record.h"
-#include "pvtap/frame_codec.h"
-#include "pvtap/register_map.h"
+#include "pvtap/codec/frame_codec.h"
+#include "pvtap/registers/register_map.h"
+#include "pvtap/session/bus_session.h"
 
 namespace {
 

@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "fuzz_input.h"
-#include "pvtap/register_decoder.h"
-#include "pvtap/register_map.h"
+#include "pvtap/registers/register_decoder.h"
+#include "pvtap/registers/register_map.h"
 
 namespace {
 

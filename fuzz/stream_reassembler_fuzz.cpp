@@ -7,7 +7,7 @@
 
 #include "chunk_script.h"
 #include "fuzz_input.h"
-#include "pvtap/stream_reassembler.h"
+#include "pvtap/framing/stream_reassembler.h"
 
 namespace {
 

@@ -8,7 +8,7 @@
 
 #include "pvtap/capture/exported_pdu_tags.h"
 #include "pvtap/capture/link_types.h"
-#include "pvtap/framing_probe.h"
+#include "pvtap/framing/framing_probe.h"
 
 namespace pvtap {
 namespace {

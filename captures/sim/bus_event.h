@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "pvtap/dialect.h"
+#include "pvtap/codec/dialect.h"
 
 namespace pvtap::sim {
 

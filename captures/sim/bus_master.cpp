@@ -6,8 +6,8 @@
 #include "frame_damage.h"
 #include "frame_shapes.h"
 #include "plant_registers.h"
-#include "pvtap/frame_codec.h"
-#include "pvtap/function_codes.h"
+#include "pvtap/codec/frame_codec.h"
+#include "pvtap/codec/function_codes.h"
 
 namespace pvtap::sim {
 namespace {

@@ -2,8 +2,8 @@
 
 #include <charconv>
 
-#include "pvtap/frame_codec.h"
-#include "pvtap/function_codes.h"
+#include "pvtap/codec/frame_codec.h"
+#include "pvtap/codec/function_codes.h"
 
 namespace pvtap::sim {
 namespace {

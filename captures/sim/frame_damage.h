@@ -9,7 +9,7 @@
 #include <span>
 #include <vector>
 
-#include "pvtap/dialect.h"
+#include "pvtap/codec/dialect.h"
 #include "sim_random.h"
 
 namespace pvtap::sim {

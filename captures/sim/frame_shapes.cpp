@@ -1,6 +1,6 @@
 #include "frame_shapes.h"
 
-#include "pvtap/function_codes.h"
+#include "pvtap/codec/function_codes.h"
 
 namespace pvtap::sim {
 

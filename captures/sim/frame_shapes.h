@@ -5,7 +5,7 @@
 #include <cstdint>
 
 #include "poll_blocks.h"
-#include "pvtap/frame.h"
+#include "pvtap/codec/frame.h"
 
 namespace pvtap::sim {
 

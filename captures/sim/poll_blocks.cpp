@@ -2,7 +2,7 @@
 
 #include <array>
 
-#include "pvtap/function_codes.h"
+#include "pvtap/codec/function_codes.h"
 
 namespace pvtap::sim {
 namespace {

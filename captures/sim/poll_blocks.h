@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <span>
 
-#include "pvtap/dialect.h"
+#include "pvtap/codec/dialect.h"
 
 namespace pvtap::sim {
 

@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "bus_event.h"
-#include "pvtap/frame.h"
-#include "pvtap/register_map.h"
+#include "pvtap/codec/frame.h"
+#include "pvtap/registers/register_map.h"
 
 namespace pvtap::sim {
 

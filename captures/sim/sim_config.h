@@ -6,7 +6,7 @@
 
 #include "bus_event.h"
 #include "fault_plan.h"
-#include "pvtap/dialect.h"
+#include "pvtap/codec/dialect.h"
 
 namespace pvtap::sim {
 

@@ -14,8 +14,8 @@
 #include "frame_shapes.h"
 #include "ground_truth.h"
 #include "poll_blocks.h"
-#include "pvtap/frame_codec.h"
-#include "pvtap/register_decoder.h"
+#include "pvtap/codec/frame_codec.h"
+#include "pvtap/registers/register_decoder.h"
 #include "register_image.h"
 
 namespace pvtap::sim {

@@ -9,7 +9,7 @@
 
 #include "frame_record.h"
 #include "inverter_protocol.h"
-#include "pvtap/segmented_bus.h"
+#include "pvtap/session/segmented_bus.h"
 
 namespace pvtap::dissector {
 

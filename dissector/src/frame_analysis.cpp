@@ -4,9 +4,9 @@
 #include <string>
 #include <vector>
 
-#include "pvtap/frame_summary.h"
-#include "pvtap/function_codes.h"
-#include "pvtap/register_format.h"
+#include "pvtap/codec/function_codes.h"
+#include "pvtap/matching/frame_summary.h"
+#include "pvtap/registers/register_format.h"
 #include "register_decoding.h"
 
 namespace pvtap::dissector {

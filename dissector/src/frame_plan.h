@@ -5,9 +5,9 @@
 
 #include <type_traits>
 
-#include "pvtap/frame_codec.h"
-#include "pvtap/frame_layout.h"
-#include "pvtap/register_decoder.h"
+#include "pvtap/codec/frame_codec.h"
+#include "pvtap/codec/frame_layout.h"
+#include "pvtap/registers/register_decoder.h"
 #include "register_fields.h"
 
 namespace pvtap::dissector {

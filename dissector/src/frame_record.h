@@ -6,9 +6,9 @@
 
 #include <type_traits>
 
-#include "pvtap/bus_session.h"
-#include "pvtap/dialect.h"
-#include "pvtap/match_events.h"
+#include "pvtap/codec/dialect.h"
+#include "pvtap/matching/match_events.h"
+#include "pvtap/session/bus_session.h"
 
 namespace pvtap::dissector {
 

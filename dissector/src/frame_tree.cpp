@@ -3,8 +3,8 @@
 #include <epan/expert.h>
 #include <epan/proto.h>
 
-#include "pvtap/function_codes.h"
-#include "pvtap/register_format.h"
+#include "pvtap/codec/function_codes.h"
+#include "pvtap/registers/register_format.h"
 
 namespace pvtap::dissector {
 namespace {

@@ -8,7 +8,7 @@
 #include "frame_plan.h"
 #include "frame_record.h"
 #include "inverter_protocol.h"
-#include "pvtap/unknown_function_frame.h"
+#include "pvtap/codec/unknown_function_frame.h"
 
 namespace pvtap::dissector {
 

@@ -4,7 +4,7 @@
 #include <epan/expert.h>
 #include <epan/packet.h>
 
-#include "pvtap/dialect.h"
+#include "pvtap/codec/dialect.h"
 #include "wireshark_api/preference_types.h"
 
 namespace pvtap::dissector {

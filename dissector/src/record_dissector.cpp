@@ -6,7 +6,7 @@
 
 #include "conversation_state.h"
 #include "pvtap/capture/exported_pdu_tags.h"
-#include "pvtap/framing_probe.h"
+#include "pvtap/framing/framing_probe.h"
 #include "stream_dissection.h"
 
 namespace pvtap::dissector {

@@ -1,7 +1,7 @@
 // The register decoder both protocols share: the effective maps with the preferred options.
 #pragma once
 
-#include "pvtap/register_decoder.h"
+#include "pvtap/registers/register_decoder.h"
 
 namespace pvtap::dissector {
 

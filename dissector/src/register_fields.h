@@ -5,7 +5,7 @@
 
 #include <array>
 
-#include "pvtap/register_map.h"
+#include "pvtap/registers/register_map.h"
 
 namespace pvtap::dissector {
 

@@ -2,7 +2,7 @@
 // in the pvtap/ folder of the Wireshark personal configuration folder make of it.
 #pragma once
 
-#include "pvtap/register_map.h"
+#include "pvtap/registers/register_map.h"
 
 namespace pvtap::dissector {
 

@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "pvtap/function_codes.h"
+#include "pvtap/codec/function_codes.h"
 
 namespace pvtap::dissector {
 namespace {

@@ -9,7 +9,7 @@
 #include <epan/dissectors/packet-tcp.h>
 
 #include "conversation_state.h"
-#include "pvtap/framing_probe.h"
+#include "pvtap/framing/framing_probe.h"
 #include "stream_dissection.h"
 #include "wireshark_api/heuristic_verdict.h"
 

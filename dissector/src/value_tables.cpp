@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "pvtap/function_codes.h"
+#include "pvtap/codec/function_codes.h"
 
 namespace pvtap::dissector {
 namespace {

@@ -3,8 +3,8 @@
 
 #include "wireshark_api/value_string.h"
 
-#include "pvtap/dialect.h"
-#include "pvtap/register_map.h"
+#include "pvtap/codec/dialect.h"
+#include "pvtap/registers/register_map.h"
 
 namespace pvtap::dissector {
 

@@ -4,8 +4,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "pvtap/framing_probe.h"
-#include "pvtap/stream_reassembler.h"
+#include "pvtap/framing/framing_probe.h"
+#include "pvtap/framing/stream_reassembler.h"
 #include "random_frames.h"
 
 namespace pvtap::test {

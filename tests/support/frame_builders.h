@@ -3,8 +3,8 @@
 
 #include <cstdint>
 
-#include "pvtap/frame.h"
-#include "pvtap/function_codes.h"
+#include "pvtap/codec/frame.h"
+#include "pvtap/codec/function_codes.h"
 
 namespace pvtap::test {
 

@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "frame_builders.h"
-#include "pvtap/frame.h"
-#include "pvtap/frame_codec.h"
+#include "pvtap/codec/frame.h"
+#include "pvtap/codec/frame_codec.h"
 
 namespace pvtap::test {
 

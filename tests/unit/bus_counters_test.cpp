@@ -6,8 +6,8 @@
 #include <cstring>
 #include <type_traits>
 
-#include "pvtap/bus_report.h"
-#include "pvtap/stream_reassembler.h"
+#include "pvtap/framing/stream_reassembler.h"
+#include "pvtap/session/bus_report.h"
 
 namespace pvtap {
 namespace {

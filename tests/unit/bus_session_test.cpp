@@ -1,5 +1,5 @@
 // BusSession: the core pipeline for one bus, as the analyzer and the live sniffer drive it.
-#include "pvtap/bus_session.h"
+#include "pvtap/session/bus_session.h"
 
 #include <gtest/gtest.h>
 
@@ -8,8 +8,8 @@
 
 #include "frame_builders.h"
 #include "hex_bytes.h"
-#include "pvtap/bus_timing.h"
-#include "pvtap/frame_codec.h"
+#include "pvtap/codec/frame_codec.h"
+#include "pvtap/statistics/bus_timing.h"
 
 namespace pvtap {
 namespace {

@@ -1,9 +1,9 @@
 // apply_carrier_timing: what each way of reaching pvtap lets the timestamps prove.
-#include "pvtap/carrier_timing.h"
+#include "pvtap/session/carrier_timing.h"
 
 #include <gtest/gtest.h>
 
-#include "pvtap/bus_timing.h"
+#include "pvtap/statistics/bus_timing.h"
 
 namespace pvtap {
 namespace {

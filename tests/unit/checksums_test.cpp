@@ -1,4 +1,4 @@
-#include "pvtap/checksums.h"
+#include "pvtap/codec/checksums.h"
 
 #include <gtest/gtest.h>
 

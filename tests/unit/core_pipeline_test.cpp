@@ -7,12 +7,12 @@
 #include <map>
 
 #include "hex_bytes.h"
-#include "pvtap/bus_timing.h"
-#include "pvtap/frame_codec.h"
-#include "pvtap/register_decoder.h"
-#include "pvtap/register_map.h"
-#include "pvtap/stream_reassembler.h"
-#include "pvtap/transaction_matcher.h"
+#include "pvtap/codec/frame_codec.h"
+#include "pvtap/framing/stream_reassembler.h"
+#include "pvtap/matching/transaction_matcher.h"
+#include "pvtap/registers/register_decoder.h"
+#include "pvtap/registers/register_map.h"
+#include "pvtap/statistics/bus_timing.h"
 
 namespace pvtap {
 namespace {

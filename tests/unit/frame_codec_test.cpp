@@ -1,12 +1,12 @@
 // Round trip of every frame kind of every dialect: encode, probe, parse gives the same frame.
-#include "pvtap/frame_codec.h"
+#include "pvtap/codec/frame_codec.h"
 
 #include <gtest/gtest.h>
 
 #include "frame_builders.h"
 
-#include "pvtap/framing_probe.h"
-#include "pvtap/function_codes.h"
+#include "pvtap/codec/function_codes.h"
+#include "pvtap/framing/framing_probe.h"
 
 namespace pvtap {
 namespace {

@@ -1,10 +1,10 @@
 // Byte ranges of the fields of every frame shape, checked against the reference's vectors.
-#include "pvtap/frame_layout.h"
+#include "pvtap/codec/frame_layout.h"
 
 #include <gtest/gtest.h>
 
 #include "hex_bytes.h"
-#include "pvtap/frame_codec.h"
+#include "pvtap/codec/frame_codec.h"
 
 namespace pvtap {
 namespace {

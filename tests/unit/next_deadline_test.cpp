@@ -6,10 +6,10 @@
 #include "bus_script.h"
 #include "frame_builders.h"
 #include "hex_bytes.h"
-#include "pvtap/bus_session.h"
-#include "pvtap/bus_timing.h"
-#include "pvtap/frame_codec.h"
-#include "pvtap/stream_reassembler.h"
+#include "pvtap/codec/frame_codec.h"
+#include "pvtap/framing/stream_reassembler.h"
+#include "pvtap/session/bus_session.h"
+#include "pvtap/statistics/bus_timing.h"
 
 namespace pvtap {
 namespace {

@@ -5,8 +5,8 @@
 #include <vector>
 
 #include "hex_bytes.h"
-#include "pvtap/frame_codec.h"
-#include "pvtap/framing_probe.h"
+#include "pvtap/codec/frame_codec.h"
+#include "pvtap/framing/framing_probe.h"
 
 namespace pvtap {
 namespace {

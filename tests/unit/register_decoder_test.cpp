@@ -1,5 +1,5 @@
 // The table-driven register decoder against the seed's values (PROTOCOLS.md section 5).
-#include "pvtap/register_decoder.h"
+#include "pvtap/registers/register_decoder.h"
 
 #include <gtest/gtest.h>
 
@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "frame_builders.h"
-#include "pvtap/function_codes.h"
-#include "pvtap/register_format.h"
+#include "pvtap/codec/function_codes.h"
+#include "pvtap/registers/register_format.h"
 
 namespace pvtap {
 namespace {

@@ -1,12 +1,12 @@
 // Display text of decoded register values, for every kind and the doubtful cases.
-#include "pvtap/register_format.h"
+#include "pvtap/registers/register_format.h"
 
 #include <gtest/gtest.h>
 
 #include <string>
 #include <vector>
 
-#include "pvtap/function_codes.h"
+#include "pvtap/codec/function_codes.h"
 
 namespace pvtap {
 namespace {

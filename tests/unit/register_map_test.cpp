@@ -1,5 +1,5 @@
 // The built-in register maps, the map loader's diagnostics, and merging user maps.
-#include "pvtap/register_map.h"
+#include "pvtap/registers/register_map.h"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // Result: a value or its diagnostics, as the map loader and the frame codec return them.
-#include "pvtap/result.h"
+#include "pvtap/codec/result.h"
 
 #include <gtest/gtest.h>
 
@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "hex_bytes.h"
-#include "pvtap/frame_codec.h"
-#include "pvtap/register_map.h"
+#include "pvtap/codec/frame_codec.h"
+#include "pvtap/registers/register_map.h"
 
 namespace pvtap {
 namespace {

@@ -1,13 +1,13 @@
 // What a dissector shows of each call's bytes (SegmentedBus), and the property that, for any
 // byte stream and any split into segments, it cuts exactly as the stream reassembler does.
-#include "pvtap/segmented_bus.h"
+#include "pvtap/session/segmented_bus.h"
 
 #include <gtest/gtest.h>
 
 #include "bus_script.h"
 #include "hex_bytes.h"
-#include "pvtap/checksums.h"
-#include "pvtap/register_decoder.h"
+#include "pvtap/codec/checksums.h"
+#include "pvtap/registers/register_decoder.h"
 
 namespace pvtap {
 namespace {

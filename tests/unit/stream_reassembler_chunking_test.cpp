@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "bus_script.h"
-#include "pvtap/stream_reassembler.h"
+#include "pvtap/framing/stream_reassembler.h"
 
 namespace pvtap {
 namespace {

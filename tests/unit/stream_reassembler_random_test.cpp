@@ -9,9 +9,9 @@
 #include "hex_bytes.h"
 
 #include "bus_script.h"
-#include "pvtap/bus_timing.h"
-#include "pvtap/function_codes.h"
-#include "pvtap/stream_reassembler.h"
+#include "pvtap/codec/function_codes.h"
+#include "pvtap/framing/stream_reassembler.h"
+#include "pvtap/statistics/bus_timing.h"
 
 namespace pvtap {
 namespace {

@@ -1,5 +1,5 @@
 // Specific behaviours of the stream reassembler: silence, data loss, timing, noise runs.
-#include "pvtap/stream_reassembler.h"
+#include "pvtap/framing/stream_reassembler.h"
 
 #include <gtest/gtest.h>
 
@@ -7,8 +7,8 @@
 
 #include "bus_script.h"
 #include "hex_bytes.h"
-#include "pvtap/bus_timing.h"
-#include "pvtap/checksums.h"
+#include "pvtap/codec/checksums.h"
+#include "pvtap/statistics/bus_timing.h"
 
 namespace pvtap {
 namespace {

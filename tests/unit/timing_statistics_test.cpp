@@ -1,4 +1,4 @@
-#include "pvtap/timing_statistics.h"
+#include "pvtap/statistics/timing_statistics.h"
 
 #include <gtest/gtest.h>
 
@@ -8,10 +8,10 @@
 #include <optional>
 #include <vector>
 
-#include "pvtap/bus_timing.h"
-#include "pvtap/distribution_summary.h"
-#include "pvtap/interval_series.h"
-#include "pvtap/log_histogram.h"
+#include "pvtap/statistics/bus_timing.h"
+#include "pvtap/statistics/distribution_summary.h"
+#include "pvtap/statistics/interval_series.h"
+#include "pvtap/statistics/log_histogram.h"
 
 namespace pvtap {
 namespace {

@@ -1,4 +1,4 @@
-#include "pvtap/transaction_matcher.h"
+#include "pvtap/matching/transaction_matcher.h"
 
 #include <gtest/gtest.h>
 
@@ -9,10 +9,10 @@
 #include <span>
 #include <vector>
 
-#include "pvtap/frame.h"
-#include "pvtap/frame_summary.h"
-#include "pvtap/function_codes.h"
-#include "pvtap/match_events.h"
+#include "pvtap/codec/frame.h"
+#include "pvtap/codec/function_codes.h"
+#include "pvtap/matching/frame_summary.h"
+#include "pvtap/matching/match_events.h"
 
 namespace pvtap {
 namespace {

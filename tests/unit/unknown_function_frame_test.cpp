@@ -1,10 +1,10 @@
 // RTU-shaped noise with a good CRC and a function code no dialect defines.
-#include "pvtap/unknown_function_frame.h"
+#include "pvtap/codec/unknown_function_frame.h"
 
 #include <gtest/gtest.h>
 
 #include "hex_bytes.h"
-#include "pvtap/checksums.h"
+#include "pvtap/codec/checksums.h"
 
 namespace pvtap {
 namespace {

@@ -8,8 +8,8 @@
 #include "mqtt/mqtt_options.h"
 #include "output/event_writer.h"
 #include "output/values_writer.h"
-#include "pvtap/dialect.h"
-#include "pvtap/register_decoder.h"
+#include "pvtap/codec/dialect.h"
+#include "pvtap/registers/register_decoder.h"
 #include "sources/live_options.h"
 
 namespace pvtap::analyzer {

@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "cli/user_map_folder.h"
-#include "pvtap/register_decoder.h"
-#include "pvtap/register_map.h"
+#include "pvtap/registers/register_decoder.h"
+#include "pvtap/registers/register_map.h"
 
 namespace pvtap::analyzer {
 namespace {

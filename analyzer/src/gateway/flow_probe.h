@@ -9,8 +9,8 @@
 #include <span>
 #include <vector>
 
-#include "pvtap/dialect.h"
-#include "pvtap/stream_reassembler.h"
+#include "pvtap/codec/dialect.h"
+#include "pvtap/framing/stream_reassembler.h"
 
 namespace pvtap::analyzer {
 

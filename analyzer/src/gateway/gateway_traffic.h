@@ -8,8 +8,8 @@
 #include <tuple>
 #include <vector>
 
-#include "pvtap/bus_session.h"
 #include "pvtap/capture/network_packet.h"
+#include "pvtap/session/bus_session.h"
 
 namespace pvtap::analyzer {
 

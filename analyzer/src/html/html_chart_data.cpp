@@ -10,7 +10,7 @@
 #include "formatting/json_text.h"
 #include "formatting/number_text.h"
 #include "html/html_sections.h"
-#include "pvtap/function_codes.h"
+#include "pvtap/codec/function_codes.h"
 #include "report/frame_findings.h"
 #include "report/poll_block_text.h"
 #include "report/report_line.h"

@@ -4,16 +4,16 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "report/frame_findings.h"
-#include "html/html_text.h"
-#include "report/poll_block_text.h"
-#include "pvtap/function_codes.h"
-#include "pvtap/register_format.h"
-#include "report/report_writers.h"
-#include "formatting/number_text.h"
-#include "formatting/json_text.h"
 #include "formatting/csv_text.h"
+#include "formatting/json_text.h"
+#include "formatting/number_text.h"
+#include "html/html_text.h"
+#include "pvtap/codec/function_codes.h"
+#include "pvtap/registers/register_format.h"
+#include "report/frame_findings.h"
+#include "report/poll_block_text.h"
 #include "report/report_line.h"
+#include "report/report_writers.h"
 
 namespace pvtap::analyzer {
 namespace {

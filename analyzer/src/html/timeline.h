@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "pvtap/dialect.h"
-#include "pvtap/register_map.h"
 #include "html/time_buckets.h"
+#include "pvtap/codec/dialect.h"
+#include "pvtap/registers/register_map.h"
 
 namespace pvtap::analyzer {
 

@@ -4,9 +4,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "report/frame_findings.h"
-#include "pvtap/register_format.h"
 #include "output/values_writer.h"
+#include "pvtap/registers/register_format.h"
+#include "report/frame_findings.h"
 
 namespace pvtap::analyzer {
 namespace {

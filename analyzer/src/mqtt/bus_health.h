@@ -7,9 +7,9 @@
 #include <string>
 #include <string_view>
 
+#include "pvtap/session/bus_session.h"
+#include "pvtap/statistics/distribution_summary.h"
 #include "report/live_report.h"
-#include "pvtap/bus_session.h"
-#include "pvtap/distribution_summary.h"
 
 namespace pvtap::analyzer {
 

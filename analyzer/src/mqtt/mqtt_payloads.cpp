@@ -1,12 +1,12 @@
 // Payloads of value, state and station-event topics.
 #include "mqtt/mqtt_payloads.h"
 
-#include "report/frame_findings.h"
-#include "mqtt/station_table.h"
-#include "pvtap/register_format.h"
-#include "formatting/number_text.h"
 #include "formatting/json_text.h"
+#include "formatting/number_text.h"
+#include "mqtt/station_table.h"
 #include "output/value_json_cache.h"
+#include "pvtap/registers/register_format.h"
+#include "report/frame_findings.h"
 
 namespace pvtap::analyzer {
 namespace {

@@ -7,7 +7,7 @@
 #include <string>
 #include <string_view>
 
-#include "pvtap/register_decoder.h"
+#include "pvtap/registers/register_decoder.h"
 
 namespace pvtap::analyzer {
 

@@ -10,7 +10,7 @@
 #include <string>
 #include <utility>
 
-#include "pvtap/bus_session.h"
+#include "pvtap/session/bus_session.h"
 
 namespace pvtap::analyzer {
 

@@ -5,7 +5,7 @@
 #include <string_view>
 
 #include "formatting/output_stream.h"
-#include "pvtap/bus_session.h"
+#include "pvtap/session/bus_session.h"
 
 namespace pvtap::analyzer {
 

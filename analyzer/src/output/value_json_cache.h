@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <string>
 
-#include "pvtap/register_decoder.h"
+#include "pvtap/registers/register_decoder.h"
 
 namespace pvtap::analyzer {
 

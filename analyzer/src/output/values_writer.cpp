@@ -4,11 +4,11 @@
 
 #include <string>
 
-#include "report/frame_findings.h"
-#include "pvtap/register_format.h"
-#include "formatting/number_text.h"
-#include "formatting/json_text.h"
 #include "formatting/csv_text.h"
+#include "formatting/json_text.h"
+#include "formatting/number_text.h"
+#include "pvtap/registers/register_format.h"
+#include "report/frame_findings.h"
 #include "report/report_line.h"
 
 namespace pvtap::analyzer {

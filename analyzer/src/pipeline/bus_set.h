@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "output/event_writer.h"
-#include "pvtap/bus_session.h"
+#include "pvtap/session/bus_session.h"
 #include "report/audit_report.h"
 
 namespace pvtap::analyzer {

@@ -1,6 +1,6 @@
 #include "pipeline/pipeline.h"
 
-#include "pvtap/carrier_timing.h"
+#include "pvtap/session/carrier_timing.h"
 
 namespace pvtap::analyzer {
 

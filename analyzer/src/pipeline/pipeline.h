@@ -14,10 +14,10 @@
 #include "output/event_writer.h"
 #include "pipeline/bus_set.h"
 #include "pipeline/run_tally.h"
-#include "pvtap/bus_session.h"
 #include "pvtap/capture/capture_file.h"
 #include "pvtap/capture/link_types.h"
-#include "pvtap/carrier_timing.h"
+#include "pvtap/session/bus_session.h"
+#include "pvtap/session/carrier_timing.h"
 #include "report/audit_report.h"
 
 namespace pvtap::analyzer {

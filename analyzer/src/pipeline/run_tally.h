@@ -6,7 +6,7 @@
 #include <optional>
 
 #include "output/event_writer.h"
-#include "pvtap/distribution_summary.h"
+#include "pvtap/statistics/distribution_summary.h"
 
 namespace pvtap::analyzer {
 

@@ -7,9 +7,9 @@
 #include <vector>
 
 #include "gateway/gateway_traffic.h"
-#include "pvtap/bus_report.h"
-#include "pvtap/distribution_summary.h"
-#include "pvtap/register_decoder.h"
+#include "pvtap/registers/register_decoder.h"
+#include "pvtap/session/bus_report.h"
+#include "pvtap/statistics/distribution_summary.h"
 #include "report/live_report.h"
 
 namespace pvtap::analyzer {

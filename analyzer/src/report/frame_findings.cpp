@@ -5,8 +5,8 @@
 
 #include "formatting/json_text.h"
 #include "formatting/number_text.h"
-#include "pvtap/function_codes.h"
-#include "pvtap/register_format.h"
+#include "pvtap/codec/function_codes.h"
+#include "pvtap/registers/register_format.h"
 
 namespace pvtap::analyzer {
 namespace {

@@ -5,8 +5,8 @@
 #include <string_view>
 #include <vector>
 
-#include "pvtap/bus_session.h"
-#include "pvtap/register_decoder.h"
+#include "pvtap/registers/register_decoder.h"
+#include "pvtap/session/bus_session.h"
 
 namespace pvtap::analyzer {
 

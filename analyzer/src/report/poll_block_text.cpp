@@ -4,8 +4,8 @@
 #include <cstdio>
 #include <optional>
 
-#include "pvtap/register_decoder.h"
-#include "pvtap/register_map.h"
+#include "pvtap/registers/register_decoder.h"
+#include "pvtap/registers/register_map.h"
 
 namespace pvtap::analyzer {
 

@@ -5,8 +5,8 @@
 #include <optional>
 #include <string>
 
+#include "pvtap/statistics/timing_statistics.h"
 #include "report/audit_report.h"
-#include "pvtap/timing_statistics.h"
 
 namespace pvtap::analyzer {
 

@@ -4,14 +4,13 @@
 #include <string>
 
 #include "formatting/number_text.h"
+#include "pvtap/codec/function_codes.h"
+#include "pvtap/registers/register_decoder.h"
+#include "pvtap/registers/register_format.h"
+#include "pvtap/registers/register_map.h"
+#include "pvtap/statistics/timing_statistics.h"
 #include "report/frame_findings.h"
 #include "report/poll_block_text.h"
-#include "pvtap/function_codes.h"
-#include "pvtap/register_decoder.h"
-#include "pvtap/register_format.h"
-#include "pvtap/register_map.h"
-#include "pvtap/timing_statistics.h"
-#include "report/frame_findings.h"
 #include "report/report_line.h"
 #include "report/report_writers.h"
 

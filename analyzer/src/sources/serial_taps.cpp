@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "pvtap/carrier_timing.h"
+#include "pvtap/session/carrier_timing.h"
 #include "sources/device_tap.h"
 #include "sources/wall_clock.h"
 

@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "pvtap/capture/packet_builder.h"
-#include "pvtap/frame.h"
-#include "pvtap/stream_reassembler.h"
+#include "pvtap/codec/frame.h"
+#include "pvtap/framing/stream_reassembler.h"
 
 namespace pvtap::forge {
 

@@ -1,6 +1,6 @@
 #include "inverter_traffic.h"
 
-#include "pvtap/function_codes.h"
+#include "pvtap/codec/function_codes.h"
 
 namespace pvtap::forge {
 namespace {

@@ -6,7 +6,7 @@
 #include <optional>
 
 #include "bus_plan.h"
-#include "pvtap/frame.h"
+#include "pvtap/codec/frame.h"
 
 namespace pvtap::forge {
 

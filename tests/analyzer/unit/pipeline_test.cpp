@@ -11,7 +11,7 @@
 #include "pvtap/capture/exported_pdu_tags.h"
 #include "pvtap/capture/link_types.h"
 #include "pvtap/capture/packet_builder.h"
-#include "pvtap/frame_codec.h"
+#include "pvtap/codec/frame_codec.h"
 
 namespace pvtap::analyzer {
 namespace {

@@ -6,7 +6,7 @@
 #include <span>
 #include <string_view>
 
-#include "pvtap/stream_reassembler.h"
+#include "pvtap/framing/stream_reassembler.h"
 
 namespace pvtap {
 

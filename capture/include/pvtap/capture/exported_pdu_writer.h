@@ -10,8 +10,8 @@
 #include <string>
 
 #include "pvtap/capture/pcap_writer.h"
-#include "pvtap/dialect.h"
-#include "pvtap/stream_reassembler.h"
+#include "pvtap/codec/dialect.h"
+#include "pvtap/framing/stream_reassembler.h"
 
 namespace pvtap {
 

@@ -5,7 +5,7 @@
 #include <optional>
 #include <span>
 
-#include "pvtap/stream_reassembler.h"
+#include "pvtap/framing/stream_reassembler.h"
 
 namespace pvtap {
 

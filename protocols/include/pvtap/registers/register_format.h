@@ -1,0 +1,23 @@
+// Display text for decoded register values (allocates; for output, not the hot path).
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "pvtap/registers/register_decoder.h"
+
+namespace pvtap {
+
+// The value as a person reads it: "52.3 V", "single phase, 3.0 kW", "2005-10", an enum text,
+// the names of the set bits, the text of a text register, "31 inverter, serial 103".
+std::string format_value(const DecodedValue& v);
+void append_value_text(const DecodedValue& v, std::string& out);
+
+// The value's address as the reference writes it ("0x1006", "0x0020", "1056"); a GSL wire
+// address with no decimal reading (hex IDs) is shown as hex.
+RegisterAddressText format_value_address(const DecodedValue& v, Dialect d);
+
+// A short description of one warning ("low part above 9999 in a decimal pair").
+std::string_view describe(ValueWarning w);
+
+}  // namespace pvtap

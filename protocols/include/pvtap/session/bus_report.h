@@ -1,0 +1,134 @@
+// What a BusSession found on one bus, ready for any presentation (text, JSON, a GUI).
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "pvtap/codec/dialect.h"
+#include "pvtap/codec/frame_codec.h"
+#include "pvtap/framing/stream_reassembler.h"
+#include "pvtap/matching/match_events.h"
+#include "pvtap/registers/register_decoder.h"
+#include "pvtap/statistics/distribution_summary.h"
+#include "pvtap/statistics/timing_statistics.h"
+
+namespace pvtap {
+
+// FrameExample: one frame kept as an example of a finding (its bytes copied).
+struct FrameExample {
+  std::uint64_t id = 0;
+  double time = 0;  // start of the frame
+  Dialect dialect = Dialect::Gsl;
+  Role role = Role::Request;
+  std::uint8_t station = 0;
+  std::uint8_t function = 0;
+  FrameCheck check;
+  std::vector<std::uint8_t> bytes;
+};
+
+// TimeoutExample: one request that got no reply.
+struct TimeoutExample {
+  Timeout timeout;
+  double request_time = 0;  // start of the request
+};
+
+// ExceptionTally: how often a station refused a request with one error form.
+//   GSL: code = the exception code; Hybrid: code = 0xFF (the 0xFF error reply).
+struct ExceptionTally {
+  Dialect dialect = Dialect::Gsl;
+  std::uint8_t code = 0;
+  std::uint64_t count = 0;
+};
+
+// RoleCounts: frames of one dialect by role.
+struct RoleCounts {
+  std::uint64_t requests = 0;
+  std::uint64_t responses = 0;
+};
+
+// LatestValue: the newest reading of one register and the dialect it was read in.
+struct LatestValue {
+  Dialect dialect = Dialect::Gsl;
+  DecodedValue value;
+};
+
+// StationSummary: everything counted for one station address.
+struct StationSummary {
+  std::uint8_t station = 0;
+  std::array<RoleCounts, 3> by_dialect{};  // indexed by Dialect
+  std::uint64_t requests = 0;
+  std::uint64_t responses = 0;
+  std::uint64_t bad_checks = 0;
+  std::uint64_t timeouts = 0;                     // good requests that got no reply
+  std::uint64_t damaged_replies = 0;              // replies with a bad check to its requests
+  std::uint64_t unanswered_damaged_requests = 0;  // its requests with a bad check, no reply
+  std::uint64_t exceptions = 0;                   // GSL exceptions and Hybrid error replies
+  std::uint64_t unsolicited = 0;
+  std::uint64_t duplicates = 0;
+  std::uint64_t count_mismatches = 0;
+  DistributionSummary latency;
+  double last_report_time = 0;  // when the newest value below arrived
+  // The newest value of every register the station reported (read replies and write echoes
+  // with good checks), sorted by dialect and address.
+  std::vector<LatestValue> latest_values;
+};
+
+// GapTally: capture data lost on the way to the analyzer.
+struct GapTally {
+  std::uint64_t gaps = 0;
+  std::uint64_t lost_bytes = 0;  // sum of the gaps whose size is known
+  std::uint64_t gaps_of_unknown_size = 0;
+};
+
+// BusCounters: every counter of one bus, added up in one way (operator+=, which fails to
+// compile when a counter is added here and not there).
+struct BusCounters {
+  ReassemblerTotals bytes;  // every direction added up
+  std::uint64_t requests = 0;
+  std::uint64_t responses = 0;
+  std::array<RoleCounts, 3> by_dialect{};
+  std::uint64_t malformed_frames = 0;  // found by structure but not parseable
+  // Requests with a good check that got no reply: the slave did not answer.
+  std::uint64_t timeouts = 0;
+  std::array<std::uint64_t, 2> timeouts_by_reason{};  // NoReply, NextRequestFirst
+  // Replies with a bad check that answered a request: the line damaged the answer.
+  std::uint64_t damaged_replies = 0;
+  // Requests with a bad check that got no reply: the slave rightly ignored them.
+  std::uint64_t unanswered_damaged_requests = 0;
+  std::uint64_t unanswered_at_end = 0;      // still within the timeout when the input ended
+  std::uint64_t unanswered_after_loss = 0;  // the reply may be in lost capture data
+  std::uint64_t transactions = 0;
+  std::uint64_t unsolicited = 0;
+  std::uint64_t late_replies = 0;  // unsolicited replies that fit a timed-out request
+  std::uint64_t duplicates = 0;
+  std::uint64_t count_mismatches = 0;
+  std::uint64_t role_corrections = 0;
+  std::uint64_t exceptions = 0;
+  GapTally gaps;
+
+  BusCounters& operator+=(const BusCounters& o);
+};
+
+// BusReport: the findings of one bus. Counters cover the whole input; examples are the
+// first few of each kind.
+struct BusReport : BusCounters {
+  static constexpr std::size_t kMaxExamples = 5;
+
+  BusCounters& counters() { return *this; }
+  const BusCounters& counters() const { return *this; }
+
+  std::vector<ExceptionTally> exception_codes;  // sorted by dialect and code
+  std::vector<FrameExample> bad_check_examples;
+  std::vector<TimeoutExample> timeout_examples;
+  std::vector<FrameExample> unsolicited_examples;
+  bool has_timestamps = true;
+  double first_time = 0;  // first and last byte seen, when has_timestamps and bytes arrived
+  double last_time = 0;
+  TimingReport timing;
+  std::vector<StationSummary> stations;  // sorted by address; only stations that appeared
+};
+
+}  // namespace pvtap

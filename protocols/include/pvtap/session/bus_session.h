@@ -1,0 +1,154 @@
+// One bus followed from raw bytes to findings: reassembly, parsing, pairing, decoding, timing.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "pvtap/codec/frame.h"
+#include "pvtap/codec/frame_codec.h"
+#include "pvtap/framing/stream_reassembler.h"
+#include "pvtap/matching/match_events.h"
+#include "pvtap/matching/transaction_matcher.h"
+#include "pvtap/registers/register_decoder.h"
+#include "pvtap/session/bus_report.h"
+
+namespace pvtap {
+
+// BusSessionOptions: how a session reads its input and what it works out per frame.
+struct BusSessionOptions {
+  ReassemblerOptions reassembler;
+  MatcherConfig matcher;
+  // False for inputs without timestamps (a plain byte dump): no latency, periods or timing.
+  bool has_timestamps = true;
+  // Why the source's timestamps cannot time the bus, when the caller knows better than the
+  // reassembler (set reassembler.timestamps = Untrusted with it).
+  std::string timestamp_note;
+  // Decode register values of every frame for the sink (output); the latest-value table of
+  // the report is kept either way.
+  bool decode_values = true;
+};
+
+// SessionFrame: one frame with everything the session learned about it. Valid only during
+// the callback (spans and pointers point into the session).
+struct SessionFrame {
+  std::uint64_t id = 0;      // frames of a session are numbered from 0 in bus order
+  std::uint64_t offset = 0;  // position in its direction's byte stream
+  std::span<const std::uint8_t> bytes;
+  Direction direction = Direction::Unknown;
+  double start_time = 0;
+  double end_time = 0;
+  Dialect dialect = Dialect::Gsl;
+  Role role = Role::Request;  // as corrected by the matcher (GSL 0x06 echoes)
+  FrameCheck check;
+  const Frame* frame = nullptr;  // null when the bytes do not parse (see parse_error)
+  std::string_view parse_error;
+  // Replies: the request answered, and the latency (when the input has timestamps).
+  std::optional<std::uint64_t> request_id;
+  std::optional<double> latency;
+  ReplyKind reply_kind = ReplyKind::Normal;
+  bool broadcast_answer = false;
+  bool unsolicited = false;
+  std::optional<double> late_by;  // unsolicited, but fits a timed-out request this much later
+  std::optional<std::uint64_t> late_for;  // ... that request
+  bool duplicate = false;
+  std::optional<std::uint64_t> duplicate_of;  // the request a duplicate answered before
+  bool role_corrected = false;
+  std::optional<ByteCountMismatch> count_mismatch;
+  // The request whose start address places this reply's words (its own, or the one it
+  // duplicates), when that request's check was good. Values are decoded only from a frame
+  // with a good check, and never placed by a request with a bad one.
+  std::optional<std::uint64_t> placed_by;
+  bool values_trusted = false;  // a good check: its values may be decoded
+  DecodeReport decode;
+  std::span<const DecodedValue> values;  // empty unless options.decode_values
+};
+
+// UnansweredKind: how a request without a reply is judged.
+enum class UnansweredKind : std::uint8_t {
+  Timeout = 0,     // a finding: no reply within the timeout, or the next request came first
+  InputEnded = 1,  // the input ended before its timeout ran out: not a finding
+  AfterLoss = 2,   // capture data was lost while it waited: the reply may be in the gap
+  // The request had a bad check: the slave was right to ignore it (not the slave's finding).
+  DamagedRequest = 3,
+};
+
+// SessionTimeout: a request that got no reply.
+struct SessionTimeout {
+  Timeout timeout;
+  UnansweredKind kind = UnansweredKind::Timeout;
+  double request_start = 0;
+  double request_end = 0;
+  double time = 0;  // when it was given up: request_end + timeout.waited
+};
+
+// SessionGap: capture data lost in one direction (the bytes around it are not joined).
+struct SessionGap {
+  Direction direction = Direction::Unknown;
+  double time = 0;
+  std::optional<std::uint64_t> lost_bytes;  // when the capture path knows it
+};
+
+// SessionNoise: bytes that belong to no frame. Valid only during the callback.
+struct SessionNoise {
+  NoiseEvent noise;
+  Direction direction = Direction::Unknown;
+};
+
+// BusSessionSink: receives a session's events in bus order. All default to doing nothing.
+class BusSessionSink {
+ public:
+  virtual ~BusSessionSink() = default;
+  virtual void on_frame(const SessionFrame&) {}
+  virtual void on_timeout(const SessionTimeout&) {}
+  virtual void on_noise(const SessionNoise&) {}
+  virtual void on_gap(const SessionGap&) {}
+};
+
+// BusSession: the core's whole pipeline for one half-duplex bus, with no I/O of its own.
+//
+// Chunks with a known direction (a gateway's two TCP directions) are reassembled per
+// direction, so that a loss in one direction does not break frames of the other; chunks of
+// unknown direction (a tap on the bus) share one stream. Frames go to the transaction matcher
+// in the order they are found; its findings, the frame's decoded values and its timing come
+// back to the sink as one SessionFrame. Memory is bounded by the number of stations and
+// registers seen, not by the length of the input.
+class BusSession {
+ public:
+  BusSession(BusSessionOptions options, const RegisterDecoder& decoder, BusSessionSink& sink);
+  ~BusSession();
+  BusSession(const BusSession&) = delete;
+  BusSession& operator=(const BusSession&) = delete;
+
+  // Half duplex: a chunk of known direction after one of the other known direction ends the
+  // other's turn (end_turn), unless the chunk says that turn is not complete.
+  void feed(const BusChunk& chunk);
+  // The sender in `direction` has finished its turn: on a half-duplex bus the other side
+  // started talking, so its pending bytes are complete. Call it only when no data of that
+  // direction is still on its way (e.g. no TCP segment missing).
+  void end_turn(Direction direction);
+  // Capture data of `direction` was lost at `time`; reported as a gap.
+  void data_lost(Direction direction, double time, std::optional<std::uint64_t> lost_bytes);
+  // The byte stream restarts (a new TCP connection to the same gateway); nothing was lost.
+  // The next chunk starts a turn of its own: it ends no turn of the previous stream.
+  void restart(Direction direction);
+  // The bus has been silent until `now` (live capture): pending decisions and timeouts.
+  void idle(double now);
+  // When idle() can next decide something (see StreamReassembler::next_deadline and
+  // TransactionMatcher::next_deadline); nullopt when only more bytes can.
+  std::optional<double> next_deadline() const;
+  // End of input: every byte is decided, every waiting request judged.
+  void finish();
+
+  BusReport report() const;
+  ReassemblerTotals totals() const;  // of all directions so far
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace pvtap

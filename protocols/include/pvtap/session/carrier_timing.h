@@ -1,0 +1,35 @@
+// What the way bytes reach pvtap says about their timestamps, decided once for every program.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+
+#include "pvtap/session/bus_session.h"
+
+namespace pvtap {
+
+// Carrier: how a bus's bytes reach pvtap.
+enum class Carrier : std::uint8_t {
+  SerialCharacters,  // serial records stamped as the characters arrived (a fine tap)
+  SerialBatches,     // serial records that are chunks read from an adapter (batched stamps)
+  GatewaySegments,   // a serial-to-TCP gateway's TCP/UDP segments
+  PlainDump,         // a plain byte dump: no time at all
+  LiveSerial,        // a live serial tap, read by pvtap itself
+  ExportedPdus,      // exported-PDU records (pvtap audit --write), one frame each
+};
+
+// CarrierTiming: a carrier and what is known of its batching.
+struct CarrierTiming {
+  Carrier carrier = Carrier::SerialCharacters;
+  // GatewaySegments: the gateway's packing interval in seconds (pvtap's --gateway-gap).
+  double gateway_gap = 0.0;
+  // LiveSerial: the USB adapter's latency timer in ms, when the adapter has one.
+  std::optional<int> latency_timer_ms;
+};
+
+// Sets what `options` trusts of the timestamps for `carrier`: reassembler.timestamps,
+// boundary_gap and segment_ends_pin, has_timestamps and timestamp_note. Reads the baud
+// rate and bits per character already set in options.reassembler; leaves the rest alone.
+void apply_carrier_timing(const CarrierTiming& carrier, BusSessionOptions& options);
+
+}  // namespace pvtap

@@ -1,0 +1,109 @@
+#include "pvtap/codec/frame_layout.h"
+
+namespace pvtap {
+namespace {
+
+constexpr std::uint16_t kAsciiWordDigits = 4;
+
+// Hands out consecutive byte ranges, in wire order.
+struct Cursor {
+  std::uint16_t at = 0;
+  FieldSpan take(std::size_t n) {
+    const FieldSpan span{at, static_cast<std::uint16_t>(n)};
+    at = static_cast<std::uint16_t>(at + n);
+    return span;
+  }
+};
+
+// The spans of a header of `size` bytes from `offset`, when the frame holds them.
+FieldSpan within(std::size_t length, std::uint16_t offset, std::uint16_t size) {
+  return length >= std::size_t{offset} + size ? FieldSpan{offset, size} : FieldSpan{};
+}
+
+FrameLayout ascii_header_layout(std::size_t length) {
+  FrameLayout l;
+  l.word_size = kAsciiWordDigits;
+  l.start_delimiter = within(length, 0, 1);
+  l.station = within(length, 1, 2);
+  l.function = within(length, 3, 1);
+  if (length >= 5) {
+    l.check = {static_cast<std::uint16_t>(length - 5), 4};
+    l.end_delimiter = {static_cast<std::uint16_t>(length - 1), 1};
+  }
+  return l;
+}
+
+FrameLayout rtu_header_layout(std::size_t length) {
+  FrameLayout l;
+  l.station = within(length, 0, 1);
+  l.function = within(length, 1, 1);
+  if (length >= 2) l.check = {static_cast<std::uint16_t>(length - 2), 2};
+  return l;
+}
+
+FrameLayout ascii_layout(const Frame& f, std::size_t length) {
+  FrameLayout l = ascii_header_layout(length);
+  Cursor c{4};  // after ENQ/ACK, station and function
+  l.start = c.take(4);
+  if (f.role == Role::Request) {
+    l.count = c.take(2);
+  } else {
+    l.words = c.take(f.words.size() * kAsciiWordDigits);
+  }
+  return l;
+}
+
+// Reply with a byte count: addr fc n [device number] [start] [count] words crc.
+void counted_reply_layout(const Frame& f, Cursor& c, FrameLayout& l) {
+  l.byte_count = c.take(1);
+  if (f.device) {
+    l.device_type = c.take(1);
+    l.device_serial = c.take(3);
+  }
+  if (f.start) l.start = c.take(2);
+  if (f.count) l.count = c.take(2);
+}
+
+// Everything else: addr fc [start] [count] [n] words crc (GSL 0x10 requests carry n).
+void plain_layout(const Frame& f, Cursor& c, FrameLayout& l) {
+  if (f.exception_code) {
+    l.exception_code = c.take(1);
+    return;
+  }
+  if (f.start) l.start = c.take(2);
+  if (f.count) l.count = c.take(2);
+  if (f.byte_count) l.byte_count = c.take(1);
+}
+
+FrameLayout rtu_layout(const Frame& f, std::size_t length) {
+  FrameLayout l = rtu_header_layout(length);
+  Cursor c{2};  // after station and function
+  const bool counted_reply = f.role == Role::Response && (f.byte_count || f.device);
+  if (counted_reply) {
+    counted_reply_layout(f, c, l);
+  } else {
+    plain_layout(f, c, l);
+  }
+  if (!f.words.empty()) l.words = c.take(f.words.size() * 2);
+  return l;
+}
+
+}  // namespace
+
+FieldSpan FrameLayout::word_span(std::size_t index, std::size_t n) const {
+  const std::size_t size = word_size;
+  const std::size_t words_in_frame = size == 0 ? 0 : std::size_t{words.length} / size;
+  if (n == 0 || index >= words_in_frame || n > words_in_frame - index) return {};
+  return {static_cast<std::uint16_t>(words.offset + index * size),
+          static_cast<std::uint16_t>(n * size)};
+}
+
+FrameLayout header_layout(Dialect dialect, std::size_t length) {
+  return dialect == Dialect::Ascii ? ascii_header_layout(length) : rtu_header_layout(length);
+}
+
+FrameLayout frame_layout(const Frame& frame, std::size_t length) {
+  return frame.dialect == Dialect::Ascii ? ascii_layout(frame, length) : rtu_layout(frame, length);
+}
+
+}  // namespace pvtap

@@ -1,0 +1,210 @@
+#include "codec/rtu_codec.h"
+
+#include "pvtap/codec/checksums.h"
+#include "pvtap/codec/function_codes.h"
+
+namespace pvtap::detail {
+namespace {
+
+constexpr std::size_t kCrcLength = 2;
+constexpr std::size_t kFixedLength = 8;  // addr fc word word crc
+constexpr std::size_t kDeviceNumberLength = 4;
+
+ParseOutcome fail(std::string_view why) {
+  return ParseOutcome::failure(why);
+}
+
+std::uint16_t be16(std::span<const std::uint8_t> b, std::size_t at) {
+  return static_cast<std::uint16_t>((b[at] << 8) | b[at + 1]);
+}
+
+void put16(std::vector<std::uint8_t>& out, std::uint16_t v) {
+  out.push_back(static_cast<std::uint8_t>(v >> 8));
+  out.push_back(static_cast<std::uint8_t>(v & 0xFFu));
+}
+
+bool read_words(std::span<const std::uint8_t> data, Frame& f) {
+  if (data.size() % 2 != 0) return false;
+  for (std::size_t i = 0; i < data.size(); i += 2) {
+    if (!f.words.push_back(be16(data, i))) return false;
+  }
+  return true;
+}
+
+bool is_hybrid_read(std::uint8_t f) {
+  return f == fc::kHybridDeviceInfo || f == fc::kHybridRunningData || f == fc::kHybridSettings ||
+         f == fc::kHybridManufacturer || f == fc::kHybridRestoreFactory;
+}
+
+// addr fc n data[n] crc, with n checked against the frame length.
+std::optional<std::span<const std::uint8_t>> counted_body(std::span<const std::uint8_t> b,
+                                                          Frame& f) {
+  if (b.size() < 5) return std::nullopt;
+  const std::size_t n = b[2];
+  if (b.size() != 5 + n) return std::nullopt;
+  f.byte_count = b[2];
+  return b.subspan(3, n);
+}
+
+// The parsers below fill in the frame they are given: passing a Frame by value copies its
+// disengaged optionals, which g++ 14 reports as a read of uninitialized memory.
+ParseOutcome parse_hybrid_request(std::span<const std::uint8_t> b, Frame& f) {
+  if (b.size() != kFixedLength) return fail("Hybrid request is not 8 bytes");
+  f.start = be16(b, 2);
+  if (f.function == fc::kHybridWriteParameter) {
+    f.words.push_back(be16(b, 4));
+  } else if (is_hybrid_read(f.function)) {
+    f.count = be16(b, 4);
+  } else {
+    return fail("not a Hybrid request function code");
+  }
+  return f;
+}
+
+ParseOutcome parse_hybrid_reply(std::span<const std::uint8_t> b, Frame& f) {
+  const auto body = counted_body(b, f);
+  if (!body) return fail("Hybrid reply length disagrees with its byte count");
+  if (body->size() < kDeviceNumberLength) return fail("Hybrid reply shorter than a device number");
+  const auto& d = *body;
+  f.device = DeviceNumber{d[0], static_cast<std::uint32_t>((d[1] << 16) | (d[2] << 8) | d[3])};
+  const auto rest = d.subspan(kDeviceNumberLength);
+  const bool fixed_echo = rest.size() == 4;
+  if (fixed_echo && f.function == fc::kHybridWriteParameter) {
+    f.start = be16(rest, 0);
+    f.words.push_back(be16(rest, 2));
+  } else if (fixed_echo &&
+             (f.function == fc::kHybridRestoreFactory || f.function == fc::kHybridError)) {
+    f.start = be16(rest, 0);
+    f.count = be16(rest, 2);
+  } else if (!read_words(rest, f)) {
+    return fail("Hybrid reply data is not whole 16-bit registers");
+  }
+  return f;
+}
+
+ParseOutcome parse_gsl_request(std::span<const std::uint8_t> b, Frame& f) {
+  if (f.function == fc::kGslWriteMultiple) {
+    if (b.size() < 9 || b.size() != 9u + b[6]) return fail("GSL 0x10 length disagrees with n");
+    f.start = be16(b, 2);
+    f.count = be16(b, 4);
+    f.byte_count = b[6];
+    if (!read_words(b.subspan(7, b[6]), f)) return fail("GSL 0x10 data is not whole registers");
+    return f;
+  }
+  if (b.size() != kFixedLength) return fail("GSL request is not 8 bytes");
+  f.start = be16(b, 2);
+  if (f.function == fc::kGslWriteSingle) {
+    f.words.push_back(be16(b, 4));
+  } else if (f.function == fc::kGslReadHolding || f.function == fc::kGslReadInput) {
+    f.count = be16(b, 4);
+  } else {
+    return fail("not a GSL request function code");
+  }
+  return f;
+}
+
+ParseOutcome parse_gsl_reply(std::span<const std::uint8_t> b, Frame& f) {
+  if (fc::is_gsl_exception(f.function)) {
+    if (b.size() != 5) return fail("GSL exception is not 5 bytes");
+    f.exception_code = b[2];
+    return f;
+  }
+  if (f.function == fc::kGslReadHolding || f.function == fc::kGslReadInput) {
+    const auto body = counted_body(b, f);
+    if (!body) return fail("GSL reply length disagrees with its byte count");
+    if (!read_words(*body, f)) return fail("GSL reply data is not whole registers");
+    return f;
+  }
+  if (b.size() != kFixedLength) return fail("GSL write reply is not 8 bytes");
+  f.start = be16(b, 2);
+  if (f.function == fc::kGslWriteSingle) {
+    f.words.push_back(be16(b, 4));
+  } else if (f.function == fc::kGslWriteMultiple) {
+    f.count = be16(b, 4);
+  } else {
+    return fail("not a GSL reply function code");
+  }
+  return f;
+}
+
+void encode_hybrid_reply_body(const Frame& f, std::vector<std::uint8_t>& body) {
+  const auto& d = *f.device;
+  body.push_back(d.type_code);
+  body.push_back(static_cast<std::uint8_t>(d.serial >> 16));
+  body.push_back(static_cast<std::uint8_t>(d.serial >> 8));
+  body.push_back(static_cast<std::uint8_t>(d.serial));
+  if (f.start) put16(body, *f.start);
+  if (f.count) put16(body, *f.count);
+  for (auto w : f.words) put16(body, w);
+}
+
+bool encode_body(const Frame& f, std::vector<std::uint8_t>& out) {
+  const bool request = f.role == Role::Request;
+  if (fc::is_gsl_exception(f.function) && f.dialect == Dialect::Gsl) {
+    if (request || !f.exception_code) return false;
+    out.push_back(*f.exception_code);
+    return true;
+  }
+  if (!request && (f.byte_count || f.device)) {  // counted reply: addr fc n data
+    std::vector<std::uint8_t> body;
+    if (f.device)
+      encode_hybrid_reply_body(f, body);
+    else
+      for (auto w : f.words) put16(body, w);
+    if (body.size() > 0xFF) return false;
+    out.push_back(static_cast<std::uint8_t>(body.size()));
+    out.insert(out.end(), body.begin(), body.end());
+    return true;
+  }
+  if (!f.start) return false;
+  put16(out, *f.start);
+  if (f.count) put16(out, *f.count);
+  if (request && f.function == fc::kGslWriteMultiple) {
+    if (f.words.size() * 2 > 0xFF) return false;
+    out.push_back(f.byte_count.value_or(static_cast<std::uint8_t>(f.words.size() * 2)));
+  }
+  for (auto w : f.words) put16(out, w);
+  return true;
+}
+
+}  // namespace
+
+ParseOutcome parse_rtu(std::span<const std::uint8_t> b, Dialect dialect, Role role) {
+  if (b.size() < 5) return fail("RTU frame shorter than 5 bytes");
+  Frame f;
+  f.dialect = dialect;
+  f.role = role;
+  f.station = b[0];
+  f.function = b[1];
+  if (fc::rtu_dialect_of(f.function) != dialect) return fail("function code of another dialect");
+  if (dialect == Dialect::Hybrid) {
+    return role == Role::Request ? parse_hybrid_request(b, f) : parse_hybrid_reply(b, f);
+  }
+  return role == Role::Request ? parse_gsl_request(b, f) : parse_gsl_reply(b, f);
+}
+
+FrameCheck verify_rtu_check(std::span<const std::uint8_t> b) {
+  FrameCheck c;
+  if (b.size() < kCrcLength + 1) return c;
+  c.expected = Crc16Modbus::compute(b.first(b.size() - kCrcLength));
+  c.found = static_cast<std::uint16_t>(b[b.size() - 2] | (b[b.size() - 1] << 8));
+  c.ok = c.found == c.expected;
+  return c;
+}
+
+bool encode_rtu(const Frame& f, std::vector<std::uint8_t>& out) {
+  if (fc::rtu_dialect_of(f.function) != f.dialect) return false;
+  const std::size_t begin = out.size();
+  out.push_back(f.station);
+  out.push_back(f.function);
+  if (!encode_body(f, out)) {
+    out.resize(begin);
+    return false;
+  }
+  const auto crc = Crc16Modbus::compute(std::span(out).subspan(begin));
+  out.push_back(static_cast<std::uint8_t>(crc & 0xFFu));
+  out.push_back(static_cast<std::uint8_t>(crc >> 8));
+  return true;
+}
+
+}  // namespace pvtap::detail

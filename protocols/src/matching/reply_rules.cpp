@@ -1,0 +1,94 @@
+#include "pvtap/matching/reply_rules.h"
+
+#include "pvtap/codec/function_codes.h"
+
+namespace pvtap {
+namespace {
+
+bool is_hybrid_read(std::uint8_t f) {
+  return f == fc::kHybridDeviceInfo || f == fc::kHybridRunningData || f == fc::kHybridSettings ||
+         f == fc::kHybridManufacturer;
+}
+
+std::optional<CountComparison> compare_hybrid(const FrameSummary& request,
+                                              const FrameSummary& reply) {
+  if (!reply.byte_count) return std::nullopt;
+  const unsigned found = *reply.byte_count;
+  if (is_hybrid_read(request.function)) {
+    if (!request.count) return std::nullopt;
+    return CountComparison{4u + 2u * unsigned{*request.count}, found, CountUnit::Bytes};
+  }
+  // The seed's table fixes n = 8 for both; 4 + 2*count would wrongly flag every 0x1F reply.
+  if (request.function == fc::kHybridWriteParameter ||
+      request.function == fc::kHybridRestoreFactory) {
+    return CountComparison{8u, found, CountUnit::Bytes};
+  }
+  return std::nullopt;
+}
+
+std::optional<CountComparison> compare_gsl(const FrameSummary& request, const FrameSummary& reply) {
+  const bool read =
+      request.function == fc::kGslReadHolding || request.function == fc::kGslReadInput;
+  if (!read || !request.count || !reply.byte_count) return std::nullopt;
+  return CountComparison{2u * unsigned{*request.count}, unsigned{*reply.byte_count},
+                         CountUnit::Bytes};
+}
+
+std::optional<CountComparison> compare_ascii(const FrameSummary& request,
+                                             const FrameSummary& reply) {
+  if (!request.count) return std::nullopt;
+  return CountComparison{unsigned{*request.count}, unsigned{reply.word_count}, CountUnit::Words};
+}
+
+}  // namespace
+
+ReplyKind reply_kind(const FrameSummary& reply) {
+  if (reply.dialect == Dialect::Hybrid && reply.function == fc::kHybridError) {
+    return ReplyKind::HybridError;
+  }
+  if (reply.dialect == Dialect::Gsl && fc::is_gsl_exception(reply.function)) {
+    return ReplyKind::GslException;
+  }
+  return ReplyKind::Normal;
+}
+
+bool answers(const FrameSummary& request, const FrameSummary& reply) {
+  if (request.dialect != reply.dialect) return false;
+  switch (reply_kind(reply)) {
+    case ReplyKind::HybridError:
+      return true;
+    case ReplyKind::GslException:
+      return (reply.function & ~fc::kExceptionFlag) == request.function;
+    case ReplyKind::Normal:
+      break;
+  }
+  if (reply.function != request.function) return false;
+  if (reply.dialect == Dialect::Ascii) return reply.start == request.start;
+  return true;
+}
+
+bool echoes_write(const FrameSummary& request, const FrameSummary& frame, bool frame_check_ok) {
+  const auto is_write = [](const FrameSummary& f) {
+    return f.dialect == Dialect::Gsl && f.function == fc::kGslWriteSingle;
+  };
+  if (!is_write(request) || !is_write(frame) || request.station != frame.station) return false;
+  if (!frame_check_ok) return true;
+  return frame.start == request.start && frame.first_word == request.first_word &&
+         frame.word_count == request.word_count;
+}
+
+std::optional<CountComparison> compare_reply_count(const FrameSummary& request,
+                                                   const FrameSummary& reply) {
+  if (reply_kind(reply) != ReplyKind::Normal) return std::nullopt;
+  switch (request.dialect) {
+    case Dialect::Hybrid:
+      return compare_hybrid(request, reply);
+    case Dialect::Gsl:
+      return compare_gsl(request, reply);
+    case Dialect::Ascii:
+      return compare_ascii(request, reply);
+  }
+  return std::nullopt;
+}
+
+}  // namespace pvtap

@@ -1,0 +1,276 @@
+#include "pvtap/registers/register_decoder.h"
+
+#include <algorithm>
+
+#include "pvtap/codec/function_codes.h"
+#include "registers/register_entry_rules.h"
+#include "registers/register_value_conversion.h"
+
+namespace pvtap {
+namespace {
+
+// One block of words at a known wire start, being turned into values.
+struct Block {
+  Dialect dialect;
+  const RegisterMap& map;
+  const DecoderOptions& options;
+  std::uint16_t wire_start;
+  std::span<const std::uint16_t> words;
+  ValueOrigin origin;
+  unsigned step;
+
+  std::uint32_t wire_of(std::size_t index) const {
+    return wire_start + static_cast<std::uint32_t>(index) * step;
+  }
+  // Only GSL with hex IDs maps addresses; for every other block the wire address is the
+  // written one, without a call per word.
+  bool identity() const {
+    return dialect != Dialect::Gsl || options.gsl_ids == GslIdReading::Decimal;
+  }
+  std::optional<std::uint16_t> written_of(std::uint16_t wire) const {
+    return identity() ? wire : written_address_of(dialect, wire, options.gsl_ids);
+  }
+  std::optional<std::uint16_t> wire_of_written(std::uint16_t written) const {
+    return identity() ? written : wire_address_of(dialect, written, options.gsl_ids);
+  }
+};
+
+// A word no entry covers is still reported, so that nothing on the wire goes unseen.
+void append_unmapped(const Block& b, std::size_t index, std::optional<std::uint16_t> written,
+                     std::vector<DecodedValue>& out) {
+  DecodedValue& v = out.emplace_back();
+  v.origin = b.origin;
+  v.wire_address = static_cast<std::uint16_t>(b.wire_of(index));
+  v.address = written.value_or(v.wire_address);
+  v.words_present = 1;
+  v.raw = b.words[index];
+  v.signed_raw = static_cast<std::int32_t>(v.raw);
+  v.value = v.raw;
+  v.add(ValueWarning::NotInMap);
+  if (!written) v.add(ValueWarning::NoWrittenAddress);
+}
+
+// Appends the value whose word is at `index`; returns how many words of the block it used.
+std::size_t append_value(const Block& b, std::size_t index, std::vector<DecodedValue>& out) {
+  const std::uint32_t wire = b.wire_of(index);
+  std::optional<std::uint16_t> written;
+  if (wire <= 0xFFFF) {
+    written = b.written_of(static_cast<std::uint16_t>(wire));
+  }
+  const std::optional<RegisterSlot> slot = written ? b.map.locate(*written) : std::nullopt;
+  if (!slot) {
+    append_unmapped(b, index, written, out);
+    return 1;
+  }
+  const RegisterDef& def = *slot->def;
+  DecodedValue& v = out.emplace_back();  // filled in place: a value is over 100 bytes
+  v.def = &def;
+  v.origin = b.origin;
+  v.address = slot->value_address;
+  v.wire_address = static_cast<std::uint16_t>(wire);
+  v.instance = slot->instance;
+
+  // The value's words must follow one another on the wire; a pair split by the end of the
+  // block (or by a hex-ID gap) is reported as incomplete rather than guessed.
+  std::array<std::uint16_t, detail::kMaxTextWords> parts{};
+  std::size_t present = 0;
+  for (std::size_t k = slot->word; k < def.words; ++k) {
+    const std::size_t j = index + (k - slot->word);
+    if (j >= b.words.size()) break;
+    const auto expected = b.wire_of_written(static_cast<std::uint16_t>(v.address + k * b.step));
+    if (!expected || *expected != b.wire_of(j)) break;
+    parts[k] = b.words[j];
+    ++present;
+  }
+  present = std::max<std::size_t>(present, 1);
+  v.words_present = static_cast<std::uint8_t>(present);
+  if (slot->word == 0 && present == def.words) {
+    detail::convert_words(def, std::span<const std::uint16_t>(parts.data(), def.words),
+                          b.options.pair_rule, v);
+  } else {
+    v.add(ValueWarning::Incomplete);
+  }
+  return present;
+}
+
+// The seed's default start of each Hybrid read, used when the request is missing.
+std::optional<std::uint16_t> hybrid_default_start(std::uint8_t function) {
+  switch (function) {
+    case fc::kHybridDeviceInfo:
+      return 0x1060;
+    case fc::kHybridRunningData:
+      return 0x1000;
+    case fc::kHybridSettings:
+      return 0x1024;
+    case fc::kHybridManufacturer:
+      return 0x104B;
+    default:
+      return std::nullopt;
+  }
+}
+
+bool is_request_for(const Frame* request, const Frame& reply) {
+  return request != nullptr && request->dialect == reply.dialect &&
+         request->role == Role::Request && request->function == reply.function &&
+         request->start.has_value();
+}
+
+void note_request_fit(DecodeReport& report, const Frame& reply, const Frame* request) {
+  const bool usable = is_request_for(request, reply);
+  report.request_unusable = request != nullptr && !usable;
+  report.count_mismatch =
+      usable && request->count.has_value() && *request->count != reply.words.size();
+}
+
+DecodeReport nothing(ValueOrigin origin, DecodeStatus status = DecodeStatus::NoRegisterData) {
+  DecodeReport report;
+  report.status = status;
+  report.origin = origin;
+  return report;
+}
+
+std::span<const std::uint16_t> first_word(const Frame& frame) {
+  return frame.words.span().first(std::min<std::size_t>(1, frame.words.size()));
+}
+
+}  // namespace
+
+RegisterDecoder::RegisterDecoder(DecoderOptions options)
+    : maps_{builtin_register_map(Dialect::Ascii), builtin_register_map(Dialect::Hybrid),
+            builtin_register_map(Dialect::Gsl)},
+      options_(options) {}
+
+void RegisterDecoder::use_map(const RegisterMap& map) {
+  maps_[static_cast<std::size_t>(map.dialect())] = map;
+}
+
+std::size_t RegisterDecoder::decode_block(Dialect d, std::uint16_t wire_start,
+                                          std::span<const std::uint16_t> words, ValueOrigin origin,
+                                          std::vector<DecodedValue>& out) const {
+  const Block block{d, map(d), options_, wire_start, words, origin, address_step(d)};
+  const std::size_t before = out.size();
+  for (std::size_t i = 0; i < words.size();) i += append_value(block, i, out);
+  return out.size() - before;
+}
+
+DecodedValue RegisterDecoder::decode_device_number(const DeviceNumber& device) const {
+  const RegisterDef* def = map(Dialect::Hybrid).find_kind(RegisterKind::DeviceNumber);
+  const std::array<std::uint16_t, 2> words{
+      static_cast<std::uint16_t>((device.type_code << 8) | ((device.serial >> 16) & 0xFFu)),
+      static_cast<std::uint16_t>(device.serial & 0xFFFFu)};
+  DecodedValue v;
+  v.def = def;
+  v.origin = ValueOrigin::DeviceHeader;
+  v.address = def != nullptr ? def->address : std::uint16_t{0};
+  v.wire_address = v.address;
+  v.words_present = 2;
+  detail::convert_device_number(def, words, v);
+  if (def == nullptr) v.add(ValueWarning::NotInMap);
+  return v;
+}
+
+DecodeReport RegisterDecoder::place(Dialect d, std::uint16_t start,
+                                    std::span<const std::uint16_t> words, ValueOrigin origin,
+                                    std::vector<DecodedValue>& out) const {
+  DecodeReport report;
+  report.status = DecodeStatus::Decoded;
+  report.origin = origin;
+  report.start = start;
+  report.first = out.size();
+  report.count = decode_block(d, start, words, origin, out);
+  return report;
+}
+
+DecodeReport RegisterDecoder::decode(const Frame& frame, const Frame* request,
+                                     std::vector<DecodedValue>& out) const {
+  switch (frame.dialect) {
+    case Dialect::Ascii:
+      return decode_ascii(frame, request, out);
+    case Dialect::Hybrid:
+      return decode_hybrid(frame, request, out);
+    case Dialect::Gsl:
+      return decode_gsl(frame, request, out);
+  }
+  return nothing(ValueOrigin::ReadReply);
+}
+
+DecodeReport RegisterDecoder::decode_ascii(const Frame& frame, const Frame* request,
+                                           std::vector<DecodedValue>& out) const {
+  if (frame.role != Role::Response || !frame.start) return nothing(ValueOrigin::ReadReply);
+  DecodeReport report =
+      place(Dialect::Ascii, *frame.start, frame.words.span(), ValueOrigin::ReadReply, out);
+  note_request_fit(report, frame, request);
+  return report;
+}
+
+DecodeReport RegisterDecoder::decode_hybrid(const Frame& frame, const Frame* request,
+                                            std::vector<DecodedValue>& out) const {
+  const bool write = frame.function == fc::kHybridWriteParameter;
+  if (frame.role == Role::Request) {
+    if (!write || !frame.start || frame.words.empty()) return nothing(ValueOrigin::WriteRequest);
+    return place(Dialect::Hybrid, *frame.start, first_word(frame), ValueOrigin::WriteRequest, out);
+  }
+  if (write) {
+    // A write echo of the wrong length keeps no register field: its words cannot be placed.
+    if (!frame.start) return nothing(ValueOrigin::WriteReply, DecodeStatus::StartUnknown);
+    return place(Dialect::Hybrid, *frame.start, first_word(frame), ValueOrigin::WriteReply, out);
+  }
+  const std::optional<std::uint16_t> default_start = hybrid_default_start(frame.function);
+  if (!default_start) return nothing(ValueOrigin::ReadReply);
+  const bool usable = is_request_for(request, frame);
+  const std::uint16_t start = usable ? *request->start : *default_start;
+  DecodeReport report =
+      place(Dialect::Hybrid, start, frame.words.span(), ValueOrigin::ReadReply, out);
+  report.start_assumed = !usable;
+  note_request_fit(report, frame, request);
+  return report;
+}
+
+DecodeReport RegisterDecoder::decode_gsl(const Frame& frame, const Frame* request,
+                                         std::vector<DecodedValue>& out) const {
+  if (frame.role == Role::Request) {
+    if (!frame.start || frame.words.empty()) return nothing(ValueOrigin::WriteRequest);
+    if (frame.function == fc::kGslWriteSingle) {
+      return place(Dialect::Gsl, *frame.start, first_word(frame), ValueOrigin::WriteRequest, out);
+    }
+    if (frame.function == fc::kGslWriteMultiple) {
+      return place(Dialect::Gsl, *frame.start, frame.words.span(), ValueOrigin::WriteRequest, out);
+    }
+    return nothing(ValueOrigin::WriteRequest);
+  }
+  if (frame.function == fc::kGslWriteSingle && frame.start && !frame.words.empty()) {
+    return place(Dialect::Gsl, *frame.start, first_word(frame), ValueOrigin::WriteReply, out);
+  }
+  if (frame.function != fc::kGslReadHolding && frame.function != fc::kGslReadInput) {
+    return nothing(ValueOrigin::ReadReply);
+  }
+  if (!is_request_for(request, frame)) {
+    DecodeReport report = nothing(ValueOrigin::ReadReply, DecodeStatus::StartUnknown);
+    report.request_unusable = request != nullptr;
+    return report;
+  }
+  DecodeReport report =
+      place(Dialect::Gsl, *request->start, frame.words.span(), ValueOrigin::ReadReply, out);
+  note_request_fit(report, frame, request);
+  return report;
+}
+
+std::string_view describe(const DecodeReport& report) {
+  switch (report.status) {
+    case DecodeStatus::Decoded:
+      if (report.start_assumed) {
+        return "decoded; no matching request, so the start address is the seed's default for "
+               "this function code (assumed)";
+      }
+      return report.count_mismatch ? "decoded; the word count differs from the request's count"
+                                   : "decoded";
+    case DecodeStatus::NoRegisterData:
+      return "the frame carries no register values";
+    case DecodeStatus::StartUnknown:
+      return "register words without a known start address (a GSL read reply needs its "
+             "request): nothing placed";
+  }
+  return "?";
+}
+
+}  // namespace pvtap

@@ -1,0 +1,173 @@
+#include "pvtap/registers/register_format.h"
+
+#include <array>
+#include <charconv>
+
+namespace pvtap {
+namespace {
+
+void append_fixed(double value, unsigned decimals, std::string& out) {
+  std::array<char, 64> buf{};
+  const auto result = std::to_chars(buf.data(), buf.data() + buf.size(), value,
+                                    std::chars_format::fixed, static_cast<int>(decimals));
+  out.append(buf.data(), result.ptr);
+}
+
+void append_hex(std::uint32_t value, unsigned digits, std::string& out) {
+  static constexpr char kDigits[] = "0123456789ABCDEF";
+  out += "0x";
+  for (unsigned i = digits; i-- > 0;) out += kDigits[(value >> (4 * i)) & 0xFu];
+}
+
+void append_unit(std::string_view unit, std::string& out) {
+  if (unit.empty()) return;
+  out += ' ';
+  out += unit;
+}
+
+void append_number(const DecodedValue& v, std::string& out) {
+  append_fixed(v.value, v.def->decimals, out);
+  append_unit(v.def->unit, out);
+}
+
+void append_bits(const DecodedValue& v, std::string& out) {
+  bool any = false;
+  for (const BitName bit : v.set_bits()) {
+    if (any) out += ", ";
+    any = true;
+    if (bit.name.empty()) {
+      out += "bit " + std::to_string(bit.index);
+    } else {
+      out += bit.name;
+    }
+  }
+  if (!any) out += "none";
+}
+
+void append_phase_capacity(const DecodedValue& v, std::string& out) {
+  switch (v.bcd.first) {
+    case 1:
+      out += "single phase";
+      break;
+    case 3:
+      out += "three phase";
+      break;
+    default:
+      out += std::to_string(v.bcd.first) + " phases";
+      break;
+  }
+  out += ", ";
+  append_number(v, out);
+}
+
+void append_year_month(const DecodedValue& v, std::string& out) {
+  out += std::to_string(v.bcd.first);
+  out += v.bcd.second < 10 ? "-0" : "-";
+  out += std::to_string(v.bcd.second);
+}
+
+void append_device_number(const DecodedValue& v, std::string& out) {
+  static constexpr char kDigits[] = "0123456789ABCDEF";
+  out += kDigits[v.device.type_code >> 4];
+  out += kDigits[v.device.type_code & 0xFu];
+  out += ' ';
+  out += v.enum_text.empty() ? std::string_view("unknown device type") : v.enum_text;
+  out += ", serial " + std::to_string(v.device.serial);
+}
+
+void append_enum(const DecodedValue& v, std::string& out) {
+  if (v.enum_text.empty()) {
+    out += "unknown value " + std::to_string(v.raw);
+  } else {
+    out += v.enum_text;
+  }
+}
+
+void append_complete_value(const DecodedValue& v, std::string& out) {
+  const RegisterDef& def = *v.def;
+  const bool bad_bcd = v.has(ValueWarning::InvalidBcd);
+  switch (def.kind) {
+    case RegisterKind::Number:
+      append_number(v, out);
+      return;
+    case RegisterKind::Raw:
+      append_hex(v.raw, 4u * def.words, out);
+      return;
+    case RegisterKind::Enum:
+      append_enum(v, out);
+      return;
+    case RegisterKind::Bits:
+      append_bits(v, out);
+      return;
+    case RegisterKind::Text:
+      out += v.text();
+      return;
+    case RegisterKind::DeviceNumber:
+      append_device_number(v, out);
+      return;
+    case RegisterKind::Bcd:
+    case RegisterKind::BcdPhaseCapacity:
+    case RegisterKind::BcdYearMonth:
+      break;
+  }
+  if (bad_bcd) {
+    out += "invalid BCD ";
+    append_hex(v.raw, 4, out);
+  } else if (def.kind == RegisterKind::Bcd) {
+    append_number(v, out);
+  } else if (def.kind == RegisterKind::BcdPhaseCapacity) {
+    append_phase_capacity(v, out);
+  } else {
+    append_year_month(v, out);
+  }
+}
+
+}  // namespace
+
+void append_value_text(const DecodedValue& v, std::string& out) {
+  if (v.def == nullptr) {
+    append_hex(v.raw, 4, out);
+  } else if (!v.complete()) {
+    out += "incomplete (" + std::to_string(v.words_present) + " of " +
+           std::to_string(v.def->words) + " words in the frame)";
+  } else {
+    append_complete_value(v, out);
+  }
+}
+
+std::string format_value(const DecodedValue& v) {
+  std::string out;
+  append_value_text(v, out);
+  return out;
+}
+
+RegisterAddressText format_value_address(const DecodedValue& v, Dialect d) {
+  const bool hex_wire = v.has(ValueWarning::NoWrittenAddress);
+  return format_register_address(hex_wire ? Dialect::Hybrid : d, v.address);
+}
+
+std::string_view describe(ValueWarning w) {
+  switch (w) {
+    case ValueWarning::NotInMap:
+      return "no register map entry covers this word";
+    case ValueWarning::Incomplete:
+      return "part of this multi-word value is not in the frame";
+    case ValueWarning::LowPartOver9999:
+      return "low part above 9999 in a decimal (x10000) pair";
+    case ValueWarning::UnknownEnumValue:
+      return "value not listed in the register map";
+    case ValueWarning::UnnamedBitSet:
+      return "a set bit has no name in the register map";
+    case ValueWarning::InvalidBcd:
+      return "BCD digit above 9";
+    case ValueWarning::InvalidDate:
+      return "month outside 1..12";
+    case ValueWarning::NonPrintableText:
+      return "text holds non-printable characters";
+    case ValueWarning::NoWrittenAddress:
+      return "wire address has no decimal ID reading";
+  }
+  return "?";
+}
+
+}  // namespace pvtap

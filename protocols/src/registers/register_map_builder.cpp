@@ -1,0 +1,241 @@
+#include "registers/register_map_builder.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "registers/map_diagnostics.h"
+#include "registers/register_entry_rules.h"
+#include "registers/register_map_data.h"
+
+namespace pvtap {
+namespace {
+
+using detail::RegisterSpec;
+
+std::uint16_t to_u16(std::int64_t v) {
+  return static_cast<std::uint16_t>(v);
+}
+
+// Every address an entry covers, first word first.
+template <typename Visit>
+void for_each_covered_address(const RegisterSpec& spec, Dialect dialect, Visit visit) {
+  const std::int64_t step = address_step(dialect);
+  const std::int64_t slots = spec.words * spec.repeat;
+  for (std::int64_t k = 0; k < slots; ++k) {
+    visit(to_u16(spec.address + k * step), to_u16(k / spec.words), to_u16(k % spec.words));
+  }
+}
+
+void check_keys_unique(const std::vector<const RegisterSpec*>& specs, Dialect dialect,
+                       detail::DiagnosticList& out) {
+  std::map<std::string, const RegisterSpec*> first_use;
+  for (const RegisterSpec* spec : specs) {
+    auto [it, inserted] = first_use.emplace(spec->key, spec);
+    if (!inserted) {
+      out.add(spec->line, spec->column,
+              detail::entry_label(*spec, dialect) + ": key is already used by the entry at line " +
+                  std::to_string(it->second->line));
+    }
+  }
+}
+
+// Singles may not share an address with singles, nor ranges with ranges; a single inside a
+// range is how a documented register is carved out of an undocumented run.
+void check_coverage(const std::vector<const RegisterSpec*>& specs, Dialect dialect,
+                    detail::DiagnosticList& out) {
+  std::map<std::uint16_t, const RegisterSpec*> singles;
+  std::map<std::uint16_t, const RegisterSpec*> ranges;
+  for (const RegisterSpec* spec : specs) {
+    auto& owners = spec->repeat > 1 ? ranges : singles;
+    bool reported = false;
+    for_each_covered_address(*spec, dialect, [&](std::uint16_t address, auto, auto) {
+      auto [it, inserted] = owners.emplace(address, spec);
+      if (inserted || reported) return;
+      reported = true;
+      const RegisterSpec& other = *it->second;
+      const std::string where(format_register_address(dialect, address).view());
+      const std::string label = detail::entry_label(*spec, dialect);
+      if (other.address == spec->address) {
+        out.add(spec->line, spec->column,
+                label + ": duplicate address, also defined at line " + std::to_string(other.line));
+      } else {
+        out.add(spec->line, spec->column,
+                label + ": its word at " + where + " overlaps register '" + other.key + "' (line " +
+                    std::to_string(other.line) + ")");
+      }
+    });
+  }
+}
+
+std::uint8_t decimals_for_scale(double scale) {
+  for (std::uint8_t d = 0; d < 9; ++d) {
+    const double shifted = scale * std::pow(10.0, d);
+    if (std::fabs(shifted - std::round(shifted)) < 1e-9 * std::max(1.0, shifted)) return d;
+  }
+  return 9;
+}
+
+class MapLayout {
+ public:
+  MapLayout(const detail::MapHeaderSpec& header, std::vector<const RegisterSpec*> specs)
+      : data_(std::make_shared<RegisterMap::Data>()), specs_(std::move(specs)) {
+    data_->dialect = header.dialect;
+    data_->mode = header.mode;
+    data_->title = header.title;
+    data_->source_name = header.source_name;
+  }
+
+  std::shared_ptr<const RegisterMap::Data> run() {
+    // Singles sort before a range starting at the same address, so find_address prefers them.
+    std::stable_sort(specs_.begin(), specs_.end(),
+                     [](const RegisterSpec* a, const RegisterSpec* b) {
+                       if (a->address != b->address) return a->address < b->address;
+                       return a->repeat < b->repeat;
+                     });
+    for (const RegisterSpec* spec : specs_) add_def(*spec);
+    attach_tables();
+    index_slots();
+    return data_;
+  }
+
+ private:
+  struct TableSpan {
+    std::size_t values_at, values_count, bits_at, bits_count;
+  };
+
+  std::string_view intern(const std::string& s) {
+    data_->strings.push_back(s);
+    return data_->strings.back();
+  }
+
+  void add_def(const RegisterSpec& spec) {
+    RegisterDef def;
+    def.address = to_u16(spec.address);
+    def.words = to_u16(spec.words);
+    def.repeat = to_u16(spec.repeat);
+    def.kind = spec.kind;
+    def.is_signed = spec.is_signed;
+    def.pair_rule = spec.pair_rule.value_or(PairRule::FromOptions);
+    def.scale = spec.scale;
+    def.decimals =
+        spec.decimals ? static_cast<std::uint8_t>(*spec.decimals) : decimals_for_scale(spec.scale);
+    def.key = intern(spec.key);
+    def.name = intern(spec.name);
+    def.unit = intern(spec.unit);
+    def.line = spec.line;
+    data_->defs.push_back(def);
+    tables_.push_back(TableSpan{data_->enum_texts.size(), spec.values.size(),
+                                data_->bit_names.size(), spec.bits.size()});
+    add_tables(spec);
+  }
+
+  void add_tables(const RegisterSpec& spec) {
+    const std::size_t values_at = data_->enum_texts.size();
+    for (const auto& v : spec.values) {
+      data_->enum_texts.push_back(EnumText{static_cast<std::uint32_t>(v.number), intern(v.text)});
+    }
+    std::sort(data_->enum_texts.begin() + static_cast<std::ptrdiff_t>(values_at),
+              data_->enum_texts.end(),
+              [](const EnumText& a, const EnumText& b) { return a.value < b.value; });
+    const std::size_t bits_at = data_->bit_names.size();
+    for (const auto& b : spec.bits) {
+      data_->bit_names.push_back(BitName{static_cast<std::uint8_t>(b.number), intern(b.text)});
+    }
+    std::sort(data_->bit_names.begin() + static_cast<std::ptrdiff_t>(bits_at),
+              data_->bit_names.end(),
+              [](const BitName& a, const BitName& b) { return a.index < b.index; });
+  }
+
+  // Only now are the tables complete, so their spans no longer move.
+  void attach_tables() {
+    for (std::size_t i = 0; i < data_->defs.size(); ++i) {
+      const TableSpan& t = tables_[i];
+      data_->defs[i].values =
+          std::span<const EnumText>(data_->enum_texts).subspan(t.values_at, t.values_count);
+      data_->defs[i].bits =
+          std::span<const BitName>(data_->bit_names).subspan(t.bits_at, t.bits_count);
+    }
+  }
+
+  void index_slots() {
+    std::map<std::uint16_t, RegisterSlotEntry> slots;
+    for (int pass = 0; pass < 2; ++pass) {  // ranges first, so that singles overwrite them
+      for (std::size_t i = 0; i < specs_.size(); ++i) {
+        const bool range = specs_[i]->repeat > 1;
+        if (range != (pass == 0)) continue;
+        for_each_covered_address(
+            *specs_[i], data_->dialect,
+            [&](std::uint16_t address, std::uint16_t instance, std::uint16_t word) {
+              slots[address] =
+                  RegisterSlotEntry{address, static_cast<std::uint16_t>(i), word, instance};
+            });
+      }
+    }
+    data_->slots.reserve(slots.size());
+    for (const auto& entry : slots) data_->slots.push_back(entry.second);
+    index_addresses();
+  }
+
+  void index_addresses() {
+    const auto& slots = data_->slots;
+    if (slots.empty()) return;
+    data_->first_address = slots.front().address;
+    data_->slot_by_address.assign(slots.back().address - slots.front().address + 1u,
+                                  RegisterMap::Data::kNoSlot);
+    for (std::size_t i = 0; i < slots.size(); ++i) {
+      data_->slot_by_address[slots[i].address - data_->first_address] =
+          static_cast<std::uint32_t>(i);
+    }
+  }
+
+  std::shared_ptr<RegisterMap::Data> data_;
+  std::vector<const RegisterSpec*> specs_;
+  std::vector<TableSpan> tables_;
+};
+
+}  // namespace
+
+RegisterMapResult RegisterMapBuilder::build(std::vector<MapDiagnostic> earlier) && {
+  detail::DiagnosticList problems{header_.source_name, std::move(earlier)};
+  std::vector<const RegisterSpec*> valid;
+  for (const RegisterSpec& spec : specs_) {
+    const std::size_t before = problems.items.size();
+    detail::check_register_entry(spec, header_.dialect, problems);
+    if (problems.items.size() == before) valid.push_back(&spec);
+  }
+  check_keys_unique(valid, header_.dialect, problems);
+  check_coverage(valid, header_.dialect, problems);
+  if (!problems.empty()) {
+    std::stable_sort(
+        problems.items.begin(), problems.items.end(),
+        [](const MapDiagnostic& a, const MapDiagnostic& b) { return a.line < b.line; });
+    return RegisterMapResult::failure(std::move(problems.items));
+  }
+  return RegisterMap(MapLayout(header_, std::move(valid)).run());
+}
+
+}  // namespace pvtap
+
+namespace pvtap::detail {
+
+RegisterSpec spec_of(const RegisterDef& def) {
+  RegisterSpec spec;
+  spec.address = def.address;
+  spec.words = def.words;
+  spec.repeat = def.repeat;
+  spec.kind = def.kind;
+  spec.is_signed = def.is_signed;
+  if (def.words == 2) spec.pair_rule = def.pair_rule;
+  spec.decimals = def.decimals;
+  spec.scale = def.scale;
+  spec.key = std::string(def.key);
+  spec.name = std::string(def.name);
+  spec.unit = std::string(def.unit);
+  for (const EnumText& v : def.values) spec.values.push_back({v.value, std::string(v.text), 0, 0});
+  for (const BitName& b : def.bits) spec.bits.push_back({b.index, std::string(b.name), 0, 0});
+  spec.line = def.line;
+  return spec;
+}
+
+}  // namespace pvtap::detail

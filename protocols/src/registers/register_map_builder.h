@@ -1,0 +1,69 @@
+// Checks register entries and lays them out as a RegisterMap (private to the core).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "pvtap/registers/register_map.h"
+
+namespace pvtap::detail {
+
+// SpecValue: one enum value or bit as read from a file, range not yet checked.
+struct SpecValue {
+  std::int64_t number = 0;
+  std::string text;
+  std::uint32_t line = 0;
+  std::uint32_t column = 0;
+};
+
+// RegisterSpec: one register entry as read from a file, before its rules are checked.
+struct RegisterSpec {
+  std::int64_t address = 0;
+  std::int64_t words = 1;
+  std::int64_t repeat = 1;
+  RegisterKind kind = RegisterKind::Number;
+  bool is_signed = false;
+  std::optional<PairRule> pair_rule;  // unset: FromOptions for 2-word entries
+  std::optional<std::int64_t> decimals;
+  double scale = 1.0;
+  std::string key;
+  std::string name;
+  std::string unit;
+  std::vector<SpecValue> values;
+  std::vector<SpecValue> bits;
+  std::uint32_t line = 0;
+  std::uint32_t column = 0;
+};
+
+// MapHeaderSpec: the file-level settings of a map.
+struct MapHeaderSpec {
+  Dialect dialect = Dialect::Gsl;
+  MapMode mode = MapMode::Replace;
+  std::string title;
+  std::string source_name;
+};
+
+// The entry as a spec again, so that maps can be merged through the same checks.
+RegisterSpec spec_of(const RegisterDef& def);
+
+}  // namespace pvtap::detail
+
+namespace pvtap {
+
+// RegisterMapBuilder: validates entries one by one and as a whole, then builds the map.
+class RegisterMapBuilder {
+ public:
+  explicit RegisterMapBuilder(detail::MapHeaderSpec header) : header_(std::move(header)) {}
+  void add(detail::RegisterSpec spec) { specs_.push_back(std::move(spec)); }
+  // `earlier` holds problems found while reading the file; they are reported together
+  // with the builder's own, sorted by line.
+  RegisterMapResult build(std::vector<MapDiagnostic> earlier = {}) &&;
+
+ private:
+  detail::MapHeaderSpec header_;
+  std::vector<detail::RegisterSpec> specs_;
+};
+
+}  // namespace pvtap

@@ -1,0 +1,76 @@
+// operator+= of the counter sets (ReassemblerTotals, BusCounters): the one place they add up.
+#include <cstddef>
+#include <cstdint>
+
+#include "pvtap/framing/stream_reassembler.h"
+#include "pvtap/session/bus_report.h"
+
+namespace pvtap {
+namespace {
+
+// Every field of a counter set is a 64-bit counter, so its size counts its fields: a counter
+// added to a struct and not added up below fails one of these.
+template <typename T>
+constexpr bool holds_counters(std::size_t n) {
+  return sizeof(T) == n * sizeof(std::uint64_t);
+}
+static_assert(holds_counters<ReassemblerTotals>(6), "add the new counter up below");
+static_assert(holds_counters<RoleCounts>(2), "add the new counter up below");
+static_assert(holds_counters<GapTally>(3), "add the new counter up below");
+static_assert(holds_counters<BusCounters>(6 + 2 + 3 * 2 + 1 + 1 + 2 + 4 + 7 + 3),
+              "add the new counter up below");
+
+RoleCounts& operator+=(RoleCounts& a, const RoleCounts& b) {
+  a.requests += b.requests;
+  a.responses += b.responses;
+  return a;
+}
+
+GapTally& operator+=(GapTally& a, const GapTally& b) {
+  a.gaps += b.gaps;
+  a.lost_bytes += b.lost_bytes;
+  a.gaps_of_unknown_size += b.gaps_of_unknown_size;
+  return a;
+}
+
+template <typename T, std::size_t N>
+void add_each(std::array<T, N>& a, const std::array<T, N>& b) {
+  for (std::size_t i = 0; i < N; ++i) a[i] += b[i];
+}
+
+}  // namespace
+
+ReassemblerTotals& ReassemblerTotals::operator+=(const ReassemblerTotals& o) {
+  bytes_in += o.bytes_in;
+  frame_bytes += o.frame_bytes;
+  noise_bytes += o.noise_bytes;
+  frames += o.frames;
+  bad_frames += o.bad_frames;
+  noise_runs += o.noise_runs;
+  return *this;
+}
+
+BusCounters& BusCounters::operator+=(const BusCounters& o) {
+  bytes += o.bytes;
+  requests += o.requests;
+  responses += o.responses;
+  add_each(by_dialect, o.by_dialect);
+  malformed_frames += o.malformed_frames;
+  timeouts += o.timeouts;
+  add_each(timeouts_by_reason, o.timeouts_by_reason);
+  damaged_replies += o.damaged_replies;
+  unanswered_damaged_requests += o.unanswered_damaged_requests;
+  unanswered_at_end += o.unanswered_at_end;
+  unanswered_after_loss += o.unanswered_after_loss;
+  transactions += o.transactions;
+  unsolicited += o.unsolicited;
+  late_replies += o.late_replies;
+  duplicates += o.duplicates;
+  count_mismatches += o.count_mismatches;
+  role_corrections += o.role_corrections;
+  exceptions += o.exceptions;
+  gaps += o.gaps;
+  return *this;
+}
+
+}  // namespace pvtap

@@ -1,0 +1,152 @@
+#include "session/bus_tally.h"
+
+#include "pvtap/codec/function_codes.h"
+
+namespace pvtap::detail {
+namespace {
+
+template <typename T>
+bool wants_example(const std::vector<T>& examples) {
+  return examples.size() < BusReport::kMaxExamples;
+}
+
+}  // namespace
+
+BusTally::StationCounters& BusTally::station(std::uint8_t s) {
+  StationCounters& c = stations_[s];
+  if (!c.seen) {
+    c.seen = true;
+    c.summary.station = s;
+  }
+  return c;
+}
+
+FrameExample BusTally::example_of(const SessionFrame& f) {
+  FrameExample e;
+  e.id = f.id;
+  e.time = f.start_time;
+  e.dialect = f.dialect;
+  e.role = f.role;
+  e.station = f.frame != nullptr ? f.frame->station : (f.bytes.empty() ? 0 : f.bytes[0]);
+  e.function = f.frame != nullptr ? f.frame->function : 0;
+  e.check = f.check;
+  e.bytes.assign(f.bytes.begin(), f.bytes.end());
+  return e;
+}
+
+void BusTally::count_exception(const SessionFrame& f) {
+  std::uint8_t code = 0;
+  if (f.reply_kind == ReplyKind::GslException && f.frame->exception_code) {
+    code = *f.frame->exception_code;
+  } else if (f.reply_kind == ReplyKind::HybridError) {
+    code = fc::kHybridError;
+  } else {
+    return;
+  }
+  ++counts_.exceptions;
+  ++exception_codes_[{f.dialect, code}];
+  ++station(f.frame->station).summary.exceptions;
+}
+
+void BusTally::add_frame(const SessionFrame& f) {
+  if (!f.check.ok && wants_example(bad_check_examples_)) {
+    bad_check_examples_.push_back(example_of(f));
+  }
+  if (!f.parse_error.empty()) ++counts_.malformed_frames;
+  if (f.frame == nullptr) return;
+  StationSummary& s = station(f.frame->station).summary;
+  const auto dialect = static_cast<std::size_t>(f.dialect);
+  if (f.role == Role::Request) {
+    ++counts_.requests;
+    ++counts_.by_dialect[dialect].requests;
+    ++s.requests;
+    ++s.by_dialect[dialect].requests;
+  } else {
+    ++counts_.responses;
+    ++counts_.by_dialect[dialect].responses;
+    ++s.responses;
+    ++s.by_dialect[dialect].responses;
+  }
+  if (!f.check.ok) ++s.bad_checks;
+  if (f.unsolicited) {
+    ++counts_.unsolicited;
+    ++s.unsolicited;
+    if (f.late_by) ++counts_.late_replies;
+    if (wants_example(unsolicited_examples_)) {
+      unsolicited_examples_.push_back(example_of(f));
+    }
+  }
+  if (f.duplicate) {
+    ++counts_.duplicates;
+    ++s.duplicates;
+  }
+  if (f.count_mismatch) {
+    ++counts_.count_mismatches;
+    ++s.count_mismatches;
+  }
+  if (f.role_corrected) ++counts_.role_corrections;
+  if (f.check.ok && f.role == Role::Response) count_exception(f);
+}
+
+void BusTally::add_transaction(const Transaction& t) {
+  ++counts_.transactions;
+  if (t.reply_check_ok) return;
+  ++counts_.damaged_replies;
+  ++station(t.station).summary.damaged_replies;
+}
+
+void BusTally::add_timeout(const SessionTimeout& t) {
+  switch (t.kind) {
+    case UnansweredKind::DamagedRequest:
+      ++counts_.unanswered_damaged_requests;
+      ++station(t.timeout.station).summary.unanswered_damaged_requests;
+      break;
+    case UnansweredKind::Timeout:
+      ++counts_.timeouts;
+      ++station(t.timeout.station).summary.timeouts;
+      if (t.timeout.reason == TimeoutReason::NextRequestFirst) {
+        ++counts_.timeouts_by_reason[1];
+      } else {
+        ++counts_.timeouts_by_reason[0];
+      }
+      if (wants_example(timeout_examples_)) {
+        timeout_examples_.push_back(TimeoutExample{t.timeout, t.request_start});
+      }
+      break;
+    case UnansweredKind::InputEnded:
+      ++counts_.unanswered_at_end;
+      break;
+    case UnansweredKind::AfterLoss:
+      ++counts_.unanswered_after_loss;
+      break;
+  }
+}
+
+void BusTally::add_gap(const SessionGap& g) {
+  ++counts_.gaps.gaps;
+  if (g.lost_bytes) {
+    counts_.gaps.lost_bytes += *g.lost_bytes;
+  } else {
+    ++counts_.gaps.gaps_of_unknown_size;
+  }
+}
+
+void BusTally::fill(BusReport& r) const {
+  r.counters() = counts_;
+  r.exception_codes.clear();
+  for (const auto& [key, count] : exception_codes_) {
+    r.exception_codes.push_back(ExceptionTally{key.first, key.second, count});
+  }
+  r.bad_check_examples = bad_check_examples_;
+  r.timeout_examples = timeout_examples_;
+  r.unsolicited_examples = unsolicited_examples_;
+}
+
+void BusTally::fill_stations(BusReport& r) const {
+  r.stations.clear();
+  for (const StationCounters& c : stations_) {
+    if (c.seen) r.stations.push_back(c.summary);
+  }
+}
+
+}  // namespace pvtap::detail

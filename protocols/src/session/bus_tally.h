@@ -1,0 +1,46 @@
+// BusTally: the counters and examples of a BusReport, filled frame by frame.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <map>
+#include <span>
+#include <utility>
+#include <vector>
+
+#include "pvtap/session/bus_report.h"
+#include "pvtap/session/bus_session.h"
+
+namespace pvtap::detail {
+
+class BusTally {
+ public:
+  void add_frame(const SessionFrame& f);
+  void add_timeout(const SessionTimeout& t);
+  void add_gap(const SessionGap& g);
+  void add_transaction(const Transaction& t);
+
+  // Writes the counters and examples into `r` (byte totals, timing and values come from
+  // elsewhere: its bytes are zero here).
+  void fill(BusReport& r) const;
+  // The per-station counters, for the stations that appeared.
+  void fill_stations(BusReport& r) const;
+
+ private:
+  struct StationCounters {
+    bool seen = false;
+    StationSummary summary;
+  };
+  StationCounters& station(std::uint8_t s);
+  void count_exception(const SessionFrame& f);
+  static FrameExample example_of(const SessionFrame& f);
+
+  std::array<StationCounters, 256> stations_{};
+  BusCounters counts_;
+  std::vector<FrameExample> bad_check_examples_;
+  std::vector<TimeoutExample> timeout_examples_;
+  std::vector<FrameExample> unsolicited_examples_;
+  std::map<std::pair<Dialect, std::uint8_t>, std::uint64_t> exception_codes_;
+};
+
+}  // namespace pvtap::detail

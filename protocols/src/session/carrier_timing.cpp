@@ -1,0 +1,57 @@
+// apply_carrier_timing: which silences a carrier's timestamps can prove.
+#include "pvtap/session/carrier_timing.h"
+
+#include <string>
+#include <utility>
+
+#include "pvtap/statistics/bus_timing.h"
+
+namespace pvtap {
+namespace {
+
+void declare_batched(BusSessionOptions& o, std::string note) {
+  o.reassembler.timestamps = TimestampTrust::Untrusted;
+  o.timestamp_note = std::move(note);
+}
+
+// A read returns what the adapter held back for up to its latency timer: longer than t1.5
+// and the stamps cannot tell the bus's silences apart.
+void apply_latency_timer(std::optional<int> ms, BusSessionOptions& o) {
+  const BusTiming timing(o.reassembler.baud, o.reassembler.bits_per_char);
+  if (!ms || *ms * 1e-3 <= timing.t15) return;
+  declare_batched(o, "the adapter's USB latency timer is " + std::to_string(*ms) +
+                         " ms: reads come in batches too coarse to judge t1.5/t3.5");
+  // Bytes come late by at most the timer: a longer silence than that plus t3.5 was real.
+  o.reassembler.boundary_gap = *ms * 1e-3 + timing.t35;
+}
+
+}  // namespace
+
+void apply_carrier_timing(const CarrierTiming& c, BusSessionOptions& o) {
+  switch (c.carrier) {
+    case Carrier::SerialCharacters:
+    case Carrier::ExportedPdus:
+      return;
+    case Carrier::SerialBatches:
+      declare_batched(o,
+                      "the capture's records are chunks read from a serial adapter: their "
+                      "timestamps are batched (e.g. by a USB adapter's latency timer), not per "
+                      "character");
+      return;
+    case Carrier::GatewaySegments:
+      declare_batched(
+          o, "the timestamps are those of the gateway's TCP/UDP segments, not of bus characters");
+      o.reassembler.boundary_gap = c.gateway_gap;
+      o.reassembler.segment_ends_pin = true;
+      return;
+    case Carrier::PlainDump:
+      o.has_timestamps = false;
+      o.reassembler.timestamps = TimestampTrust::Untrusted;
+      return;
+    case Carrier::LiveSerial:
+      apply_latency_timer(c.latency_timer_ms, o);
+      return;
+  }
+}
+
+}  // namespace pvtap

@@ -1,0 +1,47 @@
+#include "pvtap/statistics/bus_gap_statistics.h"
+
+namespace pvtap {
+namespace {
+
+// The silent-interval rules are Modbus RTU's; ASCII frames are delimited by ENQ/ACK..EOT.
+bool is_rtu(Dialect d) {
+  return d != Dialect::Ascii;
+}
+
+}  // namespace
+
+void BusGapStatistics::add_frame(const FrameTiming& frame) {
+  if (is_rtu(frame.dialect) && frame.max_internal_gap > timing_.t15) {
+    record(inner_gap_t15_, frame.id);
+  }
+  if (previous_) {
+    const double gap = frame.start_time - previous_->end_time;
+    gaps_.add(gap);
+    if (is_rtu(frame.dialect) && is_rtu(previous_->dialect) && gap < timing_.t35) {
+      record(spacing_t35_, frame.id);
+    }
+  }
+  previous_ = frame;
+}
+
+BusGapReport BusGapStatistics::report(const TimestampQuality& quality) const {
+  BusGapReport r;
+  r.t15 = timing_.t15;
+  r.t35 = timing_.t35;
+  if (!quality.fine) {
+    r.not_measurable_reason = quality.reason.empty() ? "timestamps too coarse" : quality.reason;
+    return r;
+  }
+  r.measurable = true;
+  r.gaps = gaps_.summary();
+  r.inner_gap_t15 = inner_gap_t15_;
+  r.spacing_t35 = spacing_t35_;
+  return r;
+}
+
+void BusGapStatistics::record(RuleViolations& v, std::uint64_t id) {
+  ++v.count;
+  if (v.example_ids.size() < kMaxExamples) v.example_ids.push_back(id);
+}
+
+}  // namespace pvtap
