@@ -75,8 +75,11 @@ bool configure(pcap_t* pcap, std::string& error) {
       return false;
     }
   }
-  // Nanoseconds when the kernel has them; else microseconds, which is not an error.
-  pcap_set_tstamp_precision(pcap, PCAP_TSTAMP_PRECISION_NANO);
+  // Nanoseconds when the kernel has them; else microseconds, which is not an error: the
+  // precision in force is read back once the capture is active. (libpcap 1.10.5 marks the
+  // result as one that must be used.)
+  [[maybe_unused]] const bool nanoseconds =
+      pcap_set_tstamp_precision(pcap, PCAP_TSTAMP_PRECISION_NANO) == 0;
   return true;
 }
 
