@@ -156,7 +156,8 @@ std::size_t RegisterDecoder::decode_block(Dialect d, std::uint16_t wire_start,
 DecodedValue RegisterDecoder::decode_device_number(const DeviceNumber& device) const {
   const RegisterDef* def = map(Dialect::Hybrid).find_kind(RegisterKind::DeviceNumber);
   const std::array<std::uint16_t, 2> words{
-      static_cast<std::uint16_t>((device.type_code << 8) | ((device.serial >> 16) & 0xFFu)),
+      static_cast<std::uint16_t>((unsigned{device.type_code} << 8) |
+                                 ((device.serial >> 16) & 0xFFu)),
       static_cast<std::uint16_t>(device.serial & 0xFFFFu)};
   DecodedValue v;
   v.def = def;
