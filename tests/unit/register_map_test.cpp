@@ -3,7 +3,6 @@
 
 #include <gtest/gtest.h>
 
-#include <fstream>
 #include <set>
 #include <string>
 #include <thread>
@@ -402,23 +401,6 @@ name = "block"
 kind = "raw"
 )toml");
   EXPECT_NE(text.find("test.toml:4:"), std::string::npos) << text;
-}
-
-TEST(RegisterMap, LoadsFromAFileAndNamesMissingFiles) {
-  const std::filesystem::path path =
-      std::filesystem::temp_directory_path() / "pvtap_register_map_test_small.toml";
-  {
-    std::ofstream out(path);
-    out << kSmallMap;
-  }
-  RegisterMapResult good = load_register_map_file(path);
-  ASSERT_TRUE(good) << good.error_text();
-  EXPECT_EQ(good->source_name(), path.string());
-  std::filesystem::remove(path);
-
-  RegisterMapResult missing = load_register_map_file(path);
-  ASSERT_FALSE(missing);
-  EXPECT_NE(missing.error_text().find(path.string()), std::string::npos);
 }
 
 constexpr std::string_view kUserExtension = R"toml(dialect = "hybrid"

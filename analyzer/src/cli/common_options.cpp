@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/map_file.h"
 #include "cli/user_map_folder.h"
 #include "pvtap/registers/register_decoder.h"
 #include "pvtap/registers/register_map.h"
@@ -121,7 +122,7 @@ bool load_maps(const CommonOptions& o, RegisterDecoder& decoder) {
   std::vector<std::string> paths = user_map_files(user_map_folder());
   paths.insert(paths.end(), o.maps.begin(), o.maps.end());
   for (const std::string& path : paths) {
-    const RegisterMapResult loaded = load_register_map_file(path);
+    const RegisterMapResult loaded = read_register_map_file(path);
     // Several files stack in the order given, as the plugin stacks its folder's files.
     const RegisterMapResult resolved =
         loaded ? stack_register_map(decoder.map(loaded->dialect()), loaded.value()) : loaded;

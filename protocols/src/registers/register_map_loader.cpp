@@ -1,9 +1,7 @@
 // Reads the TOML form of a register map into entry specs; the builder checks the rest.
 #include <toml++/toml.h>
 #include <charconv>
-#include <fstream>
 #include <map>
-#include <sstream>
 
 #include "pvtap/registers/register_map.h"
 #include "registers/map_diagnostics.h"
@@ -332,17 +330,6 @@ RegisterMapResult load_register_map(std::string_view toml_text, std::string_view
     return RegisterMapResult::failure({std::move(d)});
   }
   return MapFileReader(source_name).read(root);
-}
-
-RegisterMapResult load_register_map_file(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    MapDiagnostic d{path.string(), 0, 0, "cannot open the file"};
-    return RegisterMapResult::failure({std::move(d)});
-  }
-  std::ostringstream text;
-  text << in.rdbuf();
-  return load_register_map(text.str(), path.string());
 }
 
 }  // namespace pvtap

@@ -4,7 +4,6 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
-#include <filesystem>
 #include <memory>
 #include <optional>
 #include <span>
@@ -145,9 +144,9 @@ std::string diagnostic_text(const std::vector<MapDiagnostic>& problems);
 // RegisterMapResult: a loaded map, or the problems that prevented it (sorted by line).
 using RegisterMapResult = Result<RegisterMap, std::vector<MapDiagnostic>>;
 
-// Parses a map file's text; `source_name` names it in diagnostics.
+// Parses a map file's text; `source_name` names it in diagnostics. The core reads no files:
+// the caller reads the file and hands its text here.
 RegisterMapResult load_register_map(std::string_view toml_text, std::string_view source_name);
-RegisterMapResult load_register_map_file(const std::filesystem::path& path);
 
 // The built-in map of a dialect, parsed once from the copy embedded in the library.
 // Empty if the embedded copy does not load (load_builtin_register_map says why).
