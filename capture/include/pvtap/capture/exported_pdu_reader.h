@@ -6,7 +6,7 @@
 #include <span>
 #include <string_view>
 
-#include "pvtap/framing/stream_reassembler.h"
+#include "pvtap/framing/bus_chunk.h"
 
 namespace pvtap {
 

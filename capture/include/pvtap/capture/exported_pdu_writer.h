@@ -11,7 +11,7 @@
 
 #include "pvtap/capture/pcap_writer.h"
 #include "pvtap/codec/dialect.h"
-#include "pvtap/framing/stream_reassembler.h"
+#include "pvtap/framing/bus_chunk.h"
 
 namespace pvtap {
 

@@ -5,8 +5,6 @@
 #include <optional>
 #include <span>
 
-#include "pvtap/framing/stream_reassembler.h"
-
 namespace pvtap {
 
 // SerialRecord: the bus bytes of one capture record and what the capture says around them.
