@@ -63,6 +63,19 @@ class WordList {
   std::size_t size_ = 0;
 };
 
+// FrameHeader: the fields a frame and its summary for the matcher share.
+struct FrameHeader {
+  Dialect dialect = Dialect::Gsl;
+  Role role = Role::Request;
+  std::uint8_t station = 0;
+  std::uint8_t function = 0;  // as on the wire
+  std::optional<std::uint16_t> start;
+  std::optional<std::uint16_t> count;
+  std::optional<std::uint8_t> byte_count;
+
+  bool operator==(const FrameHeader&) const = default;
+};
+
 // Frame: one decoded frame. Which optional fields are set depends on the frame kind:
 //
 //   ASCII request          station, function 'R', start, count
@@ -80,14 +93,7 @@ class WordList {
 //   GSL exception          function = fc|0x80, exception_code
 //
 // A Hybrid 0x18/0x1F/0xFF reply whose byte count is not 8 keeps device + words instead.
-struct Frame {
-  Dialect dialect = Dialect::Gsl;
-  Role role = Role::Request;
-  std::uint8_t station = 0;
-  std::uint8_t function = 0;  // as on the wire
-  std::optional<std::uint16_t> start;
-  std::optional<std::uint16_t> count;
-  std::optional<std::uint8_t> byte_count;
+struct Frame : FrameHeader {
   std::optional<DeviceNumber> device;
   std::optional<std::uint8_t> exception_code;
   WordList words;

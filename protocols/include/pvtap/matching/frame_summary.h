@@ -11,14 +11,7 @@ namespace pvtap {
 
 // FrameSummary: a frame reduced to what the transaction matcher compares (fits in a register
 // or two, so the matcher can keep one per station without holding whole frames).
-struct FrameSummary {
-  Dialect dialect = Dialect::Gsl;
-  Role role = Role::Request;
-  std::uint8_t station = 0;
-  std::uint8_t function = 0;  // as on the wire
-  std::optional<std::uint16_t> start;
-  std::optional<std::uint16_t> count;
-  std::optional<std::uint8_t> byte_count;
+struct FrameSummary : FrameHeader {
   std::uint16_t word_count = 0;
   std::optional<std::uint16_t> first_word;  // the written value of a GSL 0x06 request/echo
 
