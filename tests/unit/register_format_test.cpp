@@ -141,7 +141,7 @@ TEST(RegisterFormat, AppendsToAnExistingString) {
   const std::vector<std::uint16_t> words{523};
   decoder.decode_block(Dialect::Hybrid, 0x1006, words, ValueOrigin::ReadReply, out);
   std::string line = "battery: ";
-  append_value_text(out[0], line);
+  append_value_text(line, out[0]);
   EXPECT_EQ(line, "battery: 52.3 V");
 }
 

@@ -26,7 +26,7 @@ void append_bus(std::string& out, std::string_view bus) {
 
 void append_value_payload(std::string& out, const DecodedValue& v) {
   if (v.def != nullptr && is_text_kind(v.def->kind)) {
-    pvtap::append_value_text(v, out);
+    pvtap::append_value_text(out, v);
     return;
   }
   append_value_json_reading(out, v);

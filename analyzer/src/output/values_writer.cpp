@@ -45,7 +45,7 @@ void append_csv_row(std::string& o, const ValueRow& r, std::string& scratch) {
       break;
     case ReadingKind::Text:
       scratch.clear();
-      append_value_text(r.value, scratch);
+      append_value_text(scratch, r.value);
       append_csv_field(o, scratch);
       break;
     case ReadingKind::None:
@@ -87,7 +87,7 @@ void append_jsonl_row(std::string& o, const ValueRow& r, std::string& scratch) {
     append_value_number(o, r.value);
   } else if (reading_kind(r.value) == ReadingKind::Text) {
     scratch.clear();
-    append_value_text(r.value, scratch);
+    append_value_text(scratch, r.value);
     append_json_string(o, scratch);
   } else {
     o += "null";

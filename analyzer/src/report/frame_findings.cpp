@@ -64,7 +64,7 @@ void add_decode_notes(const SessionFrame& f, std::vector<std::string>& out) {
 void append_text_json(std::string& out, const DecodedValue& v) {
   static thread_local std::string scratch;
   scratch.clear();
-  pvtap::append_value_text(v, scratch);
+  pvtap::append_value_text(scratch, v);
   append_json_string(out, scratch);
 }
 
@@ -229,7 +229,7 @@ void append_value_words(std::string& out, const DecodedValue& v, Dialect d) {
     out += v.def->name;
     out += ' ';
   }
-  pvtap::append_value_text(v, out);
+  pvtap::append_value_text(out, v);
 }
 
 void append_function(std::string& out, Dialect d, std::uint8_t function) {

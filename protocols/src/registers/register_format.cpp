@@ -6,31 +6,31 @@
 namespace pvtap {
 namespace {
 
-void append_fixed(double value, unsigned decimals, std::string& out) {
+void append_fixed(std::string& out, double value, unsigned decimals) {
   std::array<char, 64> buf{};
   const auto result = std::to_chars(buf.data(), buf.data() + buf.size(), value,
                                     std::chars_format::fixed, static_cast<int>(decimals));
   out.append(buf.data(), result.ptr);
 }
 
-void append_hex(std::uint32_t value, unsigned digits, std::string& out) {
+void append_hex(std::string& out, std::uint32_t value, unsigned digits) {
   static constexpr char kDigits[] = "0123456789ABCDEF";
   out += "0x";
   for (unsigned i = digits; i-- > 0;) out += kDigits[(value >> (4 * i)) & 0xFu];
 }
 
-void append_unit(std::string_view unit, std::string& out) {
+void append_unit(std::string& out, std::string_view unit) {
   if (unit.empty()) return;
   out += ' ';
   out += unit;
 }
 
-void append_number(const DecodedValue& v, std::string& out) {
-  append_fixed(v.value, v.def->decimals, out);
-  append_unit(v.def->unit, out);
+void append_number(std::string& out, const DecodedValue& v) {
+  append_fixed(out, v.value, v.def->decimals);
+  append_unit(out, v.def->unit);
 }
 
-void append_bits(const DecodedValue& v, std::string& out) {
+void append_bits(std::string& out, const DecodedValue& v) {
   bool any = false;
   for (const BitName bit : v.set_bits()) {
     if (any) out += ", ";
@@ -44,7 +44,7 @@ void append_bits(const DecodedValue& v, std::string& out) {
   if (!any) out += "none";
 }
 
-void append_phase_capacity(const DecodedValue& v, std::string& out) {
+void append_phase_capacity(std::string& out, const DecodedValue& v) {
   switch (v.bcd.first) {
     case 1:
       out += "single phase";
@@ -57,16 +57,16 @@ void append_phase_capacity(const DecodedValue& v, std::string& out) {
       break;
   }
   out += ", ";
-  append_number(v, out);
+  append_number(out, v);
 }
 
-void append_year_month(const DecodedValue& v, std::string& out) {
+void append_year_month(std::string& out, const DecodedValue& v) {
   out += std::to_string(v.bcd.first);
   out += v.bcd.second < 10 ? "-0" : "-";
   out += std::to_string(v.bcd.second);
 }
 
-void append_device_number(const DecodedValue& v, std::string& out) {
+void append_device_number(std::string& out, const DecodedValue& v) {
   static constexpr char kDigits[] = "0123456789ABCDEF";
   out += kDigits[v.device.type_code >> 4];
   out += kDigits[v.device.type_code & 0xFu];
@@ -75,7 +75,7 @@ void append_device_number(const DecodedValue& v, std::string& out) {
   out += ", serial " + std::to_string(v.device.serial);
 }
 
-void append_enum(const DecodedValue& v, std::string& out) {
+void append_enum(std::string& out, const DecodedValue& v) {
   if (v.enum_text.empty()) {
     out += "unknown value " + std::to_string(v.raw);
   } else {
@@ -83,27 +83,27 @@ void append_enum(const DecodedValue& v, std::string& out) {
   }
 }
 
-void append_complete_value(const DecodedValue& v, std::string& out) {
+void append_complete_value(std::string& out, const DecodedValue& v) {
   const RegisterDef& def = *v.def;
   const bool bad_bcd = v.has(ValueWarning::InvalidBcd);
   switch (def.kind) {
     case RegisterKind::Number:
-      append_number(v, out);
+      append_number(out, v);
       return;
     case RegisterKind::Raw:
-      append_hex(v.raw, 4u * def.words, out);
+      append_hex(out, v.raw, 4u * def.words);
       return;
     case RegisterKind::Enum:
-      append_enum(v, out);
+      append_enum(out, v);
       return;
     case RegisterKind::Bits:
-      append_bits(v, out);
+      append_bits(out, v);
       return;
     case RegisterKind::Text:
       out += v.text();
       return;
     case RegisterKind::DeviceNumber:
-      append_device_number(v, out);
+      append_device_number(out, v);
       return;
     case RegisterKind::Bcd:
     case RegisterKind::BcdPhaseCapacity:
@@ -112,32 +112,32 @@ void append_complete_value(const DecodedValue& v, std::string& out) {
   }
   if (bad_bcd) {
     out += "invalid BCD ";
-    append_hex(v.raw, 4, out);
+    append_hex(out, v.raw, 4);
   } else if (def.kind == RegisterKind::Bcd) {
-    append_number(v, out);
+    append_number(out, v);
   } else if (def.kind == RegisterKind::BcdPhaseCapacity) {
-    append_phase_capacity(v, out);
+    append_phase_capacity(out, v);
   } else {
-    append_year_month(v, out);
+    append_year_month(out, v);
   }
 }
 
 }  // namespace
 
-void append_value_text(const DecodedValue& v, std::string& out) {
+void append_value_text(std::string& out, const DecodedValue& v) {
   if (v.def == nullptr) {
-    append_hex(v.raw, 4, out);
+    append_hex(out, v.raw, 4);
   } else if (!v.complete()) {
     out += "incomplete (" + std::to_string(v.words_present) + " of " +
            std::to_string(v.def->words) + " words in the frame)";
   } else {
-    append_complete_value(v, out);
+    append_complete_value(out, v);
   }
 }
 
 std::string format_value(const DecodedValue& v) {
   std::string out;
-  append_value_text(v, out);
+  append_value_text(out, v);
   return out;
 }
 

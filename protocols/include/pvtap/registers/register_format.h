@@ -11,7 +11,7 @@ namespace pvtap {
 // The value as a person reads it: "52.3 V", "single phase, 3.0 kW", "2005-10", an enum text,
 // the names of the set bits, the text of a text register, "31 inverter, serial 103".
 std::string format_value(const DecodedValue& v);
-void append_value_text(const DecodedValue& v, std::string& out);
+void append_value_text(std::string& out, const DecodedValue& v);
 
 // The value's address as the reference writes it ("0x1006", "0x0020", "1056"); a GSL wire
 // address with no decimal reading (hex IDs) is shown as hex.
