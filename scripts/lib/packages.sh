@@ -60,14 +60,20 @@ PVTAP_PACKAGES=(
   python3-paho-mqtt
 )
 
+# The system's os-release file (PVTAP_OS_RELEASE lets the tests name another).
+pvtap_os_release_file() {
+  echo "${PVTAP_OS_RELEASE:-/etc/os-release}"
+}
+
 # The codename of the running Debian release if pvtap supports it; fails otherwise.
 pvtap_release() {
-  local codename="" id=""
-  if [[ -r /etc/os-release ]]; then
-    # shellcheck disable=SC1091
-    codename="$(. /etc/os-release && echo "${VERSION_CODENAME:-}")"
-    # shellcheck disable=SC1091
-    id="$(. /etc/os-release && echo "${ID:-}")"
+  local codename="" id="" file
+  file="$(pvtap_os_release_file)"
+  if [[ -r "$file" ]]; then
+    # shellcheck disable=SC1090
+    codename="$(. "$file" && echo "${VERSION_CODENAME:-}")"
+    # shellcheck disable=SC1090
+    id="$(. "$file" && echo "${ID:-}")"
   fi
   [[ "$id" == debian && -n "$codename" && -n "${PVTAP_RELEASE_TAG[$codename]:-}" ]] || return 1
   echo "$codename"
@@ -97,9 +103,10 @@ pvtap_packages() {
 
 # On a system that is not one of the supported releases: what pvtap needs, and exit 2.
 pvtap_unsupported_system() {
-  local pretty="an unknown system" release
-  # shellcheck disable=SC1091
-  [[ -r /etc/os-release ]] && pretty="$(. /etc/os-release && echo "${PRETTY_NAME:-$pretty}")"
+  local pretty="an unknown system" release file
+  file="$(pvtap_os_release_file)"
+  # shellcheck disable=SC1090
+  [[ -r "$file" ]] && pretty="$(. "$file" && echo "${PRETTY_NAME:-$pretty}")"
   {
     echo "pvtap: this is $pretty; the package step knows only these Debian releases:"
     for release in bookworm trixie forky; do
