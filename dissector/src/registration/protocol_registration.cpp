@@ -1,16 +1,16 @@
-#include "protocol_registration.h"
+#include "registration/protocol_registration.h"
 
 #include <epan/packet.h>
 
-#include "bus_track.h"
-#include "common_fields.h"
-#include "inverter_protocol.h"
-#include "preferences.h"
-#include "record_dissector.h"
-#include "register_fields.h"
-#include "register_maps.h"
-#include "response_time_stats.h"
-#include "transport_entry.h"
+#include "fields/common_fields.h"
+#include "fields/register_fields.h"
+#include "registration/inverter_protocol.h"
+#include "registration/record_dissector.h"
+#include "registration/transport_entry.h"
+#include "settings/preferences.h"
+#include "settings/register_maps.h"
+#include "statistics/response_time_stats.h"
+#include "stream/bus_track.h"
 
 namespace pvtap::dissector {
 namespace {

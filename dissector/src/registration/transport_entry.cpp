@@ -1,4 +1,4 @@
-#include "transport_entry.h"
+#include "registration/transport_entry.h"
 
 #include <epan/conversation.h>
 
@@ -8,9 +8,9 @@
 
 #include <epan/dissectors/packet-tcp.h>
 
-#include "conversation_state.h"
 #include "pvtap/framing/framing_probe.h"
-#include "stream_dissection.h"
+#include "stream/conversation_state.h"
+#include "stream/stream_dissection.h"
 #include "wireshark_api/heuristic_verdict.h"
 
 namespace pvtap::dissector {

@@ -1,4 +1,4 @@
-#include "register_fields.h"
+#include "fields/register_fields.h"
 
 #include <epan/proto.h>
 
@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "field_list.h"
-#include "register_maps.h"
-#include "value_tables.h"
+#include "fields/field_list.h"
+#include "fields/value_tables.h"
+#include "settings/register_maps.h"
 
 namespace pvtap::dissector {
 namespace {

@@ -3,8 +3,8 @@
 
 #include <epan/packet.h>
 
-#include "bus_track.h"
-#include "inverter_protocol.h"
+#include "registration/inverter_protocol.h"
+#include "stream/bus_track.h"
 
 struct tcpinfo;
 

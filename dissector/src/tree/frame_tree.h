@@ -5,10 +5,10 @@
 
 #include <optional>
 
-#include "frame_plan.h"
-#include "frame_record.h"
-#include "inverter_protocol.h"
+#include "plan/frame_plan.h"
+#include "plan/frame_record.h"
 #include "pvtap/codec/unknown_function_frame.h"
+#include "registration/inverter_protocol.h"
 
 namespace pvtap::dissector {
 

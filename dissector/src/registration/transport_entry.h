@@ -2,7 +2,7 @@
 // and Decode As for RTAC serial payloads.
 #pragma once
 
-#include "inverter_protocol.h"
+#include "registration/inverter_protocol.h"
 
 namespace pvtap::dissector {
 

@@ -7,9 +7,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "frame_record.h"
-#include "inverter_protocol.h"
+#include "plan/frame_record.h"
 #include "pvtap/session/segmented_bus.h"
+#include "registration/inverter_protocol.h"
 
 namespace pvtap::dissector {
 

@@ -1,13 +1,13 @@
-#include "record_dissector.h"
+#include "registration/record_dissector.h"
 
 #include <epan/packet.h>
 
 #include <algorithm>
 
-#include "conversation_state.h"
 #include "pvtap/capture/exported_pdu_tags.h"
 #include "pvtap/framing/framing_probe.h"
-#include "stream_dissection.h"
+#include "stream/conversation_state.h"
+#include "stream/stream_dissection.h"
 
 namespace pvtap::dissector {
 namespace {

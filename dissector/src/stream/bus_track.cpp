@@ -1,8 +1,8 @@
-#include "bus_track.h"
+#include "stream/bus_track.h"
 
 #include <memory>
 
-#include "register_decoding.h"
+#include "plan/register_decoding.h"
 
 namespace pvtap::dissector {
 namespace {

@@ -3,8 +3,8 @@
 
 #include <epan/packet.h>
 
-#include "frame_record.h"
-#include "inverter_protocol.h"
+#include "plan/frame_record.h"
+#include "registration/inverter_protocol.h"
 
 namespace pvtap::dissector {
 

@@ -4,8 +4,8 @@
 #include <epan/address.h>
 #include <epan/packet.h>
 
-#include "bus_track.h"
-#include "inverter_protocol.h"
+#include "registration/inverter_protocol.h"
+#include "stream/bus_track.h"
 
 namespace pvtap::dissector {
 

@@ -1,13 +1,13 @@
-#include "stream_dissection.h"
+#include "stream/stream_dissection.h"
 
 #include <epan/dissectors/packet-tcp.h>
 #include <epan/proto_data.h>
 
 #include <span>
 
-#include "frame_analysis.h"
-#include "frame_tree.h"
-#include "response_time_stats.h"
+#include "plan/frame_analysis.h"
+#include "statistics/response_time_stats.h"
+#include "tree/frame_tree.h"
 
 namespace pvtap::dissector {
 namespace {

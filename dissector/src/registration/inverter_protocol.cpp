@@ -1,4 +1,4 @@
-#include "inverter_protocol.h"
+#include "registration/inverter_protocol.h"
 
 namespace pvtap::dissector {
 namespace {

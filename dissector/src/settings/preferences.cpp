@@ -1,10 +1,10 @@
-#include "preferences.h"
+#include "settings/preferences.h"
 
 #include <epan/prefs.h>
 
 #include <string>
 
-#include "register_decoding.h"
+#include "plan/register_decoding.h"
 
 namespace pvtap::dissector {
 namespace {

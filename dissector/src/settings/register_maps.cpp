@@ -1,4 +1,4 @@
-#include "register_maps.h"
+#include "settings/register_maps.h"
 
 #include <wsutil/filesystem.h>
 #include <wsutil/report_message.h>

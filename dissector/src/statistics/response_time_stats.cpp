@@ -1,4 +1,4 @@
-#include "response_time_stats.h"
+#include "statistics/response_time_stats.h"
 
 #include <epan/srt_table.h>
 #include <epan/tap.h>

@@ -5,9 +5,9 @@
 
 #include <span>
 
-#include "frame_plan.h"
-#include "frame_record.h"
-#include "inverter_protocol.h"
+#include "plan/frame_plan.h"
+#include "plan/frame_record.h"
+#include "registration/inverter_protocol.h"
 
 namespace pvtap::dissector {
 

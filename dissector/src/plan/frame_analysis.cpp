@@ -1,14 +1,14 @@
-#include "frame_analysis.h"
+#include "plan/frame_analysis.h"
 
 #include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "plan/register_decoding.h"
 #include "pvtap/codec/function_codes.h"
 #include "pvtap/matching/frame_summary.h"
 #include "pvtap/registers/register_format.h"
-#include "register_decoding.h"
 
 namespace pvtap::dissector {
 namespace {

@@ -1,10 +1,10 @@
-#include "common_fields.h"
+#include "fields/common_fields.h"
 
 #include <string>
 
-#include "field_list.h"
-#include "register_maps.h"
-#include "value_tables.h"
+#include "fields/field_list.h"
+#include "fields/value_tables.h"
+#include "settings/register_maps.h"
 
 namespace pvtap::dissector {
 namespace {

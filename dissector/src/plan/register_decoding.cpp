@@ -1,8 +1,8 @@
-#include "register_decoding.h"
+#include "plan/register_decoding.h"
 
 #include <optional>
 
-#include "register_maps.h"
+#include "settings/register_maps.h"
 
 namespace pvtap::dissector {
 namespace {

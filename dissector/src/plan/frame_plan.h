@@ -5,10 +5,10 @@
 
 #include <type_traits>
 
+#include "fields/register_fields.h"
 #include "pvtap/codec/frame_codec.h"
 #include "pvtap/codec/frame_layout.h"
 #include "pvtap/registers/register_decoder.h"
-#include "register_fields.h"
 
 namespace pvtap::dissector {
 

@@ -1,4 +1,4 @@
-#include "field_list.h"
+#include "fields/field_list.h"
 
 #include <algorithm>
 

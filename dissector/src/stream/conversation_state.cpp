@@ -1,4 +1,4 @@
-#include "conversation_state.h"
+#include "stream/conversation_state.h"
 
 #include <epan/conversation.h>
 

@@ -1,4 +1,4 @@
-#include "frame_tree.h"
+#include "tree/frame_tree.h"
 
 #include <epan/expert.h>
 #include <epan/proto.h>

@@ -1,4 +1,4 @@
-#include "value_tables.h"
+#include "fields/value_tables.h"
 
 #include <string>
 #include <vector>
