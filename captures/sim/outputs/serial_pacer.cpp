@@ -1,4 +1,4 @@
-#include "serial_pacer.h"
+#include "outputs/serial_pacer.h"
 
 #include <fcntl.h>
 #include <termios.h>

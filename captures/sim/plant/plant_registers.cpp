@@ -1,4 +1,4 @@
-#include "plant_registers.h"
+#include "plant/plant_registers.h"
 
 #include <algorithm>
 #include <cmath>

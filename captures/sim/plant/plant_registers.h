@@ -1,8 +1,8 @@
 // Writes a plant's state into the registers of its dialect, by the core map's keys.
 #pragma once
 
-#include "plant_model.h"
-#include "register_image.h"
+#include "plant/plant_model.h"
+#include "plant/register_image.h"
 
 namespace pvtap::sim {
 

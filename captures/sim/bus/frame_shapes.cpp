@@ -1,4 +1,4 @@
-#include "frame_shapes.h"
+#include "bus/frame_shapes.h"
 
 #include "pvtap/codec/function_codes.h"
 

@@ -1,4 +1,4 @@
-#include "register_image.h"
+#include "plant/register_image.h"
 
 #include <cmath>
 #include <stdexcept>

@@ -1,4 +1,4 @@
-#include "ground_truth.h"
+#include "outputs/ground_truth.h"
 
 #include <cstdio>
 #include <fstream>

@@ -1,4 +1,4 @@
-#include "frame_damage.h"
+#include "faults/frame_damage.h"
 
 #include <charconv>
 

@@ -1,4 +1,4 @@
-#include "poll_blocks.h"
+#include "bus/poll_blocks.h"
 
 #include <array>
 

@@ -1,4 +1,4 @@
-#include "fault_plan.h"
+#include "faults/fault_plan.h"
 
 #include <charconv>
 

@@ -4,7 +4,7 @@
 
 #include <cstdint>
 
-#include "poll_blocks.h"
+#include "bus/poll_blocks.h"
 #include "pvtap/codec/frame.h"
 
 namespace pvtap::sim {

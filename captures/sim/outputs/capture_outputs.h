@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <string>
 
-#include "bus_event.h"
+#include "bus/bus_event.h"
 
 namespace pvtap::sim {
 

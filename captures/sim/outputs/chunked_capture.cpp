@@ -1,7 +1,7 @@
 #include <pcap/pcap.h>
 
-#include "bus_bytes.h"
-#include "capture_outputs.h"
+#include "outputs/bus_bytes.h"
+#include "outputs/capture_outputs.h"
 #include "pvtap/capture/pcap_writer.h"
 
 namespace pvtap::sim {

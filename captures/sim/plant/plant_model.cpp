@@ -1,4 +1,4 @@
-#include "plant_model.h"
+#include "plant/plant_model.h"
 
 #include <algorithm>
 #include <chrono>

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "bus_event.h"
+#include "bus/bus_event.h"
 
 namespace pvtap::sim {
 

@@ -4,8 +4,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "bus_event.h"
-#include "fault_plan.h"
+#include "bus/bus_event.h"
+#include "faults/fault_plan.h"
 #include "pvtap/codec/dialect.h"
 
 namespace pvtap::sim {

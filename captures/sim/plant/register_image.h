@@ -8,7 +8,7 @@
 #include <string_view>
 #include <vector>
 
-#include "bus_event.h"
+#include "bus/bus_event.h"
 #include "pvtap/codec/frame.h"
 #include "pvtap/registers/register_map.h"
 

@@ -1,4 +1,4 @@
-#include "bus_bytes.h"
+#include "outputs/bus_bytes.h"
 
 namespace pvtap::sim {
 

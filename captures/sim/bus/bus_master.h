@@ -5,12 +5,12 @@
 #include <optional>
 #include <vector>
 
-#include "bus_event.h"
-#include "frame_damage.h"
-#include "plant_model.h"
-#include "poll_blocks.h"
-#include "register_image.h"
-#include "sim_config.h"
+#include "bus/bus_event.h"
+#include "bus/poll_blocks.h"
+#include "command/sim_config.h"
+#include "faults/frame_damage.h"
+#include "plant/plant_model.h"
+#include "plant/register_image.h"
 #include "sim_random.h"
 
 namespace pvtap::sim {

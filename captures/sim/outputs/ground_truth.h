@@ -4,8 +4,8 @@
 
 #include <string>
 
-#include "bus_event.h"
-#include "sim_config.h"
+#include "bus/bus_event.h"
+#include "command/sim_config.h"
 
 namespace pvtap::sim {
 

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 
-#include "bus_bytes.h"
-#include "capture_outputs.h"
+#include "outputs/bus_bytes.h"
+#include "outputs/capture_outputs.h"
 #include "pvtap/capture/packet_builder.h"
 #include "pvtap/capture/pcap_writer.h"
 #include "sim_random.h"

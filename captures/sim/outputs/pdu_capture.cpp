@@ -1,4 +1,4 @@
-#include "capture_outputs.h"
+#include "outputs/capture_outputs.h"
 #include "pvtap/capture/exported_pdu_writer.h"
 
 namespace pvtap::sim {

@@ -1,4 +1,4 @@
-#include "sim_command.h"
+#include "command/sim_command.h"
 
 #include <CLI/CLI.hpp>
 #include <algorithm>

@@ -7,7 +7,7 @@
 
 #include <cstdint>
 
-#include "bus_event.h"
+#include "bus/bus_event.h"
 #include "sim_random.h"
 
 namespace pvtap::sim {

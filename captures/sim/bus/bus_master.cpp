@@ -1,11 +1,11 @@
-#include "bus_master.h"
+#include "bus/bus_master.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "frame_damage.h"
-#include "frame_shapes.h"
-#include "plant_registers.h"
+#include "bus/frame_shapes.h"
+#include "faults/frame_damage.h"
+#include "plant/plant_registers.h"
 #include "pvtap/codec/frame_codec.h"
 #include "pvtap/codec/function_codes.h"
 

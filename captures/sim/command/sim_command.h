@@ -4,7 +4,7 @@
 #include <optional>
 #include <string>
 
-#include "sim_config.h"
+#include "command/sim_config.h"
 
 namespace pvtap::sim {
 
