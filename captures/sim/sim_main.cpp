@@ -1,11 +1,11 @@
 // pvtap-sim: simulates a master polling inverters and writes the bus as captures.
 #include <iostream>
 
-#include "bus_master.h"
-#include "capture_outputs.h"
-#include "ground_truth.h"
-#include "serial_pacer.h"
-#include "sim_command.h"
+#include "bus/bus_master.h"
+#include "command/sim_command.h"
+#include "outputs/capture_outputs.h"
+#include "outputs/ground_truth.h"
+#include "outputs/serial_pacer.h"
 
 namespace {
 

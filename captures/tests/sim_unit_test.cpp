@@ -8,15 +8,15 @@
 #include <fstream>
 #include <iterator>
 
-#include "bus_master.h"
-#include "fault_plan.h"
-#include "frame_damage.h"
-#include "frame_shapes.h"
-#include "ground_truth.h"
-#include "poll_blocks.h"
+#include "bus/bus_master.h"
+#include "bus/frame_shapes.h"
+#include "bus/poll_blocks.h"
+#include "faults/fault_plan.h"
+#include "faults/frame_damage.h"
+#include "outputs/ground_truth.h"
+#include "plant/register_image.h"
 #include "pvtap/codec/frame_codec.h"
 #include "pvtap/registers/register_decoder.h"
-#include "register_image.h"
 
 namespace pvtap::sim {
 namespace {

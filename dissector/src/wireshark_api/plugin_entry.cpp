@@ -4,7 +4,7 @@
 
 #include <cstdint>
 
-#include "protocol_registration.h"
+#include "registration/protocol_registration.h"
 #include "wireshark_api/series.h"
 
 #if PVTAP_WIRESHARK_AT_LEAST(4, 4)

@@ -1,0 +1,65 @@
+// BusMaster: plays a data logger polling every inverter of the bus in rounds and the
+// inverters answering, faults included; the result is the timeline of bus bytes.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "bus/bus_event.h"
+#include "bus/poll_blocks.h"
+#include "command/sim_config.h"
+#include "faults/frame_damage.h"
+#include "plant/plant_model.h"
+#include "plant/register_image.h"
+#include "sim_random.h"
+
+namespace pvtap::sim {
+
+class BusMaster {
+ public:
+  explicit BusMaster(const SimConfig& config);
+  BusTimeline run();
+
+ private:
+  struct Inverter {
+    std::uint8_t station;
+    Dialect dialect;
+    PlantModel plant;
+    RegisterImage image;
+  };
+
+  // Sends one request and its reply (or the lack of one); returns when the bus is free.
+  Micros poll(Inverter& inv, const PollBlock& block, Micros at);
+  // A run of damaged requests for one block: the slave ignores each one, the master waits out
+  // its timeout and, kDamagedRetryPercent of the time, retries the block only to have the line
+  // damage it again (at most kMaxDamagedRun in a row).
+  Micros send_damaged_requests(const Inverter& inv, const PollBlock& block, Micros at);
+  // The reply to a request (the bus is free at the returned time).
+  Micros answer(Inverter& inv, const PollBlock& block, std::optional<FaultKind> fault,
+                TimeoutTruth request);
+  BusEvent reply_event(Inverter& inv, const PollBlock& block, std::optional<FaultKind> fault,
+                       Micros request_end);
+  std::optional<FaultKind> pick_fault(Dialect d);
+  bool may_damage(Role role) const;
+  // The fault, or none where its damage could not be pinned (see may_damage).
+  std::optional<FaultKind> placed(std::optional<FaultKind> fault) const;
+  static void mark_damaged(BusEvent& event, const FrameDamage& damage, FaultKind kind);
+  Micros timeout_after(Micros request_end);
+  void close_on_a_good_frame(Micros at);
+  Micros put(BusEvent event, Micros at);
+  Micros put_noise(Micros at);
+  Micros char_time(std::size_t bytes) const;
+  void set_aside_unexpired_timeouts();
+
+  static constexpr unsigned kDamagedRetryPercent = 30;
+  static constexpr unsigned kMaxDamagedRun = 4;
+  static constexpr std::int64_t kPinningPauseMs = 100;  // silence after a damaged reply
+
+  SimConfig config_;
+  SimRandom random_;
+  std::vector<Inverter> inverters_;
+  BusTimeline timeline_;
+  bool closing_ = false;  // the last poll of a run: no faults
+};
+
+}  // namespace pvtap::sim

@@ -1,0 +1,85 @@
+#include "command/sim_command.h"
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <iostream>
+
+namespace pvtap::sim {
+namespace {
+
+std::optional<Dialect> dialect_named(const std::string& name) {
+  if (name == "ascii") return Dialect::Ascii;
+  if (name == "hybrid") return Dialect::Hybrid;
+  if (name == "gsl") return Dialect::Gsl;
+  return std::nullopt;
+}
+
+// "gsl" or "gsl,hybrid,ascii" (a mixed bus; stations take the dialects in turn).
+std::string parse_dialects(const std::string& text, std::vector<Dialect>& out) {
+  out.clear();
+  std::size_t from = 0;
+  while (from <= text.size()) {
+    const auto comma = std::min(text.find(',', from), text.size());
+    const auto d = dialect_named(text.substr(from, comma - from));
+    if (!d) return "unknown dialect in '" + text + "' (ascii, hybrid, gsl)";
+    out.push_back(*d);
+    from = comma + 1;
+  }
+  return {};
+}
+
+}  // namespace
+
+std::optional<SimCommand> parse_sim_command(int argc, char** argv, int& exit_code) {
+  SimCommand cmd;
+  SimConfig& c = cmd.config;
+  std::string dialects = "gsl", faults = "none";
+  unsigned first_station = c.first_station;
+  double start_s = static_cast<double>(c.start) / 1e6;
+  CLI::App app{"pvtap-sim: a simulated RS485 bus of PV inverters, written as captures"};
+  app.add_option("--seed", c.seed, "seed; one seed gives the same bytes every time");
+  app.add_option("--dialect", dialects, "ascii, hybrid, gsl, or a list for a mixed bus");
+  app.add_option("--inverters", c.inverters, "number of inverters")->check(CLI::Range(1, 31));
+  app.add_option("--first-station", first_station, "address of the first inverter")
+      ->check(CLI::Range(1, 200));
+  app.add_option("--start", start_s, "simulated start time, Unix seconds (UTC = solar time)");
+  app.add_option("--duration", c.duration_s, "seconds of bus traffic")->check(CLI::PositiveNumber);
+  app.add_option("--period", c.period_s, "seconds between poll rounds")->check(CLI::PositiveNumber);
+  app.add_option("--timeout", c.timeout_s, "seconds the master waits for a reply");
+  app.add_option("--baud", c.baud, "bus speed")->check(CLI::Range(1200, 115200));
+  app.add_option("--faults", faults,
+                 "none, all, or kind=percent,... (corrupt missing slow "
+                 "noise error_reply count_mismatch duplicate corrupt_request)");
+  app.add_option("--pdu", cmd.outputs.pdu, "write a link type 252 capture");
+  app.add_option("--gateway", cmd.outputs.gateway, "write an Ethernet/IPv4/TCP gateway capture");
+  app.add_option("--chunked", cmd.outputs.chunked, "write a USER0 chunked serial capture");
+  app.add_option("--truth", cmd.outputs.truth, "write the ground truth as JSON");
+  app.add_option("--device", cmd.outputs.device, "play the bus onto a serial device or pty");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    exit_code = app.exit(e) == 0 ? 0 : 2;
+    return std::nullopt;
+  }
+  std::string error = parse_dialects(dialects, c.dialects);
+  const auto plan = error.empty() ? parse_fault_plan(faults, error) : std::nullopt;
+  if (!plan) {
+    std::cerr << "pvtap-sim: " << error << "\n";
+    exit_code = 2;
+    return std::nullopt;
+  }
+  // The ASCII dialect's station field holds 0x00-0x1F.
+  const bool ascii =
+      std::find(c.dialects.begin(), c.dialects.end(), Dialect::Ascii) != c.dialects.end();
+  if (ascii && first_station + c.inverters - 1 > 0x1F) {
+    std::cerr << "pvtap-sim: ASCII stations go up to 31; lower --first-station or --inverters\n";
+    exit_code = 2;
+    return std::nullopt;
+  }
+  c.faults = *plan;
+  c.first_station = static_cast<std::uint8_t>(first_station);
+  c.start = static_cast<Micros>(start_s * 1e6);
+  return cmd;
+}
+
+}  // namespace pvtap::sim

@@ -1,0 +1,24 @@
+// The pvtap-sim command line: what to simulate and where to write it.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "command/sim_config.h"
+
+namespace pvtap::sim {
+
+// SimOutputs: the files (and device) a run writes; empty strings are skipped.
+struct SimOutputs {
+  std::string pdu, gateway, chunked, truth, device;
+};
+
+struct SimCommand {
+  SimConfig config;
+  SimOutputs outputs;
+};
+
+// Parses argv; nullopt with `exit_code` set when the run should stop (help or a usage error).
+std::optional<SimCommand> parse_sim_command(int argc, char** argv, int& exit_code);
+
+}  // namespace pvtap::sim

@@ -1,0 +1,26 @@
+// SimConfig: what one simulator run plays — the bus, its inverters, its faults, its clock.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "bus/bus_event.h"
+#include "faults/fault_plan.h"
+#include "pvtap/codec/dialect.h"
+
+namespace pvtap::sim {
+
+struct SimConfig {
+  std::uint64_t seed = 1;
+  std::vector<Dialect> dialects{Dialect::Gsl};  // station i speaks dialects[i % size]
+  unsigned inverters = 3;
+  std::uint8_t first_station = 1;
+  Micros start = 1'782'036'000'000'000;  // 2026-06-21 10:00:00 UTC
+  double duration_s = 60.0;
+  double period_s = 5.0;   // one poll round of every inverter per period
+  double timeout_s = 1.0;  // how long the master waits for a reply
+  unsigned baud = 9600;
+  FaultPlan faults;
+};
+
+}  // namespace pvtap::sim

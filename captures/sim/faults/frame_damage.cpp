@@ -1,0 +1,75 @@
+#include "faults/frame_damage.h"
+
+#include <charconv>
+
+#include "pvtap/codec/frame_codec.h"
+#include "pvtap/codec/function_codes.h"
+
+namespace pvtap::sim {
+namespace {
+
+constexpr std::uint8_t kEot = 0x04, kEnq = 0x05, kAck = 0x06;
+
+bool is_hex_digit(std::uint8_t b) {
+  return (b >= '0' && b <= '9') || (b >= 'a' && b <= 'f') || (b >= 'A' && b <= 'F');
+}
+
+// ENQ/ACK (0), 'R' (3) and EOT (last) as they were, every other byte a hex digit.
+bool ascii_frame_shaped(std::span<const std::uint8_t> original,
+                        std::span<const std::uint8_t> damaged) {
+  const std::size_t last = damaged.size() - 1;
+  for (std::size_t i = 0; i <= last; ++i) {
+    const bool delimiter = i == 0 || i == 3 || i == last;
+    if (delimiter ? damaged[i] != original[i] : !is_hex_digit(damaged[i])) return false;
+  }
+  return true;
+}
+
+bool good_crc_prefix(std::span<const std::uint8_t> damaged) {
+  for (std::size_t n = 4; n < damaged.size(); ++n)
+    if (verify_check(damaged.first(n), Dialect::Gsl).ok) return true;
+  return false;
+}
+
+}  // namespace
+
+std::optional<DamageReading> reading_of(std::span<const std::uint8_t> original,
+                                        std::span<const std::uint8_t> damaged, Dialect dialect) {
+  if (dialect != Dialect::Ascii) {
+    if (verify_check(damaged, dialect).ok || good_crc_prefix(damaged)) return std::nullopt;
+    return DamageReading::BadCheckFrame;
+  }
+  for (std::size_t i = 0; i < damaged.size(); ++i) {
+    const std::uint8_t b = damaged[i];
+    if (b != original[i] && (b == kEot || b == kEnq || b == kAck)) return std::nullopt;
+  }
+  // The checksum leaves the delimiters out, so only a frame-shaped result needs it bad.
+  if (!ascii_frame_shaped(original, damaged)) return DamageReading::Noise;
+  if (verify_check(damaged, dialect).ok) return std::nullopt;
+  return DamageReading::BadCheckFrame;
+}
+
+FrameDamage damage_frame(std::vector<std::uint8_t>& bytes, Dialect dialect, SimRandom& random) {
+  const std::vector<std::uint8_t> original = bytes;
+  for (;;) {
+    const auto at = static_cast<std::size_t>(random.between(0, std::ssize(bytes) - 1));
+    const auto mask = random.percent(50) ? 1u << random.between(0, 7) : random.between(1, 255);
+    bytes[at] = static_cast<std::uint8_t>(original[at] ^ mask);
+    if (const auto reading = reading_of(original, bytes, dialect)) return {at, *reading};
+    bytes[at] = original[at];
+  }
+}
+
+std::uint8_t wire_station(std::span<const std::uint8_t> bytes, Dialect dialect) {
+  if (dialect != Dialect::Ascii) return bytes[0];
+  unsigned station = 0;
+  const auto* text = reinterpret_cast<const char*>(bytes.data());
+  std::from_chars(text + 1, text + 3, station, 16);
+  return static_cast<std::uint8_t>(station);
+}
+
+std::uint8_t wire_function(std::span<const std::uint8_t> bytes, Dialect dialect) {
+  return dialect == Dialect::Ascii ? fc::kAsciiRead : bytes[1];
+}
+
+}  // namespace pvtap::sim

@@ -1,0 +1,24 @@
+// The simulator's capture files: one function per carrier, each returning an error text
+// (empty on success).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "bus/bus_event.h"
+
+namespace pvtap::sim {
+
+// Link type 252: one exported-PDU record per frame or noise run, tagged with its direction.
+std::string write_pdu_capture(const BusTimeline& timeline, const std::string& path);
+
+// USER0 (147): the bus bytes in chunks cut by a USB adapter's latency timer, as a serial
+// sniffer records them; no direction.
+std::string write_chunked_capture(const BusTimeline& timeline, const std::string& path);
+
+// Ethernet/IPv4/TCP: the master's connection to a serial-to-TCP gateway, the gateway's
+// stream cut into segments at random points.
+std::string write_gateway_capture(const BusTimeline& timeline, const std::string& path,
+                                  std::uint64_t seed);
+
+}  // namespace pvtap::sim

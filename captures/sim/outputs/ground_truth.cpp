@@ -1,0 +1,144 @@
+#include "outputs/ground_truth.h"
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+namespace pvtap::sim {
+namespace {
+
+std::string seconds(Micros t) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%lld.%06lld", static_cast<long long>(t / 1'000'000),
+                static_cast<long long>(t % 1'000'000));
+  return buf;
+}
+
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.10g", v);
+  return buf;
+}
+
+std::string hex(const std::vector<std::uint8_t>& bytes) {
+  static constexpr char kDigits[] = "0123456789abcdef";
+  std::string out;
+  for (auto b : bytes) {
+    out += kDigits[b >> 4];
+    out += kDigits[b & 15];
+  }
+  return out;
+}
+
+void write_values(std::ostream& o, const std::vector<RegisterTruth>& values) {
+  o << ",\"values\":[";
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    const RegisterTruth& v = values[i];
+    o << (i ? "," : "") << "{\"register\":\"" << v.address << "\",\"key\":\"" << v.key
+      << "\",\"raw\":" << v.raw;
+    if (!v.text.empty()) o << ",\"text\":\"" << v.text << "\"";
+    if (v.numeric) o << ",\"value\":" << number(v.value);
+    o << "}";
+  }
+  o << "]";
+}
+
+void write_event(std::ostream& o, const BusEvent& e) {
+  if (e.kind == BusEvent::Kind::Noise) {
+    o << "{\"type\":\"noise\",\"ts\":" << seconds(e.start) << ",\"bytes\":" << e.bytes.size()
+      << ",\"hex\":\"" << hex(e.bytes) << "\"";
+    // An ASCII frame damaged beyond delimiting: noise to a reader, named by its fault here.
+    if (e.fault != "noise") o << ",\"fault\":\"" << e.fault << "\"";
+    o << "}";
+    return;
+  }
+  // ts is the first byte, as pvtap audit reports frames; end is the last byte.
+  o << "{\"type\":\"frame\",\"ts\":" << seconds(e.start) << ",\"end\":" << seconds(e.end)
+    << ",\"dialect\":\"" << to_string(e.dialect) << "\",\"role\":\"" << to_string(e.role)
+    << "\",\"station\":" << int{e.station} << ",\"function\":" << int{e.function}
+    << ",\"length\":" << e.bytes.size() << ",\"check\":\"" << (e.check_ok ? "ok" : "bad")
+    << "\",\"hex\":\"" << hex(e.bytes) << "\"";
+  if (!e.fault.empty()) o << ",\"fault\":\"" << e.fault << "\"";
+  if (e.role == Role::Response)
+    o << ",\"latency_ms\":" << number(static_cast<double>(e.latency) / 1e3);
+  if (e.role == Role::Response && e.check_ok) write_values(o, e.values);
+  o << "}";
+}
+
+struct Totals {
+  std::size_t bytes = 0, frames = 0, requests = 0, responses = 0, bad = 0, noise = 0,
+              exceptions = 0, damaged_replies = 0;
+};
+
+Totals count(const BusTimeline& t) {
+  Totals n;
+  for (const BusEvent& e : t.events) {
+    n.bytes += e.bytes.size();
+    if (e.kind == BusEvent::Kind::Noise) {
+      n.noise += e.bytes.size();
+      continue;
+    }
+    ++n.frames;
+    ++(e.role == Role::Request ? n.requests : n.responses);
+    if (!e.check_ok) ++n.bad;
+    if (!e.check_ok && e.role == Role::Response) ++n.damaged_replies;
+    if (e.role == Role::Response && e.fault == "error_reply") ++n.exceptions;
+  }
+  return n;
+}
+
+void write_config(std::ostream& o, const SimConfig& c) {
+  o << "\"generator\":\"pvtap-sim\",\"seed\":" << c.seed << ",\"dialects\":[";
+  for (std::size_t i = 0; i < c.dialects.size(); ++i)
+    o << (i ? "," : "") << "\"" << to_string(c.dialects[i]) << "\"";
+  o << "],\"inverters\":" << c.inverters << ",\"first_station\":" << int{c.first_station}
+    << ",\"baud\":" << c.baud << ",\"timeout_s\":" << number(c.timeout_s) << ",\"faults\":{";
+  for (unsigned k = 0; k < kFaultKinds; ++k)
+    o << (k ? "," : "") << "\"" << to_string(static_cast<FaultKind>(k))
+      << "\":" << c.faults.percent[k];
+  o << "}";
+}
+
+void write_requests(std::ostream& o, const char* name, const std::vector<TimeoutTruth>& list) {
+  o << "],\n\"" << name << "\":[";
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const TimeoutTruth& t = list[i];
+    o << (i ? ",\n" : "\n") << "{\"request_ts\":" << seconds(t.request_start)
+      << ",\"station\":" << int{t.station} << ",\"function\":" << int{t.function} << "}";
+  }
+}
+
+}  // namespace
+
+std::string write_ground_truth(const BusTimeline& timeline, const SimConfig& config,
+                               const std::string& path) {
+  std::ostringstream o;
+  o << "{";
+  write_config(o, config);
+  o << ",\n\"events\":[\n";
+  for (std::size_t i = 0; i < timeline.events.size(); ++i) {
+    write_event(o, timeline.events[i]);
+    o << (i + 1 < timeline.events.size() ? ",\n" : "\n");
+  }
+  write_requests(o, "timeouts", timeline.timeouts);
+  write_requests(o, "unanswered_damaged_requests", timeline.unanswered_damaged_requests);
+  o << "],\n\"faults\":[";
+  for (std::size_t i = 0; i < timeline.faults.size(); ++i) {
+    const FaultTruth& f = timeline.faults[i];
+    o << (i ? ",\n" : "\n") << "{\"ts\":" << seconds(f.time) << ",\"station\":" << int{f.station}
+      << ",\"kind\":\"" << f.kind << "\"}";
+  }
+  write_requests(o, "unanswered_at_end", timeline.unanswered_at_end);
+  const Totals n = count(timeline);
+  o << "],\n\"summary\":{\"bytes\":" << n.bytes << ",\"frames\":" << n.frames
+    << ",\"requests\":" << n.requests << ",\"responses\":" << n.responses
+    << ",\"bad_checks\":" << n.bad << ",\"timeouts\":" << timeline.timeouts.size()
+    << ",\"damaged_replies\":" << n.damaged_replies
+    << ",\"unanswered_damaged_requests\":" << timeline.unanswered_damaged_requests.size()
+    << ",\"noise_bytes\":" << n.noise << ",\"exceptions\":" << n.exceptions << "}}\n";
+  std::ofstream file(path, std::ios::binary);
+  file << o.str();
+  return file ? std::string{} : "cannot write " + path;
+}
+
+}  // namespace pvtap::sim

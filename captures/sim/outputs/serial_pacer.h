@@ -1,0 +1,14 @@
+// Plays the bus onto a serial device or pty in real time: each event at its moment, each byte
+// one character time after the one before, as a UART at that baud would send it.
+#pragma once
+
+#include <string>
+
+#include "bus/bus_event.h"
+
+namespace pvtap::sim {
+
+// Returns an error text, empty on success.
+std::string pace_onto_device(const BusTimeline& timeline, const std::string& device, unsigned baud);
+
+}  // namespace pvtap::sim

@@ -1,0 +1,186 @@
+#include "plan/frame_analysis.h"
+
+#include <cmath>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "plan/register_decoding.h"
+#include "pvtap/codec/function_codes.h"
+#include "pvtap/matching/frame_summary.h"
+#include "pvtap/registers/register_format.h"
+
+namespace pvtap::dissector {
+namespace {
+
+// Warnings that the tree already shows in another way.
+constexpr auto kShownElsewhere = static_cast<std::uint16_t>(ValueWarning::NotInMap);
+
+const char* pool_text(wmem_allocator_t* pool, std::string_view text) {
+  return wmem_strndup(pool, text.data(), text.size());
+}
+
+std::string hex4(unsigned value) {
+  static constexpr char kDigits[] = "0123456789ABCDEF";
+  std::string out = "0x";
+  for (int shift = 12; shift >= 0; shift -= 4) out += kDigits[(value >> shift) & 0xFu];
+  return out;
+}
+
+// The start address as the reference writes it; GSL wire addresses map back to decimal IDs.
+std::string start_text(Dialect d, std::uint16_t wire) {
+  const auto ids = register_decoder().options().gsl_ids;
+  const auto written = written_address_of(d, wire, ids);
+  if (!written) return hex4(wire);
+  const std::string text(format_register_address(d, *written).view());
+  return d == Dialect::Gsl ? hex4(wire) + " (ID " + text + ")" : text;
+}
+
+void plan_header(const Frame& f, std::size_t length, wmem_allocator_t* pool, FramePlan& plan) {
+  plan.parsed = true;
+  plan.station = f.station;
+  plan.function = f.function;
+  plan.layout = frame_layout(f, length);
+  if (f.start) {
+    plan.start = *f.start;
+    plan.start_text = pool_text(pool, start_text(f.dialect, *f.start));
+  }
+  if (f.count) plan.count = *f.count;
+  if (f.byte_count) plan.byte_count = *f.byte_count;
+  if (f.exception_code) plan.exception_code = *f.exception_code;
+}
+
+void plan_device(const Frame& f, wmem_allocator_t* pool, FramePlan& plan) {
+  if (!f.device) return;
+  const DecodedValue v = register_decoder().decode_device_number(*f.device);
+  plan.device_type = f.device->type_code;
+  plan.device_serial = f.device->serial;
+  plan.device_raw = (std::uint32_t{f.device->type_code} << 24) | (f.device->serial & 0xFFFFFFu);
+  plan.device_text = pool_text(pool, format_value(v));
+}
+
+// The request whose start places the reply's words, as the bus session chose it.
+std::optional<Frame> placing_request(const FrameRecord& r) {
+  const FrameRecord* q = r.placed_by;
+  if (r.role != Role::Response || q == nullptr || q->bytes == nullptr) return std::nullopt;
+  ParseOutcome parsed = parse_frame({q->bytes, q->length}, q->dialect, Role::Request);
+  if (!parsed) return std::nullopt;
+  return std::move(parsed).value();
+}
+
+std::string value_label(const DecodedValue& v, Dialect d) {
+  const std::string address(format_value_address(v, d).view());
+  if (v.def == nullptr) return "word at " + address;
+  return std::string(v.name()) + " (" + address + ")";
+}
+
+// The field's value as the text shows it: raw x scale rounded to the register's decimals, so
+// that 2206 x 0.1 is 220.6 (not 220.60000000000002), which a display filter `== 220.6` finds
+// and tshark 4.6, writing doubles in full, prints as the text does.
+double shown_number(const DecodedValue& v) {
+  if (v.def == nullptr || v.def->decimals > 9) return v.value;
+  const double unit = std::pow(10.0, v.def->decimals);
+  return std::round(v.value * unit) / unit;
+}
+
+PlannedValue plan_value(const DecodedValue& v, const DecodeReport& report, Dialect d,
+                        const FramePlan& plan, wmem_allocator_t* pool) {
+  const auto index = static_cast<std::uint16_t>(v.wire_address - report.start) / address_step(d);
+  PlannedValue p;
+  p.field = register_field(d, v.def);
+  p.span = plan.layout.word_span(index, v.words_present > 0 ? v.words_present : 1u);
+  p.number = shown_number(v);
+  p.raw = v.raw;
+  p.text = pool_text(pool, format_value(v));
+  p.label = pool_text(pool, value_label(v, d));
+  p.warnings = static_cast<guint16>(v.warnings & ~kShownElsewhere);
+  return p;
+}
+
+void plan_values(const Frame& f, const Frame* request, wmem_allocator_t* pool, FramePlan& plan) {
+  std::vector<DecodedValue> values;
+  const DecodeReport report = register_decoder().decode(f, request, values);
+  plan.decode_status = report.status;
+  plan.start_assumed = report.start_assumed;
+  if (report.status == DecodeStatus::StartUnknown || report.start_assumed) {
+    plan.decode_note = pool_text(pool, describe(report));
+  }
+  if (report.count == 0) return;
+  auto* planned = wmem_alloc_array(pool, PlannedValue, report.count);
+  for (std::size_t i = 0; i < report.count; ++i) {
+    new (&planned[i])
+        PlannedValue(plan_value(values[report.first + i], report, f.dialect, plan, pool));
+  }
+  plan.values = planned;
+  plan.value_count = report.count;
+}
+
+std::string summary_text(const FramePlan& plan, const InverterProtocol& protocol) {
+  const bool exception = plan.layout.exception_code.present();
+  const auto function =
+      static_cast<std::uint8_t>(exception ? plan.function & ~fc::kExceptionFlag : plan.function);
+  std::string text(fc::function_name(plan.dialect, function));
+  text += ' ';
+  text += exception ? std::string_view("exception") : to_string(plan.role);
+  text += ", station " + std::to_string(plan.station);
+  if (exception) {
+    text += ": ";
+    text += fc::exception_name(plan.exception_code);
+  }
+  if (plan.check_verified && !plan.check.ok) {
+    text += " [bad ";
+    text += protocol.check_word;
+    text += ']';
+  }
+  return text;
+}
+
+// A frame that does not parse still shows what every frame of its dialect has: the station
+// and function the bus decided it by, and its check, which lies at its end.
+void plan_unparsed_header(std::size_t length, const FrameRecord& r, FramePlan& plan) {
+  plan.layout = header_layout(r.dialect, length);
+  plan.station = r.station;
+  plan.function = r.function;
+}
+
+void analyze(std::span<const std::uint8_t> bytes, const AnalysisContext& ctx, FramePlan& plan) {
+  const FrameRecord& r = *ctx.record;
+  plan.dialect = r.dialect;
+  plan.role = r.role;
+  plan.check = verify_check(bytes, r.dialect);
+  plan.check_verified = ctx.protocol->settings.verify_check;
+  ParseOutcome parsed = parse_frame(bytes, r.dialect, r.role);
+  if (!parsed) {
+    plan_unparsed_header(bytes.size(), r, plan);
+    plan.parse_error = pool_text(ctx.pool, parsed.diagnostics());
+    plan.summary = pool_text(ctx.pool, "malformed frame: " + parsed.error_text());
+    return;
+  }
+  Frame& f = parsed.value();
+  plan_header(f, bytes.size(), ctx.pool, plan);
+  if (ctx.with_values) {
+    plan_device(f, ctx.pool, plan);
+    // Values only from a good check, placed only by a request with one (as pvtap audit).
+    if (r.values_trusted) {
+      const std::optional<Frame> request = placing_request(r);
+      plan_values(f, request ? &*request : nullptr, ctx.pool, plan);
+    }
+  }
+  plan.summary = pool_text(ctx.pool, summary_text(plan, *ctx.protocol));
+}
+
+}  // namespace
+
+void analyze_frame(std::span<const std::uint8_t> bytes, const AnalysisContext& ctx,
+                   FramePlan& plan) noexcept {
+  try {
+    analyze(bytes, ctx, plan);
+  } catch (...) {
+    // Only allocation can fail in here; show the frame as undecoded rather than crash.
+    plan.parsed = false;
+    plan.parse_error = "the frame could not be decoded (out of memory)";
+    plan.summary = plan.parse_error;
+  }
+}
+
+}  // namespace pvtap::dissector

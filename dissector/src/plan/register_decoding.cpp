@@ -1,0 +1,27 @@
+#include "plan/register_decoding.h"
+
+#include <optional>
+
+#include "settings/register_maps.h"
+
+namespace pvtap::dissector {
+namespace {
+
+std::optional<RegisterDecoder> g_decoder;
+
+}  // namespace
+
+void configure_register_decoder(DecoderOptions options) {
+  RegisterDecoder decoder(options);
+  // Field ids are keyed by the entries of the effective maps, so decode with exactly those.
+  for (Dialect d : {Dialect::Ascii, Dialect::Hybrid, Dialect::Gsl})
+    decoder.use_map(effective_map(d));
+  g_decoder = decoder;
+}
+
+const RegisterDecoder& register_decoder() {
+  if (!g_decoder) configure_register_decoder({});
+  return *g_decoder;
+}
+
+}  // namespace pvtap::dissector

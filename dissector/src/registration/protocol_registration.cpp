@@ -1,0 +1,46 @@
+#include "registration/protocol_registration.h"
+
+#include <epan/packet.h>
+
+#include "fields/common_fields.h"
+#include "fields/register_fields.h"
+#include "registration/inverter_protocol.h"
+#include "registration/record_dissector.h"
+#include "registration/transport_entry.h"
+#include "settings/preferences.h"
+#include "settings/register_maps.h"
+#include "statistics/response_time_stats.h"
+#include "stream/bus_track.h"
+
+namespace pvtap::dissector {
+namespace {
+
+void register_protocol(InverterProtocol& p) {
+  p.proto = proto_register_protocol(p.name, p.short_name, p.filter_name);
+  register_common_items(p);
+  register_preferences(p);
+  register_response_time_stats(p);
+  register_transport_dissectors(p);
+}
+
+}  // namespace
+
+void register_protocols() {
+  // User maps decide which register fields exist, so they are read before any field.
+  load_register_maps();
+  register_protocol(rtu_protocol());
+  register_protocol(ascii_protocol());
+  register_register_fields(rtu_protocol().proto, Dialect::Hybrid);
+  register_register_fields(rtu_protocol().proto, Dialect::Gsl);
+  register_register_fields(ascii_protocol().proto, Dialect::Ascii);
+  register_record_dissector();
+  apply_preferences();
+  register_cleanup_routine(release_bus_tracks);
+}
+
+void register_handoffs() {
+  register_transport_handoffs(rtu_protocol());
+  register_transport_handoffs(ascii_protocol());
+}
+
+}  // namespace pvtap::dissector

@@ -1,0 +1,109 @@
+#include "stream/bus_track.h"
+
+#include <memory>
+
+#include "plan/register_decoding.h"
+
+namespace pvtap::dissector {
+namespace {
+
+std::vector<std::unique_ptr<BusTrack>> g_tracks;
+
+guint16 clamp16(unsigned value) {
+  return static_cast<guint16>(value > 0xFFFF ? 0xFFFF : value);
+}
+
+BusSessionOptions session_options(const ProtocolSettings& s) {
+  BusSessionOptions o;
+  o.reassembler.dialects = DialectSet::all();  // a gateway may carry ASCII and RTU stations
+  o.reassembler.baud = s.baud >= 300 ? s.baud : 9600;
+  // Segment times are the gateway's, not the characters' (as pvtap audit reads gateways).
+  o.reassembler.timestamps = TimestampTrust::Untrusted;
+  o.reassembler.boundary_gap = s.gateway_gap_ms / 1000.0;
+  o.reassembler.segment_ends_pin = true;
+  if (s.reply_timeout_ms > 0) o.matcher.timeout = s.reply_timeout_ms / 1000.0;
+  o.decode_values = false;  // decoded when shown, into the tree
+  return o;
+}
+
+}  // namespace
+
+BusTrack::BusTrack(const ProtocolSettings& settings)
+    : bus_(session_options(settings), register_decoder(), *this) {}
+
+std::uint64_t BusTrack::stream_offset(Direction d, guint32 seq) {
+  const std::size_t i = index_of(d);
+  if (!seq_known_[i]) {
+    first_seq_[i] = seq;
+    seq_known_[i] = true;
+  }
+  return static_cast<guint32>(seq - first_seq_[i]);
+}
+
+std::uint64_t BusTrack::next_datagram(Direction d, std::size_t length) {
+  const std::uint64_t start = datagram_end_[index_of(d)];
+  datagram_end_[index_of(d)] = start + length;
+  return start;
+}
+
+void BusTrack::link(FrameRecord& r, const SessionFrame& f) const {
+  if (f.request_id) {
+    r.request = record(*f.request_id);
+    if (r.request != nullptr && r.request->response == nullptr) r.request->response = &r;
+  }
+  if (f.duplicate_of) r.request = record(*f.duplicate_of);
+  if (f.late_for) r.late_for = record(*f.late_for);
+  if (f.placed_by) r.placed_by = record(*f.placed_by);
+}
+
+void BusTrack::on_frame(const SessionFrame& f) {
+  FrameRecord* r = new_frame_record();
+  r->dialect = f.dialect;
+  r->role = f.role;
+  r->station = f.frame != nullptr ? f.frame->station : 0;
+  r->function = f.frame != nullptr ? f.frame->function : 0;
+  r->matched = f.frame != nullptr;
+  r->check_ok = f.check.ok;
+  r->role_corrected = f.role_corrected;
+  r->unsolicited = f.unsolicited;
+  r->duplicate = f.duplicate;
+  r->values_trusted = f.values_trusted;
+  if (f.latency) {
+    r->has_latency = true;
+    r->latency = *f.latency;
+  }
+  if (f.count_mismatch) {
+    r->count_mismatch = true;
+    r->count_unit = f.count_mismatch->unit;
+    r->count_expected = clamp16(f.count_mismatch->expected);
+    r->count_found = clamp16(f.count_mismatch->found);
+  }
+  link(*r, f);
+  if (r->role == Role::Request) {
+    r->bytes =
+        static_cast<const guint8*>(wmem_memdup(wmem_file_scope(), f.bytes.data(), f.bytes.size()));
+    r->length = static_cast<guint16>(f.bytes.size());
+  }
+  if (records_.size() <= f.id) records_.resize(f.id + 1, nullptr);
+  records_[f.id] = r;
+}
+
+void BusTrack::on_timeout(const SessionTimeout& t) {
+  FrameRecord* r = record(t.timeout.request_id);
+  if (r == nullptr) return;
+  r->timed_out = true;
+  r->timeout_reason = t.timeout.reason;
+  r->unanswered = t.kind;
+  if (t.timeout.next_request_id) r->next_request = record(*t.timeout.next_request_id);
+}
+
+BusTrack* new_bus_track(const ProtocolSettings& settings) {
+  g_tracks.push_back(std::make_unique<BusTrack>(settings));
+  return g_tracks.back().get();
+}
+
+void release_bus_tracks() {
+  g_tracks.clear();
+}
+
+}  // namespace pvtap::dissector

@@ -1,0 +1,51 @@
+// BusTrack: one conversation's bus as the core decides it, with a record of every frame.
+#pragma once
+
+#include <epan/packet.h>
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "plan/frame_record.h"
+#include "pvtap/session/segmented_bus.h"
+#include "registration/inverter_protocol.h"
+
+namespace pvtap::dissector {
+
+// Fed on the first pass only, in capture order; the pieces and records it keeps answer every
+// later pass. The session is the one pvtap audit runs for a gateway, so both programs give
+// the same frames, verdicts, request links and latencies for the same bytes.
+class BusTrack final : public BusSessionSink {
+ public:
+  explicit BusTrack(const ProtocolSettings& settings);
+
+  SegmentedBus& bus() { return bus_; }
+  // The record of a frame of the session; null for an id it never reported.
+  FrameRecord* record(std::uint64_t frame_id) const {
+    return frame_id < records_.size() ? records_[frame_id] : nullptr;
+  }
+  // Stream position of a TCP sequence number of `d`; the first one seen is position 0.
+  std::uint64_t stream_offset(Direction d, guint32 seq);
+  // Stream position of the next datagram of `d`, which is `length` bytes long.
+  std::uint64_t next_datagram(Direction d, std::size_t length);
+
+ private:
+  void on_frame(const SessionFrame& f) override;
+  void on_timeout(const SessionTimeout& t) override;
+  void link(FrameRecord& r, const SessionFrame& f) const;
+
+  SegmentedBus bus_;
+  std::vector<FrameRecord*> records_;  // by frame id
+  std::array<guint32, 3> first_seq_{};
+  std::array<bool, 3> seq_known_{};
+  std::array<std::uint64_t, 3> datagram_end_{};
+};
+
+// A track that lives until the capture file is closed.
+BusTrack* new_bus_track(const ProtocolSettings& settings);
+
+// Frees every track; registered as a cleanup routine.
+void release_bus_tracks();
+
+}  // namespace pvtap::dissector
