@@ -3,6 +3,7 @@
 
 #include "cli/audit_command.h"
 #include "cli/exit_status.h"
+#include "cli/help_labels.h"
 #include "cli/sniff_command.h"
 #include "extcap/extcap_command.h"
 
@@ -29,6 +30,7 @@ int main(int argc, char** argv) {
   CLI::App* audit = pvtap::analyzer::add_audit_command(app, audit_options);
   pvtap::analyzer::SniffCommandLine sniff_command;
   CLI::App* sniff = pvtap::analyzer::add_sniff_command(app, sniff_command);
+  pvtap::analyzer::keep_help_section_names(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -26,7 +26,7 @@ complete_line() {
 
 # The long options of "pvtap SUBCOMMAND --help", from its option lines.
 help_options() {
-    "$pvtap" "$1" --help | sed -n 's/^  \(-[a-z],\)\?\(--[a-z][a-z-]*\).*/\2/p' | sort -u
+    "$pvtap" "$1" --help | sed -n 's/^ \{2,12\}\(-[a-z], *\)\?\(--[a-z][a-z-]*\).*/\2/p' | sort -u
 }
 
 expect_same() {

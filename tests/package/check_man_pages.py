@@ -15,7 +15,7 @@ def help_options(pvtap, subcommand):
     """The long options of `pvtap [SUBCOMMAND] --help`, from its option lines."""
     text = subprocess.run([pvtap, *subcommand, "--help"], capture_output=True, text=True,
                           check=True).stdout
-    return sorted(set(re.findall(r"^  (?:-[a-z],)?(--[a-z][a-z-]*)", text, re.MULTILINE)))
+    return sorted(set(re.findall(r"^ {2,12}(?:-[a-z], *)?(--[a-z][a-z-]*)", text, re.MULTILINE)))
 
 
 def rendered(path):
@@ -51,7 +51,7 @@ def main():
         if len(wanted) < 2:
             failures.append("%s: too few options found in --help: %s" % (page, wanted))
         for option in wanted:
-            if not re.search(r"^\s+(-[a-z],)?%s\b" % re.escape(option), options, re.MULTILINE):
+            if not re.search(r"^\s+(-[a-z],\s*)?%s\b" % re.escape(option), options, re.MULTILINE):
                 failures.append("%s: %s of --help is not an entry of OPTIONS" % (page, option))
         print("%s(1): %d options checked" % (page, len(wanted)))
     for failure in failures:
