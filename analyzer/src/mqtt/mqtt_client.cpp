@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "mqtt/mqtt_client_impl.h"
+#include "mqtt/sigpipe_blocked.h"
 
 namespace pvtap::analyzer {
 
@@ -16,6 +17,7 @@ MqttClient::~MqttClient() = default;
 bool MqttClient::Impl::send(const std::string& topic, const std::string& payload, int qos,
                             bool retain) {
   int mid = 0;
+  SigpipeBlocked blocked;  // the publish may be written at once, to a broker that is gone
   const int rc = mosquitto_publish(mosq, &mid, topic.c_str(), static_cast<int>(payload.size()),
                                    payload.data(), qos, retain);
   if (rc != MOSQ_ERR_SUCCESS) return false;

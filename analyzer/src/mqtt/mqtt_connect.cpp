@@ -1,15 +1,18 @@
 // MqttClient: setting up libmosquitto and the synchronous first connection, whose failures
 // are one-line errors (a refused login, a certificate the CA does not vouch for, a broker
 // that is not there).
-#include <pthread.h>
+#include <netdb.h>
+#include <sys/socket.h>
+#include <sys/time.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <chrono>
-#include <csignal>
 #include <cstring>
+#include <string>
 
 #include "mqtt/mqtt_client_impl.h"
+#include "mqtt/sigpipe_blocked.h"
 
 namespace pvtap::analyzer {
 namespace {
@@ -30,22 +33,41 @@ extern "C" void log_cb(mosquitto*, void* self, int level, const char* text) {
   static_cast<MqttClient::Impl*>(self)->on_log(level, text);
 }
 
-// libmosquitto writes to its socket from its own thread: a broker that goes away must give
-// that write EPIPE, not kill pvtap with SIGPIPE. Threads inherit the mask of their creator,
-// so SIGPIPE is blocked while the client connects and starts its thread, then restored.
-class SigpipeBlocked {
- public:
-  SigpipeBlocked() {
-    sigset_t pipe;
-    sigemptyset(&pipe);
-    sigaddset(&pipe, SIGPIPE);
-    pthread_sigmask(SIG_BLOCK, &pipe, &saved_);
+// One TCP connection attempt to host:port (at most 3 s per address): why it fails, or ""
+// when it does not.
+std::string tcp_connect_failure(const std::string& host, int port) {
+  addrinfo hints{};
+  hints.ai_socktype = SOCK_STREAM;
+  addrinfo* found = nullptr;
+  const int looked_up = getaddrinfo(host.c_str(), std::to_string(port).c_str(), &hints, &found);
+  if (looked_up != 0) return gai_strerror(looked_up);
+  std::string why = "no address to connect to";
+  for (const addrinfo* a = found; a != nullptr; a = a->ai_next) {
+    const int fd = socket(a->ai_family, a->ai_socktype | SOCK_CLOEXEC, a->ai_protocol);
+    if (fd < 0) {
+      why = std::strerror(errno);
+      continue;
+    }
+    const timeval limit{3, 0};
+    setsockopt(fd, SOL_SOCKET, SO_SNDTIMEO, &limit, sizeof limit);
+    const bool connected = ::connect(fd, a->ai_addr, a->ai_addrlen) == 0;
+    why = connected ? "" : std::strerror(errno);
+    close(fd);
+    if (connected) break;
   }
-  ~SigpipeBlocked() { pthread_sigmask(SIG_SETMASK, &saved_, nullptr); }
+  freeaddrinfo(found);
+  return why;
+}
 
- private:
-  sigset_t saved_;
-};
+// Why mosquitto_connect failed. libmosquitto 2.1 (Debian testing) reports a refused
+// connection as MOSQ_ERR_ERRNO with errno EBADF, the socket it had closed; the reason is then
+// found by trying the connection once more.
+std::string connect_failure(int rc, int error_number, const std::string& host, int port) {
+  if (rc != MOSQ_ERR_ERRNO) return mosquitto_strerror(rc);
+  if (error_number != EBADF) return std::strerror(error_number);
+  const std::string why = tcp_connect_failure(host, port);
+  return why.empty() ? std::strerror(error_number) : why;
+}
 
 const char* or_null(const std::string& s) {
   return s.empty() ? nullptr : s.c_str();
@@ -101,7 +123,8 @@ bool MqttClient::Impl::connect_now(std::string& error) {
   int rc =
       mosquitto_connect(mosq, config.broker.host.c_str(), config.broker.port, kKeepaliveSeconds);
   if (rc != MOSQ_ERR_SUCCESS) {
-    const std::string why = rc == MOSQ_ERR_ERRNO ? std::strerror(errno) : mosquitto_strerror(rc);
+    const std::string why =
+        connect_failure(rc, errno, config.broker.host, static_cast<int>(config.broker.port));
     error = "cannot connect to " + where() + ": " + why;
     if (rc == MOSQ_ERR_TLS) error += log_detail();
     return false;
@@ -136,6 +159,8 @@ bool MqttClient::Impl::connect_now(std::string& error) {
 
 MqttClient::Impl::~Impl() {
   if (mosq == nullptr) return;
+  // Disconnecting writes to a broker that may be gone (over TLS, through OpenSSL).
+  SigpipeBlocked blocked;
   mosquitto_disconnect(mosq);
   if (loop_running) mosquitto_loop_stop(mosq, false);
   mosquitto_destroy(mosq);
