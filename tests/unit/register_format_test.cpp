@@ -101,6 +101,19 @@ TEST(RegisterFormat, Numbers) {
   EXPECT_EQ(text_at(0x2009, {12}), "1.200 A");
 }
 
+TEST(RegisterFormat, ValueAsShownIsTheNumberOfTheText) {
+  const std::vector<std::uint16_t> words{2206};
+  const std::vector<DecodedValue> values = decode_at(0x2009, words);
+  ASSERT_EQ(values.size(), 1u);
+  EXPECT_NE(values[0].value, 220.6);  // 2206 x 0.1 in binary: 220.60000000000002
+  EXPECT_EQ(value_as_shown(values[0]), 220.6);
+  EXPECT_EQ(format_value(values[0]), "220.600 A");
+  const std::vector<std::uint16_t> unmapped{7};
+  const std::vector<DecodedValue> raw = decode_at(0x3000, unmapped);
+  ASSERT_EQ(raw.size(), 1u);
+  EXPECT_EQ(value_as_shown(raw[0]), raw[0].value);
+}
+
 TEST(RegisterFormat, RawWordsInHex) {
   EXPECT_EQ(text_at(0x2002, {0x00AB, 0xCDEF}), "0x00ABCDEF");
 }

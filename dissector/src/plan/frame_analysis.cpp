@@ -1,6 +1,5 @@
 #include "plan/frame_analysis.h"
 
-#include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
@@ -74,22 +73,15 @@ std::string value_label(const DecodedValue& v, Dialect d) {
   return std::string(v.name()) + " (" + address + ")";
 }
 
-// The field's value as the text shows it: raw x scale rounded to the register's decimals, so
-// that 2206 x 0.1 is 220.6 (not 220.60000000000002), which a display filter `== 220.6` finds
-// and tshark 4.6, writing doubles in full, prints as the text does.
-double shown_number(const DecodedValue& v) {
-  if (v.def == nullptr || v.def->decimals > 9) return v.value;
-  const double unit = std::pow(10.0, v.def->decimals);
-  return std::round(v.value * unit) / unit;
-}
-
 PlannedValue plan_value(const DecodedValue& v, const DecodeReport& report, Dialect d,
                         const FramePlan& plan, wmem_allocator_t* pool) {
   const auto index = static_cast<std::uint16_t>(v.wire_address - report.start) / address_step(d);
   PlannedValue p;
   p.field = register_field(d, v.def);
   p.span = plan.layout.word_span(index, v.words_present > 0 ? v.words_present : 1u);
-  p.number = shown_number(v);
+  // As the text shows it: a display filter `== 220.6` finds it, and tshark 4.6, which
+  // writes doubles in full, prints what the text says.
+  p.number = value_as_shown(v);
   p.raw = v.raw;
   p.text = pool_text(pool, format_value(v));
   p.label = pool_text(pool, value_label(v, d));

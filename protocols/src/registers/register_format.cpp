@@ -6,11 +6,18 @@
 namespace pvtap {
 namespace {
 
+using FixedChars = std::array<char, 64>;
+
+// `value` with `decimals` digits after the point; returns the end of the text in `buf`.
+char* write_fixed(FixedChars& buf, double value, unsigned decimals) {
+  return std::to_chars(buf.data(), buf.data() + buf.size(), value, std::chars_format::fixed,
+                       static_cast<int>(decimals))
+      .ptr;
+}
+
 void append_fixed(std::string& out, double value, unsigned decimals) {
-  std::array<char, 64> buf{};
-  const auto result = std::to_chars(buf.data(), buf.data() + buf.size(), value,
-                                    std::chars_format::fixed, static_cast<int>(decimals));
-  out.append(buf.data(), result.ptr);
+  FixedChars buf{};
+  out.append(buf.data(), write_fixed(buf, value, decimals));
 }
 
 void append_hex(std::string& out, std::uint32_t value, unsigned digits) {
@@ -133,6 +140,14 @@ void append_value_text(std::string& out, const DecodedValue& v) {
   } else {
     append_complete_value(out, v);
   }
+}
+
+double value_as_shown(const DecodedValue& v) {
+  if (v.def == nullptr) return v.value;
+  FixedChars buf{};
+  double shown = v.value;
+  std::from_chars(buf.data(), write_fixed(buf, v.value, v.def->decimals), shown);
+  return shown;
 }
 
 std::string format_value(const DecodedValue& v) {

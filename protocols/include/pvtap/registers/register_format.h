@@ -13,6 +13,11 @@ namespace pvtap {
 std::string format_value(const DecodedValue& v);
 void append_value_text(std::string& out, const DecodedValue& v);
 
+// The number the value's text shows: the scaled value at the register's decimals, read back
+// (2206 x 0.1 is 220.6, not 220.60000000000002), so that a number compared with what a person
+// reads matches it. The value itself where no map entry gives decimals.
+double value_as_shown(const DecodedValue& v);
+
 // The value's address as the reference writes it ("0x1006", "0x0020", "1056"); a GSL wire
 // address with no decimal reading (hex IDs) is shown as hex.
 RegisterAddressText format_value_address(const DecodedValue& v, Dialect d);
