@@ -33,13 +33,14 @@ extern "C" void log_cb(mosquitto*, void* self, int level, const char* text) {
   static_cast<MqttClient::Impl*>(self)->on_log(level, text);
 }
 
-// One TCP connection attempt to host:port (at most 3 s per address): why it fails, or ""
+// One TCP connection attempt to the broker (at most 3 s per address): why it fails, or ""
 // when it does not.
-std::string tcp_connect_failure(const std::string& host, int port) {
+std::string tcp_connect_failure(const MqttUrl& broker) {
   addrinfo hints{};
   hints.ai_socktype = SOCK_STREAM;
   addrinfo* found = nullptr;
-  const int looked_up = getaddrinfo(host.c_str(), std::to_string(port).c_str(), &hints, &found);
+  const int looked_up =
+      getaddrinfo(broker.host.c_str(), std::to_string(broker.port).c_str(), &hints, &found);
   if (looked_up != 0) return gai_strerror(looked_up);
   std::string why = "no address to connect to";
   for (const addrinfo* a = found; a != nullptr; a = a->ai_next) {
@@ -59,13 +60,13 @@ std::string tcp_connect_failure(const std::string& host, int port) {
   return why;
 }
 
-// Why mosquitto_connect failed. libmosquitto 2.1 (Debian testing) reports a refused
+// Why mosquitto_connect or the wait for its answer failed. libmosquitto 2.1 (Debian testing) reports a refused
 // connection as MOSQ_ERR_ERRNO with errno EBADF, the socket it had closed; the reason is then
 // found by trying the connection once more.
-std::string connect_failure(int rc, int error_number, const std::string& host, int port) {
+std::string connect_failure(int rc, int error_number, const MqttUrl& broker) {
   if (rc != MOSQ_ERR_ERRNO) return mosquitto_strerror(rc);
   if (error_number != EBADF) return std::strerror(error_number);
-  const std::string why = tcp_connect_failure(host, port);
+  const std::string why = tcp_connect_failure(broker);
   return why.empty() ? std::strerror(error_number) : why;
 }
 
@@ -123,8 +124,7 @@ bool MqttClient::Impl::connect_now(std::string& error) {
   int rc =
       mosquitto_connect(mosq, config.broker.host.c_str(), config.broker.port, kKeepaliveSeconds);
   if (rc != MOSQ_ERR_SUCCESS) {
-    const std::string why =
-        connect_failure(rc, errno, config.broker.host, static_cast<int>(config.broker.port));
+    const std::string why = connect_failure(rc, errno, config.broker);
     error = "cannot connect to " + where() + ": " + why;
     if (rc == MOSQ_ERR_TLS) error += log_detail();
     return false;
@@ -134,7 +134,7 @@ bool MqttClient::Impl::connect_now(std::string& error) {
   while (connack.load() < 0 && std::chrono::steady_clock::now() < deadline) {
     rc = mosquitto_loop(mosq, 100, 1);
     if (rc != MOSQ_ERR_SUCCESS && connack.load() < 0) {
-      const std::string why = rc == MOSQ_ERR_ERRNO ? std::strerror(errno) : mosquitto_strerror(rc);
+      const std::string why = connect_failure(rc, errno, config.broker);
       error = "connection to " + where() + " failed: " + why;
       error += log_detail();
       return false;
