@@ -5,9 +5,11 @@ namespace {
 
 constexpr std::uint16_t kAsciiWordDigits = 4;
 
-// Hands out consecutive byte ranges, in wire order.
+// Hands out consecutive byte ranges, in wire order, from the end of the header's function.
 struct Cursor {
-  std::uint16_t at = 0;
+  explicit Cursor(const FrameLayout& header)
+      : at(static_cast<std::uint16_t>(header.function.offset + header.function.length)) {}
+  std::uint16_t at;
   FieldSpan take(std::size_t n) {
     const FieldSpan span{at, static_cast<std::uint16_t>(n)};
     at = static_cast<std::uint16_t>(at + n);
@@ -43,7 +45,7 @@ FrameLayout rtu_header_layout(std::size_t length) {
 
 FrameLayout ascii_layout(const Frame& f, std::size_t length) {
   FrameLayout l = ascii_header_layout(length);
-  Cursor c{4};  // after ENQ/ACK, station and function
+  Cursor c(l);
   l.start = c.take(4);
   if (f.role == Role::Request) {
     l.count = c.take(2);
@@ -77,7 +79,7 @@ void plain_layout(const Frame& f, Cursor& c, FrameLayout& l) {
 
 FrameLayout rtu_layout(const Frame& f, std::size_t length) {
   FrameLayout l = rtu_header_layout(length);
-  Cursor c{2};  // after station and function
+  Cursor c(l);
   const bool counted_reply = f.role == Role::Response && (f.byte_count || f.device);
   if (counted_reply) {
     counted_reply_layout(f, c, l);
