@@ -8,6 +8,8 @@
 #include <thread>
 #include <vector>
 
+#include "small_register_map.h"
+
 namespace pvtap {
 namespace {
 
@@ -216,19 +218,8 @@ TEST(RegisterMap, BuiltinMapIsParsedOnceAcrossThreads) {
   EXPECT_EQ(seen[0]->registers().data(), builtin_register_map(Dialect::Gsl).registers().data());
 }
 
-constexpr std::string_view kSmallMap = R"toml(dialect = "hybrid"
-title = "small"
-
-[[register]]
-address = 0x1006
-key = "battery_voltage"
-name = "battery voltage"
-scale = 0.1
-unit = "V"
-)toml";
-
 TEST(RegisterMap, LoadsAMinimalMap) {
-  RegisterMapResult result = load_register_map(kSmallMap, "small.toml");
+  RegisterMapResult result = load_register_map(kSmallRegisterMap, "small.toml");
   ASSERT_TRUE(result) << result.error_text();
   EXPECT_EQ(result->size(), 1u);
   EXPECT_EQ(result->title(), "small");
@@ -497,7 +488,7 @@ unit = "Hz"
 }
 
 TEST(RegisterMap, ReplacingMapStandsAlone) {
-  RegisterMapResult user = load_register_map(kSmallMap, "small.toml");
+  RegisterMapResult user = load_register_map(kSmallRegisterMap, "small.toml");
   ASSERT_TRUE(user);
   RegisterMapResult resolved = resolve_user_register_map(user.value());
   ASSERT_TRUE(resolved);
@@ -505,7 +496,7 @@ TEST(RegisterMap, ReplacingMapStandsAlone) {
 }
 
 TEST(RegisterMap, MergeRefusesAnotherDialect) {
-  RegisterMapResult user = load_register_map(kSmallMap, "small.toml");
+  RegisterMapResult user = load_register_map(kSmallRegisterMap, "small.toml");
   ASSERT_TRUE(user);
   RegisterMapResult merged = merge_register_maps(builtin_register_map(Dialect::Gsl), user.value());
   EXPECT_FALSE(merged);
@@ -518,7 +509,7 @@ TEST(RegisterMap, MapOutlivesCopiesAndKeepsItsViews) {
   std::string_view name;
   RegisterMap copy;
   {
-    RegisterMapResult result = load_register_map(kSmallMap, "small.toml");
+    RegisterMapResult result = load_register_map(kSmallRegisterMap, "small.toml");
     ASSERT_TRUE(result);
     copy = result.value();
     name = copy.registers()[0].name;

@@ -6,26 +6,17 @@
 #include <filesystem>
 #include <fstream>
 
+#include "small_register_map.h"
+
 namespace pvtap::analyzer {
 namespace {
-
-constexpr const char* kSmallMap = R"toml(dialect = "hybrid"
-title = "small"
-
-[[register]]
-address = 0x1006
-key = "battery_voltage"
-name = "battery voltage"
-scale = 0.1
-unit = "V"
-)toml";
 
 TEST(MapFile, LoadsFromAFileAndNamesMissingFiles) {
   const std::filesystem::path path =
       std::filesystem::temp_directory_path() / "pvtap_map_file_test_small.toml";
   {
     std::ofstream out(path);
-    out << kSmallMap;
+    out << kSmallRegisterMap;
   }
   RegisterMapResult good = read_register_map_file(path.string());
   ASSERT_TRUE(good) << good.error_text();
