@@ -18,7 +18,11 @@ struct BusSession::Impl {
     DirectionStream(Impl& o, Direction d)
         : owner(o), direction(d), reassembler(o.options.reassembler, *this) {}
     void on_frame(const FrameEvent& e) override { owner.on_frame(direction, e); }
-    void on_noise(const NoiseEvent& e) override { owner.sink.on_noise(SessionNoise{e, direction}); }
+    void on_noise(const NoiseEvent& e) override {
+      const SessionNoise noise{e, direction};
+      owner.tally.add_noise(noise);
+      owner.sink.on_noise(noise);
+    }
 
     Impl& owner;
     Direction direction;
@@ -331,6 +335,10 @@ TimestampQuality BusSession::Impl::timestamp_quality() const {
     return {false, std::string(s->reassembler.timing_reason())};
   }
   return {true, ""};
+}
+
+const EventTally& BusSession::tally() const {
+  return impl_->tally.events();
 }
 
 ReassemblerTotals BusSession::totals() const {

@@ -1,7 +1,5 @@
 #include "session/bus_tally.h"
 
-#include "pvtap/codec/function_codes.h"
-
 namespace pvtap::detail {
 namespace {
 
@@ -35,20 +33,14 @@ FrameExample BusTally::example_of(const SessionFrame& f) {
 }
 
 void BusTally::count_exception(const SessionFrame& f) {
-  std::uint8_t code = 0;
-  if (f.reply_kind == ReplyKind::GslException && f.frame->exception_code) {
-    code = *f.frame->exception_code;
-  } else if (f.reply_kind == ReplyKind::HybridError) {
-    code = fc::kHybridError;
-  } else {
-    return;
-  }
-  ++counts_.exceptions;
-  ++exception_codes_[{f.dialect, code}];
+  const std::optional<std::uint8_t> code = exception_code(f);
+  if (!code) return;
+  ++exception_codes_[{f.dialect, *code}];
   ++station(f.frame->station).summary.exceptions;
 }
 
 void BusTally::add_frame(const SessionFrame& f) {
+  events_.add(f);
   if (!f.check.ok && wants_example(bad_check_examples_)) {
     bad_check_examples_.push_back(example_of(f));
   }
@@ -69,7 +61,6 @@ void BusTally::add_frame(const SessionFrame& f) {
   }
   if (!f.check.ok) ++s.bad_checks;
   if (f.unsolicited) {
-    ++counts_.unsolicited;
     ++s.unsolicited;
     if (f.late_by) ++counts_.late_replies;
     if (wants_example(unsolicited_examples_)) {
@@ -85,7 +76,7 @@ void BusTally::add_frame(const SessionFrame& f) {
     ++s.count_mismatches;
   }
   if (f.role_corrected) ++counts_.role_corrections;
-  if (f.check.ok && f.role == Role::Response) count_exception(f);
+  count_exception(f);
 }
 
 void BusTally::add_transaction(const Transaction& t) {
@@ -96,43 +87,38 @@ void BusTally::add_transaction(const Transaction& t) {
 }
 
 void BusTally::add_timeout(const SessionTimeout& t) {
+  events_.add(t);
   switch (t.kind) {
     case UnansweredKind::DamagedRequest:
-      ++counts_.unanswered_damaged_requests;
       ++station(t.timeout.station).summary.unanswered_damaged_requests;
       break;
     case UnansweredKind::Timeout:
-      ++counts_.timeouts;
       ++station(t.timeout.station).summary.timeouts;
-      if (t.timeout.reason == TimeoutReason::NextRequestFirst) {
-        ++counts_.timeouts_by_reason[1];
-      } else {
-        ++counts_.timeouts_by_reason[0];
-      }
+      ++counts_.timeouts_by_reason[t.timeout.reason == TimeoutReason::NextRequestFirst ? 1 : 0];
       if (wants_example(timeout_examples_)) {
         timeout_examples_.push_back(TimeoutExample{t.timeout, t.request_start});
       }
       break;
     case UnansweredKind::InputEnded:
-      ++counts_.unanswered_at_end;
-      break;
     case UnansweredKind::AfterLoss:
-      ++counts_.unanswered_after_loss;
       break;
   }
 }
 
 void BusTally::add_gap(const SessionGap& g) {
-  ++counts_.gaps.gaps;
-  if (g.lost_bytes) {
-    counts_.gaps.lost_bytes += *g.lost_bytes;
-  } else {
-    ++counts_.gaps.gaps_of_unknown_size;
-  }
+  events_.add(g);
 }
 
 void BusTally::fill(BusReport& r) const {
   r.counters() = counts_;
+  const EventCounts& e = events_.counts();
+  r.timeouts = e.timeouts;
+  r.unanswered_damaged_requests = e.unanswered_damaged_requests;
+  r.unanswered_at_end = e.unanswered_at_end;
+  r.unanswered_after_loss = e.unanswered_after_loss;
+  r.unsolicited = e.unsolicited;
+  r.exceptions = e.exceptions;
+  r.gaps = e.gaps;
   r.exception_codes.clear();
   for (const auto& [key, count] : exception_codes_) {
     r.exception_codes.push_back(ExceptionTally{key.first, key.second, count});

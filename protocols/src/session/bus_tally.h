@@ -1,4 +1,5 @@
-// BusTally: the counters and examples of a BusReport, filled frame by frame.
+// BusTally: the counters and examples of a BusReport, filled frame by frame: the event counts
+// by the one EventTally, and what only the report keeps (per station and dialect, examples).
 #pragma once
 
 #include <array>
@@ -10,6 +11,7 @@
 
 #include "pvtap/session/bus_report.h"
 #include "pvtap/session/bus_session.h"
+#include "pvtap/session/event_tally.h"
 
 namespace pvtap::detail {
 
@@ -18,7 +20,9 @@ class BusTally {
   void add_frame(const SessionFrame& f);
   void add_timeout(const SessionTimeout& t);
   void add_gap(const SessionGap& g);
+  void add_noise(const SessionNoise& n) { events_.add(n); }
   void add_transaction(const Transaction& t);
+  const EventTally& events() const { return events_; }
 
   // Writes the counters and examples into `r` (byte totals, timing and values come from
   // elsewhere: its bytes are zero here).
@@ -36,7 +40,8 @@ class BusTally {
   static FrameExample example_of(const SessionFrame& f);
 
   std::array<StationCounters, 256> stations_{};
-  BusCounters counts_;
+  EventTally events_;
+  BusCounters counts_;  // what EventTally does not count
   std::vector<FrameExample> bad_check_examples_;
   std::vector<TimeoutExample> timeout_examples_;
   std::vector<FrameExample> unsolicited_examples_;

@@ -13,6 +13,13 @@ void DistributionAccumulator::add(double value) {
   max_ = std::max(max_, value);
 }
 
+void DistributionAccumulator::merge(const DistributionAccumulator& other) {
+  histogram_.merge(other.histogram_);
+  sum_ += other.sum_;
+  min_ = std::min(min_, other.min_);
+  max_ = std::max(max_, other.max_);
+}
+
 DistributionSummary DistributionAccumulator::summary() const {
   DistributionSummary s;
   s.count = count();

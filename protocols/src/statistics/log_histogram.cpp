@@ -80,6 +80,13 @@ void LogHistogram::add(double value) {
   ++count_;
 }
 
+void LogHistogram::merge(const LogHistogram& other) {
+  if (other.count_ == 0) return;
+  if (counts_.empty()) counts_.assign(geometry().buckets, 0);
+  for (std::size_t b = 0; b < counts_.size(); ++b) counts_[b] += other.counts_[b];
+  count_ += other.count_;
+}
+
 double LogHistogram::quantile(double q) const {
   if (count_ == 0) return 0.0;
   q = std::clamp(q, 0.0, 1.0);

@@ -18,6 +18,8 @@
 
 namespace pvtap {
 
+class EventTally;
+
 // BusSessionOptions: how a session reads its input and what it works out per frame.
 struct BusSessionOptions {
   ReassemblerOptions reassembler;
@@ -145,6 +147,9 @@ class BusSession {
 
   BusReport report() const;
   ReassemblerTotals totals() const;  // of all directions so far
+  // The counts of this bus's events so far, by the rules of the report; brought up to date
+  // before an event reaches the sink.
+  const EventTally& tally() const;
 
  private:
   struct Impl;

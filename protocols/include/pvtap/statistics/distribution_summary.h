@@ -24,6 +24,9 @@ struct DistributionSummary {
 class DistributionAccumulator {
  public:
   void add(double value);  // NaN is ignored
+  // Adds the values of another accumulator (quantiles as exact as either's; the mean may
+  // differ from adding the values one by one in its last digits).
+  void merge(const DistributionAccumulator& other);
   std::uint64_t count() const { return histogram_.count(); }
   DistributionSummary summary() const;
 

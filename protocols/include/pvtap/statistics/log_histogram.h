@@ -21,6 +21,8 @@ class LogHistogram {
   static constexpr double kMaxValue = 1e4;   // seconds
 
   void add(double value);  // NaN is ignored
+  // Adds the counts of another histogram: as if its values had been added here.
+  void merge(const LogHistogram& other);
   std::uint64_t count() const { return count_; }
 
   // The nearest-rank q-quantile: the representative value of the bucket holding the value of

@@ -1,0 +1,60 @@
+// EventTally: the counts of one stream of session events, by one rule for what each event
+// counts as (a damaged frame, an exception, a timeout). The session's report, a run's totals
+// and the bus health MQTT publishes all count with it.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+
+#include "pvtap/session/bus_report.h"
+#include "pvtap/session/bus_session.h"
+#include "pvtap/statistics/distribution_summary.h"
+
+namespace pvtap {
+
+struct EventCounts {
+  std::uint64_t frames = 0;          // every frame event, parsed or not
+  std::uint64_t damaged_frames = 0;  // bad check
+  std::uint64_t exceptions = 0;      // exception and error replies whose check holds
+  std::uint64_t unsolicited = 0;
+  std::uint64_t timeouts = 0;
+  std::uint64_t unanswered_damaged_requests = 0;
+  std::uint64_t unanswered_at_end = 0;
+  std::uint64_t unanswered_after_loss = 0;
+  std::uint64_t noise_bytes = 0;
+  GapTally gaps;
+
+  EventCounts& operator+=(const EventCounts& o);
+};
+
+// TimedLatency: a reply's latency and when that reply ended.
+struct TimedLatency {
+  double latency = 0;
+  double at = 0;
+};
+
+class EventTally {
+ public:
+  void add(const SessionFrame& f);
+  void add(const SessionTimeout& t);
+  void add(const SessionNoise& n) { counts_.noise_bytes += n.noise.bytes.size(); }
+  void add(const SessionGap& g);
+  // Adds the tally of another stream (the buses of a run).
+  void merge(const EventTally& other);
+
+  const EventCounts& counts() const { return counts_; }
+  const DistributionAccumulator& latency() const { return latency_; }
+  // The latest reply timed (by its end time over merged streams).
+  std::optional<TimedLatency> last_latency() const { return last_latency_; }
+
+ private:
+  EventCounts counts_;
+  DistributionAccumulator latency_;
+  std::optional<TimedLatency> last_latency_;
+};
+
+// The code an exception reply carries (0xFF for a Hybrid error reply); nullopt for any other
+// frame, and for a reply whose check fails, whose code cannot be trusted.
+std::optional<std::uint8_t> exception_code(const SessionFrame& f);
+
+}  // namespace pvtap

@@ -1,0 +1,75 @@
+#include "pvtap/session/event_tally.h"
+
+#include "pvtap/codec/function_codes.h"
+
+namespace pvtap {
+
+EventCounts& EventCounts::operator+=(const EventCounts& o) {
+  frames += o.frames;
+  damaged_frames += o.damaged_frames;
+  exceptions += o.exceptions;
+  unsolicited += o.unsolicited;
+  timeouts += o.timeouts;
+  unanswered_damaged_requests += o.unanswered_damaged_requests;
+  unanswered_at_end += o.unanswered_at_end;
+  unanswered_after_loss += o.unanswered_after_loss;
+  noise_bytes += o.noise_bytes;
+  gaps.gaps += o.gaps.gaps;
+  gaps.lost_bytes += o.gaps.lost_bytes;
+  gaps.gaps_of_unknown_size += o.gaps.gaps_of_unknown_size;
+  return *this;
+}
+
+std::optional<std::uint8_t> exception_code(const SessionFrame& f) {
+  if (f.frame == nullptr || !f.check.ok || f.role != Role::Response) return std::nullopt;
+  if (f.reply_kind == ReplyKind::GslException) return f.frame->exception_code;
+  if (f.reply_kind == ReplyKind::HybridError) return fc::kHybridError;
+  return std::nullopt;
+}
+
+void EventTally::add(const SessionFrame& f) {
+  ++counts_.frames;
+  if (!f.check.ok) ++counts_.damaged_frames;
+  if (exception_code(f)) ++counts_.exceptions;
+  if (f.unsolicited) ++counts_.unsolicited;
+  if (f.latency) {
+    latency_.add(*f.latency);
+    last_latency_ = TimedLatency{*f.latency, f.end_time};
+  }
+}
+
+void EventTally::add(const SessionTimeout& t) {
+  switch (t.kind) {
+    case UnansweredKind::Timeout:
+      ++counts_.timeouts;
+      break;
+    case UnansweredKind::DamagedRequest:
+      ++counts_.unanswered_damaged_requests;
+      break;
+    case UnansweredKind::InputEnded:
+      ++counts_.unanswered_at_end;
+      break;
+    case UnansweredKind::AfterLoss:
+      ++counts_.unanswered_after_loss;
+      break;
+  }
+}
+
+void EventTally::add(const SessionGap& g) {
+  ++counts_.gaps.gaps;
+  if (g.lost_bytes) {
+    counts_.gaps.lost_bytes += *g.lost_bytes;
+  } else {
+    ++counts_.gaps.gaps_of_unknown_size;
+  }
+}
+
+void EventTally::merge(const EventTally& other) {
+  counts_ += other.counts_;
+  latency_.merge(other.latency_);
+  if (other.last_latency_ && (!last_latency_ || other.last_latency_->at >= last_latency_->at)) {
+    last_latency_ = other.last_latency_;
+  }
+}
+
+}  // namespace pvtap
