@@ -1,8 +1,7 @@
 #!/usr/bin/env python3
 """The shape of the tree, read from its includes and folders: the core reads no files (sans-I/O:
-callers hand it text and bytes), and no folder of the core, the capture library, the plugin
-or the simulator holds more than 20 source files. (The analyzer's mqtt/, output/ and sources/
-still do; they are split by the analyzer's own reshaping, and join this list then.)
+callers hand it text and bytes); no product folder holds more than 20 source files; and the
+analyzer's folders are floors, each including only the floors below it (ANALYZER_FLOORS).
 
     check_tree_shape.py REPOSITORY_ROOT
 
@@ -23,7 +22,15 @@ def sources(folder):
     return [n for n in os.listdir(folder) if n.endswith((".cpp", ".h"))]
 
 
-SIZED = ("protocols", "capture", "dissector", os.path.join("captures", "sim"))
+SIZED = ("protocols", "capture", "dissector", "analyzer", os.path.join("captures", "sim"))
+
+# The analyzer's folders from the ground up: text helpers, the report, the event port and its
+# writers, the terminal line, the HTML page, the broker client and what pvtap publishes on it,
+# serial devices, gateway flows, the buses, the run's assembly of outputs, the sources that
+# feed a run, the commands, Wireshark's extcap calls. A folder may include only those before
+# it, so that nothing reaches up and no two folders need each other.
+ANALYZER_FLOORS = ("formatting", "report", "events", "writers", "console", "html", "broker",
+                   "mqtt", "serial", "gateway", "pipeline", "run", "sources", "cli", "extcap")
 
 
 def crowded_folders(repo):
@@ -38,9 +45,34 @@ def crowded_folders(repo):
     return breaches
 
 
+def analyzer_breaches(repo):
+    """Includes that reach a floor above their own, and folders missing from the floors."""
+    src = os.path.join(repo, "analyzer", "src")
+    breaches = []
+    for folder in sorted(os.listdir(src)):
+        if not os.path.isdir(os.path.join(src, folder)):
+            continue
+        if folder not in ANALYZER_FLOORS:
+            breaches.append("analyzer/src/%s: a folder without a floor (add it to "
+                            "ANALYZER_FLOORS)" % folder)
+            continue
+        floor = ANALYZER_FLOORS.index(folder)
+        for name in sorted(sources(os.path.join(src, folder))):
+            path = os.path.join(src, folder, name)
+            with open(path, encoding="utf-8") as f:
+                for number, line in enumerate(f, 1):
+                    match = INCLUDE.match(line)
+                    target = match.group(1).split("/")[0] if match else ""
+                    if target in ANALYZER_FLOORS and ANALYZER_FLOORS.index(target) > floor:
+                        breaches.append("%s:%d: %s/ includes %s, a floor above it"
+                                        % (os.path.relpath(path, repo), number, folder,
+                                           match.group(1)))
+    return breaches
+
+
 def main():
     core = os.path.join(sys.argv[1], "protocols")
-    breaches = crowded_folders(sys.argv[1])
+    breaches = crowded_folders(sys.argv[1]) + analyzer_breaches(sys.argv[1])
     for root, _, _ in os.walk(core):
         names = sources(root)
         for name in names:

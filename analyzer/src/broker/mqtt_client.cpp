@@ -1,13 +1,13 @@
 // MqttClient while running: publishing, the event queue, and what the network thread tells
 // of the connection.
-#include "mqtt/mqtt_client.h"
+#include "broker/mqtt_client.h"
 
 #include <chrono>
 #include <cstdio>
 #include <thread>
 
-#include "mqtt/mqtt_client_impl.h"
-#include "mqtt/sigpipe_blocked.h"
+#include "broker/mqtt_client_impl.h"
+#include "broker/sigpipe_blocked.h"
 
 namespace pvtap::analyzer {
 

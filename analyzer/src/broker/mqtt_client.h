@@ -7,8 +7,8 @@
 #include <optional>
 #include <string>
 
-#include "mqtt/mqtt_event_queue.h"
-#include "mqtt/mqtt_url.h"
+#include "broker/mqtt_event_queue.h"
+#include "broker/mqtt_url.h"
 
 namespace pvtap::analyzer {
 

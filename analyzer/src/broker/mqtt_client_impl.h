@@ -9,7 +9,7 @@
 #include <string>
 #include <unordered_set>
 
-#include "mqtt/mqtt_client.h"
+#include "broker/mqtt_client.h"
 
 namespace pvtap::analyzer {
 

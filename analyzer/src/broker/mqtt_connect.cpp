@@ -11,8 +11,8 @@
 #include <cstring>
 #include <string>
 
-#include "mqtt/mqtt_client_impl.h"
-#include "mqtt/sigpipe_blocked.h"
+#include "broker/mqtt_client_impl.h"
+#include "broker/sigpipe_blocked.h"
 
 namespace pvtap::analyzer {
 namespace {
@@ -60,9 +60,9 @@ std::string tcp_connect_failure(const MqttUrl& broker) {
   return why;
 }
 
-// Why mosquitto_connect or the wait for its answer failed. libmosquitto 2.1 (Debian testing) reports a refused
-// connection as MOSQ_ERR_ERRNO with errno EBADF, the socket it had closed; the reason is then
-// found by trying the connection once more.
+// Why mosquitto_connect or the wait for its answer failed. libmosquitto 2.1 (Debian testing)
+// reports a refused connection as MOSQ_ERR_ERRNO with errno EBADF, the socket it had closed; the
+// reason is then found by trying the connection once more.
 std::string connect_failure(int rc, int error_number, const MqttUrl& broker) {
   if (rc != MOSQ_ERR_ERRNO) return mosquitto_strerror(rc);
   if (error_number != EBADF) return std::strerror(error_number);

@@ -1,5 +1,5 @@
 // MqttEventQueue: dropping the oldest when full.
-#include "mqtt/mqtt_event_queue.h"
+#include "broker/mqtt_event_queue.h"
 
 namespace pvtap::analyzer {
 

@@ -1,5 +1,5 @@
 // Parsing of --mqtt URLs.
-#include "mqtt/mqtt_url.h"
+#include "broker/mqtt_url.h"
 
 #include <charconv>
 

@@ -11,10 +11,10 @@
 #include "cli/common_options.h"
 #include "cli/exit_status.h"
 #include "cli/mqtt_command_options.h"
-#include "output/progress_bar.h"
-#include "output/run_output.h"
+#include "console/progress_bar.h"
 #include "pipeline/pipeline.h"
 #include "pvtap/capture/link_types.h"
+#include "run/run_output.h"
 #include "sources/capture_reader.h"
 
 namespace pvtap::analyzer {

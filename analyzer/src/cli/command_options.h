@@ -6,11 +6,11 @@
 #include <vector>
 
 #include "mqtt/mqtt_options.h"
-#include "output/event_writer.h"
-#include "output/values_writer.h"
 #include "pvtap/codec/dialect.h"
 #include "pvtap/registers/register_decoder.h"
 #include "sources/live_options.h"
+#include "writers/event_writers.h"
+#include "writers/values_writer.h"
 
 namespace pvtap::analyzer {
 

@@ -4,8 +4,8 @@
 #include <cstdint>
 
 #include "cli/command_options.h"
-#include "output/run_output.h"
 #include "pipeline/pipeline.h"
+#include "run/run_output.h"
 
 namespace CLI {
 class App;

@@ -3,7 +3,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "mqtt/mqtt_event_queue.h"
+#include "broker/mqtt_event_queue.h"
 
 namespace pvtap::analyzer {
 

@@ -1,4 +1,4 @@
-#include "output/progress_bar.h"
+#include "console/progress_bar.h"
 
 #include <algorithm>
 #include <cstdio>

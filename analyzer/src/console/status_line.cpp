@@ -1,4 +1,4 @@
-#include "output/status_line.h"
+#include "console/status_line.h"
 
 #include <cstdio>
 

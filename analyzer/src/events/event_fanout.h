@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "output/event_writer.h"
+#include "events/event_writer.h"
 
 namespace pvtap::analyzer {
 

@@ -1,15 +1,11 @@
 // EventWriter: one output format for what the bus sessions report as they go.
 #pragma once
 
-#include <memory>
 #include <string_view>
 
-#include "formatting/output_stream.h"
 #include "pvtap/session/bus_session.h"
 
 namespace pvtap::analyzer {
-
-enum class OutputFormat { Text, Jsonl, Csv };
 
 // EventContext: what every line needs besides the event: which bus it came from (empty for
 // serial inputs, which have one bus) and whether the input has timestamps at all.
@@ -27,9 +23,5 @@ class EventWriter {
   virtual void noise(const EventContext& c, const SessionNoise& n) = 0;
   virtual void gap(const EventContext& c, const SessionGap& g) = 0;
 };
-
-std::unique_ptr<EventWriter> make_text_event_writer(OutputStream& out);
-std::unique_ptr<EventWriter> make_jsonl_event_writer(OutputStream& out);
-std::unique_ptr<EventWriter> make_csv_event_writer(OutputStream& out);
 
 }  // namespace pvtap::analyzer

@@ -1,7 +1,5 @@
 #include "gateway/gateway_connection.h"
 
-#include "pipeline/bus_set.h"
-
 namespace pvtap::analyzer {
 namespace {
 
@@ -12,11 +10,11 @@ Direction other(Direction d) {
 }  // namespace
 
 GatewayTraffic::Connection::Connection(Transport t, const Endpoint& slave_side, State initial,
-                                       const GatewayOptions& o, BusSource source)
+                                       const GatewayOptions& o, BusProvider& bus_provider)
     : transport(t),
       slave(slave_side),
       state(initial),
-      bus_source(source),
+      buses(bus_provider),
       probe(o.dialects),
       to_slave_sink(*this, Direction::ToSlave),
       from_slave_sink(*this, Direction::FromSlave),
@@ -76,7 +74,7 @@ void GatewayTraffic::Connection::feed_bus(Direction d, std::span<const std::uint
 
 void GatewayTraffic::Connection::become_bus() {
   state = State::Bus;
-  bus = &bus_source.buses.find_or_add(slave.to_string(), bus_source.options);
+  bus = &buses.gateway_bus(slave.to_string());
   // A new connection starts new streams: nothing of the previous one may join its bytes.
   bus->restart(Direction::ToSlave);
   bus->restart(Direction::FromSlave);

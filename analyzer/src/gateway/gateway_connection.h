@@ -30,7 +30,7 @@ struct GatewayTraffic::Connection {
   enum class State { Probing, Bus, Ignored };
 
   Connection(Transport t, const Endpoint& slave_side, State initial, const GatewayOptions& o,
-             BusSource bus_source);
+             BusProvider& bus_provider);
 
   // Direction of a segment sent from `source`.
   Direction direction_from(const Endpoint& source) const {
@@ -53,7 +53,7 @@ struct GatewayTraffic::Connection {
   Transport transport;
   Endpoint slave;
   State state;
-  BusSource bus_source;
+  BusProvider& buses;  // where the flow gets its bus once it is found to be a gateway's
   BusSession* bus = nullptr;
   FlowProbe probe;
   DirectionSink to_slave_sink;

@@ -5,7 +5,6 @@
 
 #include "gateway/endpoint_match.h"
 #include "gateway/gateway_connection.h"
-#include "pipeline/bus_set.h"
 
 namespace pvtap::analyzer {
 namespace {
@@ -37,8 +36,8 @@ std::optional<Endpoint> slave_side(const Segment& s, const std::vector<std::uint
 
 }  // namespace
 
-GatewayTraffic::GatewayTraffic(GatewayOptions options, BusSet& buses, BusSessionOptions bus_options)
-    : options_(std::move(options)), buses_(buses), bus_options_(std::move(bus_options)) {}
+GatewayTraffic::GatewayTraffic(GatewayOptions options, BusProvider& buses)
+    : options_(std::move(options)), buses_(buses) {}
 
 GatewayTraffic::~GatewayTraffic() = default;
 
@@ -83,8 +82,7 @@ GatewayTraffic::Connection* GatewayTraffic::find_or_open(const Segment& s) {
   const State initial =
       !slave ? State::Ignored : (options_.ports.empty() ? State::Probing : State::Bus);
   const Endpoint side = slave ? *slave : s.destination;
-  auto connection = std::make_unique<Connection>(s.transport, side, initial, options_,
-                                                 BusSource{buses_, bus_options_});
+  auto connection = std::make_unique<Connection>(s.transport, side, initial, options_, buses_);
   last_flow_ = flows_.emplace(key, std::move(connection)).first->second.get();
   last_key_ = key;
   return last_flow_;

@@ -8,12 +8,12 @@
 #include <tuple>
 #include <vector>
 
+#include "gateway/bus_provider.h"
 #include "pvtap/capture/network_packet.h"
 #include "pvtap/session/bus_session.h"
+#include "report/network_stats.h"
 
 namespace pvtap::analyzer {
-
-class BusSet;
 
 // GatewayOptions: which flows are gateway traffic.
 struct GatewayOptions {
@@ -22,28 +22,10 @@ struct GatewayOptions {
   double hole_wait = 2.0;  // seconds a TCP hole may stay open before it counts as lost
 };
 
-// NetworkStats: what happened to the capture's flows.
-struct NetworkStats {
-  std::uint64_t flows_analyzed = 0;
-  std::uint64_t flows_ignored = 0;  // no inverter frames, or not on --port
-  std::uint64_t ignored_bytes = 0;  // payload of ignored flows
-  std::uint64_t retransmitted_bytes = 0;
-  std::uint64_t out_of_order_segments = 0;
-  std::uint64_t lost_bytes = 0;
-  std::uint64_t gaps = 0;
-};
-
-// BusSource: where a flow found to be a gateway's gets its bus, and how that bus is made.
-struct BusSource {
-  BusSet& buses;
-  const BusSessionOptions& options;
-};
-
 class GatewayTraffic {
  public:
-  // A flow found to be a gateway's gets its bus from `buses`, made with `bus_options`: one
-  // bus per slave-side endpoint, so that reconnections to the same gateway continue it.
-  GatewayTraffic(GatewayOptions options, BusSet& buses, BusSessionOptions bus_options);
+  // A flow found to be a gateway's gets its bus from `buses`: one bus per slave-side endpoint.
+  GatewayTraffic(GatewayOptions options, BusProvider& buses);
   ~GatewayTraffic();
   GatewayTraffic(const GatewayTraffic&) = delete;
   GatewayTraffic& operator=(const GatewayTraffic&) = delete;
@@ -66,8 +48,7 @@ class GatewayTraffic {
   void expire_old_state(double now);
 
   GatewayOptions options_;
-  BusSet& buses_;
-  BusSessionOptions bus_options_;
+  BusProvider& buses_;
   std::map<FlowKey, std::unique_ptr<Connection>> flows_;
   // Packets of one flow come in runs: the last flow found is tried first.
   Connection* last_flow_ = nullptr;

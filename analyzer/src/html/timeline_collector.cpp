@@ -4,9 +4,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "output/values_writer.h"
 #include "pvtap/registers/register_format.h"
 #include "report/frame_findings.h"
+#include "writers/values_writer.h"
 
 namespace pvtap::analyzer {
 namespace {

@@ -9,7 +9,7 @@
 #include <string>
 #include <unordered_map>
 
-#include "output/event_writer.h"
+#include "events/event_writer.h"
 #include "html/timeline.h"
 
 namespace pvtap::analyzer {

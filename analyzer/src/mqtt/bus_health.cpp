@@ -1,8 +1,8 @@
 // BusHealth: counting and the health JSON.
 #include "mqtt/bus_health.h"
 
-#include "formatting/number_text.h"
 #include "formatting/json_text.h"
+#include "formatting/number_text.h"
 
 namespace pvtap::analyzer {
 
@@ -65,21 +65,8 @@ void append_line_errors(std::string& out, const std::optional<LineErrorCounts>& 
 }  // namespace
 
 void BusHealth::count(const SessionFrame& f) {
-  ++frames;
-  if (!f.check.ok) ++damaged_frames;
-  if (f.reply_kind == ReplyKind::GslException || f.reply_kind == ReplyKind::HybridError) {
-    ++exceptions;
-  }
-  if (f.unsolicited) ++unsolicited;
-  if (f.latency) {
-    latency_interval.add(*f.latency);
-    latency_total.add(*f.latency);
-  }
-}
-
-void BusHealth::count(const SessionTimeout& t) {
-  if (t.kind == UnansweredKind::Timeout) ++timeouts;
-  if (t.kind == UnansweredKind::DamagedRequest) ++unanswered_damaged_requests;
+  events.add(f);
+  if (f.latency) latency_interval.add(*f.latency);
 }
 
 void append_health_json(std::string& out, const BusHealth& h, const HealthContext& c) {
@@ -87,16 +74,17 @@ void append_health_json(std::string& out, const BusHealth& h, const HealthContex
   append_fixed(out, c.now, 6);
   out += ",\"interval_s\":";
   append_fixed(out, c.interval, 3);
-  append_json_count(out, "frames", h.frames);
-  append_json_count(out, "damaged_frames", h.damaged_frames);
-  append_json_count(out, "timeouts", h.timeouts);
-  append_json_count(out, "unanswered_damaged_requests", h.unanswered_damaged_requests);
-  append_json_count(out, "exceptions", h.exceptions);
-  append_json_count(out, "unsolicited", h.unsolicited);
-  append_json_count(out, "noise_bytes", h.noise_bytes);
-  append_json_count(out, "gaps", h.gaps);
+  const EventCounts& e = h.events.counts();
+  append_json_count(out, "frames", e.frames);
+  append_json_count(out, "damaged_frames", e.damaged_frames);
+  append_json_count(out, "timeouts", e.timeouts);
+  append_json_count(out, "unanswered_damaged_requests", e.unanswered_damaged_requests);
+  append_json_count(out, "exceptions", e.exceptions);
+  append_json_count(out, "unsolicited", e.unsolicited);
+  append_json_count(out, "noise_bytes", e.noise_bytes);
+  append_json_count(out, "gaps", e.gaps.gaps);
   append_latency(out, "latency", h.latency_interval);
-  append_latency(out, "latency_total", h.latency_total);
+  append_latency(out, "latency_total", h.events.latency());
   append_json_count(out, "stations", c.stations);
   append_json_count(out, "stations_answering", c.stations_answering);
   append_json_count(out, "poll_blocks", c.poll_blocks);

@@ -1,5 +1,5 @@
 // BusHealth: the counters of one bus that MQTT publishes every interval, counted from the
-// same events the other outputs get, and their JSON.
+// same events the other outputs get by the core's EventTally, and their JSON.
 #pragma once
 
 #include <cstdint>
@@ -8,29 +8,23 @@
 #include <string_view>
 
 #include "pvtap/session/bus_session.h"
+#include "pvtap/session/event_tally.h"
 #include "pvtap/statistics/distribution_summary.h"
 #include "report/live_report.h"
 
 namespace pvtap::analyzer {
 
 struct BusHealth {
-  std::uint64_t frames = 0;
-  std::uint64_t damaged_frames = 0;  // bad check
-  std::uint64_t timeouts = 0;
-  std::uint64_t unanswered_damaged_requests = 0;
-  std::uint64_t exceptions = 0;
-  std::uint64_t unsolicited = 0;
-  std::uint64_t noise_bytes = 0;
-  std::uint64_t gaps = 0;
+  EventTally events;  // since the start, by the report's rules
   // The serial driver's counters of a tap, when it keeps them (TIOCGICOUNT; not a pty).
   std::optional<LineErrorCounts> line_errors;
   DistributionAccumulator latency_interval;  // since the last publication
-  DistributionAccumulator latency_total;
 
+  template <typename Event>
+  void count(const Event& e) {
+    events.add(e);
+  }
   void count(const SessionFrame& f);
-  void count(const SessionTimeout& t);
-  void count(const SessionNoise& n) { noise_bytes += n.noise.bytes.size(); }
-  void count(const SessionGap&) { ++gaps; }
   void start_interval() { latency_interval = DistributionAccumulator{}; }
 };
 

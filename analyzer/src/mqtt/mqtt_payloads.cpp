@@ -4,9 +4,9 @@
 #include "formatting/json_text.h"
 #include "formatting/number_text.h"
 #include "mqtt/station_table.h"
-#include "output/value_json_cache.h"
 #include "pvtap/registers/register_format.h"
 #include "report/frame_findings.h"
+#include "writers/value_json_cache.h"
 
 namespace pvtap::analyzer {
 namespace {

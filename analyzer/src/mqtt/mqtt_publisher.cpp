@@ -5,6 +5,7 @@
 
 #include "mqtt/ha_discovery.h"
 #include "mqtt/mqtt_payloads.h"
+#include "writers/event_writers.h"
 
 namespace pvtap::analyzer {
 namespace {

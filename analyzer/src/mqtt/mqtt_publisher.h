@@ -7,14 +7,14 @@
 #include <string>
 #include <string_view>
 
+#include "broker/mqtt_client.h"
+#include "events/event_writer.h"
 #include "formatting/output_stream.h"
 #include "mqtt/bus_health.h"
-#include "mqtt/mqtt_client.h"
 #include "mqtt/mqtt_options.h"
 #include "mqtt/mqtt_topics.h"
 #include "mqtt/station_table.h"
-#include "output/event_writer.h"
-#include "output/value_json_cache.h"
+#include "writers/value_json_cache.h"
 
 namespace pvtap::analyzer {
 

@@ -1,5 +1,7 @@
 #include "pipeline/bus_set.h"
 
+#include "pvtap/session/event_tally.h"
+
 namespace pvtap::analyzer {
 namespace {
 
@@ -81,6 +83,18 @@ std::vector<BusFindings> BusSet::findings() const {
   for (const auto& bus : buses_)
     out.push_back(BusFindings{bus->output.name(), bus->session.report()});
   return out;
+}
+
+EventTally BusSet::tally() const {
+  EventTally sum;
+  for (const auto& bus : buses_) sum.merge(bus->session.tally());
+  return sum;
+}
+
+EventCounts BusSet::counts() const {
+  EventCounts sum;
+  for (const auto& bus : buses_) sum += bus->session.tally().counts();
+  return sum;
 }
 
 ReassemblerTotals BusSet::totals() const {

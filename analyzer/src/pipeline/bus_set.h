@@ -8,8 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "output/event_writer.h"
+#include "events/event_writer.h"
 #include "pvtap/session/bus_session.h"
+#include "pvtap/session/event_tally.h"
 #include "report/audit_report.h"
 
 namespace pvtap::analyzer {
@@ -34,6 +35,8 @@ class BusSet {
   std::optional<double> next_deadline() const;  // the earliest over every bus
   std::vector<BusFindings> findings() const;
   ReassemblerTotals totals() const;  // over every bus
+  EventTally tally() const;          // the buses' event tallies merged
+  EventCounts counts() const;        // their counts alone, added up (no latency to merge)
 
  private:
   struct Bus;

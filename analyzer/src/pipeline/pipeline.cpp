@@ -7,12 +7,8 @@ namespace pvtap::analyzer {
 Pipeline::Pipeline(const PipelineSettings& settings, const RegisterDecoder& decoder,
                    EventWriter& events)
     : settings_(settings),
-      buses_(decoder, events_),
-      gateway_(GatewayOptions{settings.ports, settings.dialects, 2.0}, buses_,
-               bus_options(InputKind::Network)) {
-  events_.add(tally_);
-  events_.add(events);
-}
+      buses_(decoder, events),
+      gateway_(GatewayOptions{settings.ports, settings.dialects, 2.0}, *this) {}
 
 Pipeline::~Pipeline() = default;
 
@@ -53,6 +49,10 @@ BusSession& Pipeline::add_bus(const std::string& name, const BusSessionOptions& 
   return buses_.add(name, options);
 }
 
+BusSession& Pipeline::gateway_bus(const std::string& name) {
+  return buses_.find_or_add(name, bus_options(InputKind::Network));
+}
+
 BusSession& Pipeline::serial_bus(InputKind kind) {
   if (BusSession* bus = buses_.find("")) return *bus;
   return buses_.add("", bus_options(kind));
@@ -85,7 +85,7 @@ AuditReport Pipeline::report() const {
   r.network = network_;
   r.flows = gateway_.stats();
   r.skipped = skipped_;
-  r.latency = tally_.latency();
+  r.latency = tally().latency().summary();
   return r;
 }
 

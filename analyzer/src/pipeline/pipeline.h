@@ -9,15 +9,14 @@
 #include <string>
 #include <vector>
 
+#include "events/event_writer.h"
 #include "gateway/gateway_traffic.h"
-#include "output/event_fanout.h"
-#include "output/event_writer.h"
 #include "pipeline/bus_set.h"
-#include "pipeline/run_tally.h"
 #include "pvtap/capture/capture_file.h"
 #include "pvtap/capture/link_types.h"
 #include "pvtap/session/bus_session.h"
 #include "pvtap/session/carrier_timing.h"
+#include "pvtap/session/event_tally.h"
 #include "report/audit_report.h"
 
 namespace pvtap::analyzer {
@@ -34,9 +33,10 @@ struct PipelineSettings {
   GslIdReading gsl_ids = GslIdReading::Decimal;  // for the report's wording
 };
 
-class Pipeline {
+// A gateway flow gets its bus from the pipeline (BusProvider): one bus per gateway endpoint.
+class Pipeline : private BusProvider {
  public:
-  // Every event goes to `events` (after the run's own tally has seen it).
+  // Every event goes to `events`, after its bus has counted it.
   Pipeline(const PipelineSettings& settings, const RegisterDecoder& decoder, EventWriter& events);
   ~Pipeline();
 
@@ -64,21 +64,22 @@ class Pipeline {
   // End of input at `time`: every byte decided, every waiting request judged.
   void finish(double time);
 
-  const RunTally& tally() const { return tally_; }
+  // What the buses counted so far: merged (latency included), or the counts alone.
+  EventTally tally() const { return buses_.tally(); }
+  EventCounts counts() const { return buses_.counts(); }
   ReassemblerTotals totals() const { return buses_.totals(); }
   // The report of what was found; the caller adds its inputs, --write and live sources.
   AuditReport report() const;
 
  private:
   BusSession& serial_bus(InputKind kind);
+  BusSession& gateway_bus(const std::string& name) override;
   void on_network_packet(const CapturedPacket& packet);
   void on_exported_pdu(const CapturedPacket& packet);
   void on_serial_record(const CapturedPacket& packet);
   void on_rtac_record(const CapturedPacket& packet);
 
   PipelineSettings settings_;
-  RunTally tally_;
-  EventFanout events_;
   BusSet buses_;
   GatewayTraffic gateway_;
   int link_type_ = -1;

@@ -6,11 +6,11 @@
 #include <string>
 #include <vector>
 
-#include "gateway/gateway_traffic.h"
 #include "pvtap/registers/register_decoder.h"
 #include "pvtap/session/bus_report.h"
 #include "pvtap/statistics/distribution_summary.h"
 #include "report/live_report.h"
+#include "report/network_stats.h"
 
 namespace pvtap::analyzer {
 

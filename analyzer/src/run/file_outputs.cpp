@@ -1,5 +1,5 @@
 // FileOutputs: --values rows as the events come, --html at the end from the report model.
-#include "output/file_outputs.h"
+#include "run/file_outputs.h"
 
 #include "html/html_report.h"
 #include "html/timeline_collector.h"

@@ -8,11 +8,11 @@
 
 #include <vector>
 
-#include "output/event_fanout.h"
-#include "output/event_writer.h"
-#include "output/output_file.h"
-#include "output/values_writer.h"
+#include "events/event_fanout.h"
+#include "events/event_writer.h"
 #include "report/audit_report.h"
+#include "writers/output_file.h"
+#include "writers/values_writer.h"
 
 namespace pvtap::analyzer {
 
@@ -22,7 +22,7 @@ class TimelineCollector;
 struct FileOutputSettings {
   std::string values_path;  // --values; empty for none
   ValuesFormat values_format = ValuesFormat::Csv;
-  std::string html_path;  // --html; empty for none
+  std::string html_path;               // --html; empty for none
   std::vector<std::string> plot_keys;  // --plot
 };
 

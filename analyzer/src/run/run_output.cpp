@@ -1,4 +1,4 @@
-#include "output/run_output.h"
+#include "run/run_output.h"
 
 #include <cstdio>
 

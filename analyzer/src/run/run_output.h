@@ -7,14 +7,15 @@
 #include <optional>
 #include <string>
 
+#include "events/event_fanout.h"
+#include "events/event_writer.h"
 #include "formatting/output_stream.h"
 #include "mqtt/mqtt_options.h"
 #include "mqtt/mqtt_publisher.h"
-#include "output/event_fanout.h"
-#include "output/event_writer.h"
-#include "output/file_outputs.h"
-#include "output/pdu_capture_output.h"
 #include "report/audit_report.h"
+#include "run/file_outputs.h"
+#include "writers/event_writers.h"
+#include "writers/pdu_capture_output.h"
 
 namespace pvtap::analyzer {
 

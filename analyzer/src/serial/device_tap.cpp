@@ -1,4 +1,4 @@
-#include "sources/device_tap.h"
+#include "serial/device_tap.h"
 
 #include <algorithm>
 #include <utility>

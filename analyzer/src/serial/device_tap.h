@@ -7,9 +7,9 @@
 #include <string>
 
 #include "report/live_report.h"
-#include "sources/serial_line.h"
-#include "sources/serial_port.h"
-#include "sources/usb_latency_timer.h"
+#include "serial/serial_line.h"
+#include "serial/serial_port.h"
+#include "serial/usb_latency_timer.h"
 
 namespace pvtap::analyzer {
 

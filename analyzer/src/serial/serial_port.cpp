@@ -1,4 +1,4 @@
-#include "sources/serial_port.h"
+#include "serial/serial_port.h"
 
 #include <fcntl.h>
 #include <linux/serial.h>

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "report/live_report.h"
-#include "sources/serial_line.h"
+#include "serial/serial_line.h"
 
 namespace pvtap::analyzer {
 

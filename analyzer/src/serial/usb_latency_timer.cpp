@@ -1,4 +1,4 @@
-#include "sources/usb_latency_timer.h"
+#include "serial/usb_latency_timer.h"
 
 #include <fcntl.h>
 #include <unistd.h>

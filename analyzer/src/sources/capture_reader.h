@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "output/progress_bar.h"
+#include "console/progress_bar.h"
 #include "pipeline/pipeline.h"
 #include "report/audit_report.h"
 

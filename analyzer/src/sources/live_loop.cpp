@@ -25,7 +25,7 @@ LiveLoop::LiveLoop(const LiveOptions& options, Pipeline& pipeline, RunOutput& ou
       started_(wall_clock_seconds()) {}
 
 bool LiveLoop::count_reached() const {
-  return options_.count > 0 && pipeline_.tally().frames() >= options_.count;
+  return options_.count > 0 && pipeline_.counts().frames >= options_.count;
 }
 
 bool LiveLoop::should_stop() const {
@@ -54,14 +54,15 @@ void LiveLoop::after_wake(double now) {
 
 void LiveLoop::show_status(double now) {
   const ReassemblerTotals sum = pipeline_.totals();
-  const RunTally& tally = pipeline_.tally();
-  const std::optional<double> latency = tally.last_latency();
+  const EventTally tally = pipeline_.tally();
+  const std::optional<TimedLatency> last = tally.last_latency();
+  const std::optional<double> latency = last ? std::optional<double>(last->latency) : std::nullopt;
   char text[160];
   std::snprintf(
       text, sizeof text, "%llu bytes, %llu frames, %llu bad checks, %llu timeouts, last latency %s",
       static_cast<unsigned long long>(sum.bytes_in), static_cast<unsigned long long>(sum.frames),
       static_cast<unsigned long long>(sum.bad_frames),
-      static_cast<unsigned long long>(tally.timeouts()),
+      static_cast<unsigned long long>(tally.counts().timeouts),
       latency ? (std::to_string(std::lround(*latency * 1e3)) + " ms").c_str() : "-");
   status_.show(now, text);
 }

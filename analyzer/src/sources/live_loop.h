@@ -4,10 +4,10 @@
 
 #include <cstdint>
 
-#include "output/run_output.h"
-#include "output/status_line.h"
+#include "console/status_line.h"
 #include "pipeline/pipeline.h"
 #include "report/live_report.h"
+#include "run/run_output.h"
 #include "sources/live_options.h"
 
 namespace pvtap::analyzer {

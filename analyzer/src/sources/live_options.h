@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "sources/serial_line.h"
+#include "serial/serial_line.h"
 
 namespace pvtap::analyzer {
 

@@ -6,7 +6,7 @@
 #include <cstdio>
 
 #include "pvtap/session/carrier_timing.h"
-#include "sources/device_tap.h"
+#include "serial/device_tap.h"
 #include "sources/wall_clock.h"
 
 namespace pvtap::analyzer {

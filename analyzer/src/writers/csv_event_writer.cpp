@@ -5,8 +5,8 @@
 
 #include "formatting/csv_text.h"
 #include "formatting/number_text.h"
-#include "output/event_writer.h"
 #include "report/frame_findings.h"
+#include "writers/event_writers.h"
 
 namespace pvtap::analyzer {
 namespace {

@@ -6,9 +6,9 @@
 
 #include "formatting/json_text.h"
 #include "formatting/number_text.h"
-#include "output/event_writer.h"
-#include "output/value_json_cache.h"
 #include "report/frame_findings.h"
+#include "writers/event_writers.h"
+#include "writers/value_json_cache.h"
 
 namespace pvtap::analyzer {
 namespace {

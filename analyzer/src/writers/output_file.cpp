@@ -1,5 +1,5 @@
 // OutputFile: opening, flushing and closing with the reason of any failure.
-#include "output/output_file.h"
+#include "writers/output_file.h"
 
 #include <cerrno>
 #include <cstring>

@@ -1,4 +1,4 @@
-#include "output/pdu_capture_output.h"
+#include "writers/pdu_capture_output.h"
 
 namespace pvtap::analyzer {
 

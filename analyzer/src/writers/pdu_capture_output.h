@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <string>
 
-#include "output/event_writer.h"
+#include "events/event_writer.h"
 #include "pvtap/capture/exported_pdu_writer.h"
 
 namespace pvtap::analyzer {

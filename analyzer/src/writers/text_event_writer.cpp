@@ -3,8 +3,8 @@
 #include <vector>
 
 #include "formatting/number_text.h"
-#include "output/event_writer.h"
 #include "report/frame_findings.h"
+#include "writers/event_writers.h"
 
 namespace pvtap::analyzer {
 namespace {

@@ -1,4 +1,4 @@
-#include "output/value_json_cache.h"
+#include "writers/value_json_cache.h"
 
 #include "report/frame_findings.h"
 

@@ -1,6 +1,6 @@
 // The --values rows in their three formats. Rows are built straight into the output buffer:
 // a day of polling is millions of values.
-#include "output/values_writer.h"
+#include "writers/values_writer.h"
 
 #include <string>
 

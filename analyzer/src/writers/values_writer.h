@@ -4,7 +4,7 @@
 
 #include <memory>
 
-#include "output/event_writer.h"
+#include "events/event_writer.h"
 #include "formatting/output_stream.h"
 
 namespace pvtap::analyzer {

@@ -12,9 +12,9 @@
 #include <fstream>
 #include <string>
 
-#include "sources/device_tap.h"
-#include "sources/serial_port.h"
-#include "sources/usb_latency_timer.h"
+#include "serial/device_tap.h"
+#include "serial/serial_port.h"
+#include "serial/usb_latency_timer.h"
 
 namespace pvtap::analyzer {
 namespace {

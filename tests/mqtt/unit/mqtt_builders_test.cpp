@@ -1,11 +1,11 @@
 // The pure parts of --mqtt: URLs, topic levels, the event queue's bound, sensor classes.
 #include <gtest/gtest.h>
 
+#include "broker/mqtt_event_queue.h"
+#include "broker/mqtt_url.h"
 #include "mqtt/bus_health.h"
 #include "mqtt/ha_discovery.h"
-#include "mqtt/mqtt_event_queue.h"
 #include "mqtt/mqtt_topics.h"
-#include "mqtt/mqtt_url.h"
 
 namespace pvtap::analyzer {
 namespace {
@@ -69,7 +69,7 @@ TEST(HaDiscovery, EnergyCountersAreTotalIncreasing) {
 
 TEST(BusHealth, JsonHasEveryFieldDiscoveryNames) {
   BusHealth h;
-  h.frames = 7;
+  for (int i = 0; i < 7; ++i) h.count(SessionFrame{});
   std::string json;
   append_health_json(json, h, HealthContext{});
   for (const HealthField& f : kHealthFields) {
