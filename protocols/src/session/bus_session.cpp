@@ -5,11 +5,11 @@
 #include <limits>
 #include <vector>
 
-#include "matching/request_book.h"
 #include "pvtap/matching/reply_rules.h"
-#include "pvtap/statistics/timing_statistics.h"
+#include "pvtap/session/event_tally.h"
 #include "session/bus_tally.h"
-#include "session/latest_readings.h"
+#include "session/reply_values.h"
+#include "session/session_times.h"
 
 namespace pvtap {
 struct BusSession::Impl {
@@ -31,11 +31,7 @@ struct BusSession::Impl {
   };
 
   Impl(BusSessionOptions o, const RegisterDecoder& d, BusSessionSink& s)
-      : options(o),
-        decoder(d),
-        sink(s),
-        matcher(o.matcher),
-        timing(BusTiming(o.reassembler.baud, o.reassembler.bits_per_char)) {}
+      : options(o), sink(s), matcher(o.matcher), times(options), replies(d, options) {}
 
   DirectionStream& stream(Direction d) {
     auto& slot = streams[index_of(d)];
@@ -45,15 +41,6 @@ struct BusSession::Impl {
 
   void on_frame(Direction direction, const FrameEvent& e);
   void handle_parsed(SessionFrame& out, const FrameEvent& e);
-  void take_findings(SessionFrame& out, const FrameMatch& match);
-  const detail::RequestRecord* answered_request(SessionFrame& out, const FrameMatch& match);
-  void note_transaction(SessionFrame& out, const Frame& frame, const FrameMatch& match);
-  void decode_values(SessionFrame& out, const Frame* request);
-  void add_timing(const SessionFrame& out, const FrameMatch& match, double max_inner_gap);
-  // The station a latency belongs to: the request's, since a damaged reply's may be wrong.
-  std::uint8_t answering_station(const FrameMatch& match) const {
-    return match.transaction ? match.transaction->station : frame.station;
-  }
   // Timeouts come before the frame that made them due.
   void report(std::span<const Timeout> timeouts) {
     for (const Timeout& t : timeouts) report(t);
@@ -61,43 +48,50 @@ struct BusSession::Impl {
   void report(const Timeout& t);
   TimestampQuality timestamp_quality() const;
   ReassemblerTotals totals() const;
-  void time_seen(double t);
 
   BusSessionOptions options;
-  const RegisterDecoder& decoder;
   BusSessionSink& sink;
   std::array<std::unique_ptr<DirectionStream>, kDirections> streams;
   TransactionMatcher matcher;
-  TimingStatistics timing;
+  detail::SessionTimes times;
+  detail::ReplyValues replies;
   detail::BusTally tally;
-  detail::LatestReadings latest;
-  detail::RequestBook requests;
   Frame frame;  // the frame being handled; SessionFrame::frame points here
-  std::vector<DecodedValue> values;
   std::uint64_t next_id = 0;
   std::uint64_t loss_boundary_id = 0;  // requests before this id were waiting during a loss
   Direction last_direction = Direction::Unknown;  // of the last chunk fed
-  bool any_time = false;
-  double first_time = 0;
-  double last_time = 0;
-  double bus_free_at = -std::numeric_limits<double>::infinity();  // end of the last frame
 };
 
-void BusSession::Impl::time_seen(double t) {
-  if (!options.has_timestamps) return;
-  if (!any_time) {
-    first_time = last_time = t;
-    any_time = true;
+namespace {
+
+// What the matcher found about a frame, in the frame's event.
+void take_findings(SessionFrame& out, Frame& frame, const FrameMatch& match) {
+  frame.role = match.role;
+  out.role = match.role;
+  out.role_corrected = match.role_correction.has_value();
+  out.duplicate = match.duplicate.has_value();
+  if (match.duplicate) out.duplicate_of = match.duplicate->original_request_id;
+  out.count_mismatch = match.count_mismatch;
+  if (match.unsolicited) {
+    out.unsolicited = true;
+    if (match.unsolicited->late_for_request_id) {
+      out.late_by = match.unsolicited->since_request;
+      out.late_for = match.unsolicited->late_for_request_id;
+    }
   }
-  first_time = std::min(first_time, t);
-  last_time = std::max(last_time, t);
 }
+
+// The station a latency belongs to: the request's, since a damaged reply's may be wrong.
+std::uint8_t answering_station(const Frame& frame, const FrameMatch& match) {
+  return match.transaction ? match.transaction->station : frame.station;
+}
+
+}  // namespace
 
 void BusSession::Impl::report(const Timeout& t) {
   SessionTimeout out;
   out.timeout = t;
-  const detail::RequestRecord* request =
-      requests.find(detail::RequestBook::slot_of(t.dialect, t.station), t.request_id);
+  const detail::RequestRecord* request = replies.waiting_request(t);
   if (request != nullptr) {
     out.request_start = request->start_time;
     out.request_end = request->end_time;
@@ -122,13 +116,7 @@ void BusSession::Impl::on_frame(Direction direction, const FrameEvent& e) {
   out.direction = direction;
   out.start_time = options.has_timestamps ? e.start_time : 0.0;
   out.end_time = options.has_timestamps ? e.end_time : 0.0;
-  // A frame's start is estimated back from its last byte at the configured baud rate; a pty
-  // or a gateway that delivers faster would put a reply's start before its request's end.
-  // The bus is half duplex: nothing starts before the frame before it ended.
-  if (options.has_timestamps && out.end_time >= bus_free_at) {
-    if (out.start_time < bus_free_at) out.start_time = bus_free_at;
-    bus_free_at = out.end_time;
-  }
+  times.settle_start(out);
   out.dialect = e.dialect;
   out.role = e.role;
   out.check = e.check;
@@ -153,89 +141,15 @@ void BusSession::Impl::handle_parsed(SessionFrame& out, const FrameEvent& e) {
   // Before the request is remembered: a request it gave up is looked up by its slot.
   report(match.timeouts);
   if (match.transaction) tally.add_transaction(*match.transaction);
-  take_findings(out, match);
+  take_findings(out, frame, match);
   if (match.role == Role::Request) {
-    requests.remember(out.id, frame, out.start_time, out.end_time, e.check.ok);
+    replies.remember_request(out, frame);
   } else {
     summary.role = match.role;
     out.reply_kind = reply_kind(summary);
   }
-  note_transaction(out, frame, match);
-  add_timing(out, match, e.max_inner_gap);
-}
-
-void BusSession::Impl::take_findings(SessionFrame& out, const FrameMatch& match) {
-  frame.role = match.role;
-  out.role = match.role;
-  out.role_corrected = match.role_correction.has_value();
-  out.duplicate = match.duplicate.has_value();
-  if (match.duplicate) out.duplicate_of = match.duplicate->original_request_id;
-  out.count_mismatch = match.count_mismatch;
-  if (match.unsolicited) {
-    out.unsolicited = true;
-    if (match.unsolicited->late_for_request_id) {
-      out.late_by = match.unsolicited->since_request;
-      out.late_for = match.unsolicited->late_for_request_id;
-    }
-  }
-}
-
-const detail::RequestRecord* BusSession::Impl::answered_request(SessionFrame& out,
-                                                                const FrameMatch& match) {
-  if (match.transaction) {
-    const Transaction& t = *match.transaction;
-    out.request_id = t.request_id;
-    out.broadcast_answer = t.broadcast;
-    if (options.has_timestamps) out.latency = t.latency;
-    const std::size_t slot = t.broadcast ? detail::RequestBook::kBroadcastSlot : t.station;
-    return requests.find(slot, t.request_id);
-  }
-  // A duplicate carries the words of the request it answered before.
-  if (match.duplicate) {
-    const DuplicateReply& d = *match.duplicate;
-    return requests.find(detail::RequestBook::slot_of(d.dialect, d.station), d.original_request_id);
-  }
-  return nullptr;
-}
-
-void BusSession::Impl::note_transaction(SessionFrame& out, const Frame& reply,
-                                        const FrameMatch& match) {
-  const detail::RequestRecord* request = answered_request(out, match);
-  // A request with a bad check may carry a corrupted start address: do not place words by it.
-  const bool sound = request != nullptr && request->check_ok;
-  if (sound) out.placed_by = request->id;
-  const Frame* sound_request = sound ? &request->frame : nullptr;
-  out.values_trusted = out.check.ok;
-  if (!out.values_trusted) return;
-  if (out.role == Role::Response && out.reply_kind == ReplyKind::Normal) {
-    latest.store(reply, sound_request, out.start_time);
-  }
-  if (options.decode_values) decode_values(out, sound_request);
-}
-
-void BusSession::Impl::decode_values(SessionFrame& out, const Frame* request) {
-  values.clear();
-  // The device number heads every Hybrid reply, so it comes first.
-  if (frame.dialect == Dialect::Hybrid && frame.role == Role::Response && frame.device) {
-    values.push_back(decoder.decode_device_number(*frame.device));
-  }
-  out.decode = decoder.decode(frame, request, values);
-  out.values = values;
-}
-
-void BusSession::Impl::add_timing(const SessionFrame& out, const FrameMatch& match,
-                                  double max_inner_gap) {
-  if (!options.has_timestamps) return;
-  // With timestamps declared too coarse the bus gaps are never judged; requests alone give
-  // the poll periods, and the gap statistics are spared the other frames.
-  if (options.reassembler.timestamps == TimestampTrust::Untrusted && out.role != Role::Request) {
-    if (out.latency) timing.add_latency(answering_station(match), *out.latency);
-    return;
-  }
-  timing.add_frame(FrameTiming{out.id, frame.dialect, out.role, frame.station, frame.function,
-                               out.start_time, out.end_time, max_inner_gap, frame.start,
-                               frame.count, out.check.ok});
-  if (out.latency) timing.add_latency(answering_station(match), *out.latency);
+  replies.take(out, frame, match);
+  times.add(out, frame, answering_station(frame, match), e.max_inner_gap);
 }
 
 BusSession::BusSession(BusSessionOptions options, const RegisterDecoder& decoder,
@@ -253,7 +167,7 @@ void BusSession::feed(const BusChunk& chunk) {
     end_turn(previous);
   }
   if (chunk.bytes.empty()) return;
-  impl_->time_seen(chunk.time);
+  impl_->times.seen(chunk.time);
   Impl::DirectionStream& s = impl_->stream(chunk.direction);
   s.last_feed_time = chunk.time;
   s.reassembler.feed(chunk);
@@ -312,7 +226,7 @@ void BusSession::finish() {
   std::sort(order.begin(), order.end(),
             [](const auto* a, const auto* b) { return a->last_feed_time < b->last_feed_time; });
   for (auto* s : order) s->reassembler.finish();
-  if (m.options.has_timestamps && m.any_time) m.report(m.matcher.advance(m.last_time));
+  if (m.options.has_timestamps && m.times.any()) m.report(m.matcher.advance(m.times.last()));
   m.report(m.matcher.finish());
 }
 
@@ -351,11 +265,11 @@ BusReport BusSession::report() const {
   m.tally.fill(r);
   r.bytes = m.totals();
   r.has_timestamps = m.options.has_timestamps;
-  r.first_time = m.first_time;
-  r.last_time = m.last_time;
-  r.timing = m.timing.report(m.timestamp_quality());
+  r.first_time = m.times.first();
+  r.last_time = m.times.last();
+  r.timing = m.times.report(m.timestamp_quality());
   m.tally.fill_stations(r);
-  const auto readings = m.latest.decode(m.decoder);
+  const auto readings = m.replies.latest();
   for (StationSummary& s : r.stations) {
     for (const StationLatency& l : r.timing.latency_by_station) {
       if (l.station == s.station) s.latency = l.latency;
