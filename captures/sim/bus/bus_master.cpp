@@ -1,13 +1,9 @@
 #include "bus/bus_master.h"
 
 #include <algorithm>
-#include <cmath>
 
 #include "bus/frame_shapes.h"
 #include "faults/frame_damage.h"
-#include "plant/plant_registers.h"
-#include "pvtap/codec/frame_codec.h"
-#include "pvtap/codec/function_codes.h"
 
 namespace pvtap::sim {
 namespace {
@@ -16,60 +12,29 @@ constexpr Micros ms(double v) {
   return static_cast<Micros>(v * 1000.0);
 }
 
-DeviceNumber device_of(const RegisterImage& image) {
-  const WordList w = image.block(0x1060, 2);
-  return {static_cast<std::uint8_t>(w[0] >> 8),
-          static_cast<std::uint32_t>((w[0] & 0xFF) << 16 | w[1])};
-}
-
-// The bus event of a frame, its bytes from the core's encoder.
-BusEvent frame_event(const Frame& frame) {
-  BusEvent e;
-  e.bytes = encode_frame(frame);
-  e.dialect = frame.dialect;
-  e.role = frame.role;
-  e.station = frame.station;
-  e.function = frame.function;
-  return e;
+// The event as the line left it: its check bad, its values untrustworthy, and what a reader
+// can still make of its bytes.
+void mark_damaged(BusEvent& event, const FrameDamage& damage, FaultKind kind) {
+  event.fault = std::string(to_string(kind));
+  event.check_ok = false;
+  event.values.clear();  // a frame with a bad check carries no trustworthy values
+  if (damage.reading == DamageReading::Noise) {
+    event.kind = BusEvent::Kind::Noise;
+    return;
+  }
+  event.station = wire_station(event.bytes, event.dialect);
+  event.function = wire_function(event.bytes, event.dialect);
 }
 
 }  // namespace
 
-BusMaster::BusMaster(const SimConfig& config) : config_(config), random_(config.seed) {
+BusMaster::BusMaster(const SimConfig& config)
+    : config_(config), random_(config.seed), wire_(config.baud) {
   for (unsigned i = 0; i < config.inverters; ++i) {
     const auto station = static_cast<std::uint8_t>(config.first_station + i);
     const Dialect d = config.dialects[i % config.dialects.size()];
-    inverters_.push_back(
-        {station, d, PlantModel(station, config.seed, config.start), RegisterImage(d)});
+    inverters_.emplace_back(station, d, config.seed, config.start);
   }
-}
-
-Micros BusMaster::char_time(std::size_t bytes) const {
-  // 10 bits per character: start, 8 data, stop.
-  return static_cast<Micros>(std::llround(static_cast<double>(bytes) * 1e7 / config_.baud));
-}
-
-Micros BusMaster::put(BusEvent event, Micros at) {
-  event.start = at;
-  event.end = at + char_time(event.bytes.size());
-  const Micros end = event.end;
-  timeline_.events.push_back(std::move(event));
-  return end;
-}
-
-Micros BusMaster::put_noise(Micros at) {
-  BusEvent noise;
-  noise.kind = BusEvent::Kind::Noise;
-  noise.role = Role::Response;
-  noise.fault = "noise";
-  // High bytes (0xA0-0xFE): no function code, and above the stations of the usual buses,
-  // so the noise is not mistaken for the start of a frame.
-  const auto n = random_.between(3, 12);
-  while (noise.bytes.size() < static_cast<std::size_t>(n)) {
-    const auto b = static_cast<std::uint8_t>(random_.between(0xA0, 0xFE));
-    noise.bytes.push_back(b);
-  }
-  return put(std::move(noise), at);
 }
 
 std::optional<FaultKind> BusMaster::pick_fault(Dialect d) {
@@ -85,35 +50,10 @@ std::optional<FaultKind> BusMaster::pick_fault(Dialect d) {
   return std::nullopt;
 }
 
-// A reader can delimit a damaged frame only where both its ends are pinned, so damage goes
-// only where the start is: a request right after a frame (never noise), a reply (which follows
-// its own request) never after noise from the slave side either, as a gateway's reply stream
-// has no request in between. What follows pins the end: the master's timeout after a request,
-// a pause after a reply. Asked before the poll's request is on the bus.
-bool BusMaster::may_damage(Role role) const {
-  const auto& events = timeline_.events;
-  if (role == Role::Request) return !events.empty() && events.back().kind == BusEvent::Kind::Frame;
-  for (auto it = events.rbegin(); it != events.rend(); ++it)
-    if (it->role == Role::Response) return it->kind == BusEvent::Kind::Frame;
-  return true;
-}
-
 std::optional<FaultKind> BusMaster::placed(std::optional<FaultKind> fault) const {
-  if (fault == FaultKind::CorruptRequest && !may_damage(Role::Request)) return std::nullopt;
-  if (fault == FaultKind::Corrupt && !may_damage(Role::Response)) return std::nullopt;
+  if (fault == FaultKind::CorruptRequest && !wire_.may_damage(Role::Request)) return std::nullopt;
+  if (fault == FaultKind::Corrupt && !wire_.may_damage(Role::Response)) return std::nullopt;
   return fault;
-}
-
-void BusMaster::mark_damaged(BusEvent& event, const FrameDamage& damage, FaultKind kind) {
-  event.fault = std::string(to_string(kind));
-  event.check_ok = false;
-  event.values.clear();  // a frame with a bad check carries no trustworthy values
-  if (damage.reading == DamageReading::Noise) {
-    event.kind = BusEvent::Kind::Noise;
-    return;
-  }
-  event.station = wire_station(event.bytes, event.dialect);
-  event.function = wire_function(event.bytes, event.dialect);
 }
 
 Micros BusMaster::timeout_after(Micros request_end) {
@@ -122,59 +62,43 @@ Micros BusMaster::timeout_after(Micros request_end) {
 
 Micros BusMaster::send_damaged_requests(const Inverter& inv, const PollBlock& block, Micros at) {
   for (unsigned sent = 1;; ++sent) {
-    BusEvent req = frame_event(read_request(inv.dialect, inv.station, block));
-    const FrameDamage damage = damage_frame(req.bytes, inv.dialect, random_);
+    BusEvent req = frame_event(read_request(inv.dialect(), inv.station(), block));
+    const FrameDamage damage = damage_frame(req.bytes, inv.dialect(), random_);
     mark_damaged(req, damage, FaultKind::CorruptRequest);
     const std::uint8_t station = req.station, function = req.function;
-    const Micros end = put(std::move(req), at);
+    const Micros end = wire_.put(std::move(req), at);
     timeline_.faults.push_back(
-        {end, inv.station, std::string(to_string(FaultKind::CorruptRequest))});
+        {end, inv.station(), std::string(to_string(FaultKind::CorruptRequest))});
     // An ASCII request damaged into noise is no request at all to a reader.
     if (damage.reading == DamageReading::BadCheckFrame)
       timeline_.unanswered_damaged_requests.push_back({at, end, station, function});
     at = timeout_after(end);
     if (sent == kMaxDamagedRun || !random_.percent(kDamagedRetryPercent) ||
-        !may_damage(Role::Request))
+        !wire_.may_damage(Role::Request))
       return at;
   }
 }
 
 Micros BusMaster::poll(Inverter& inv, const PollBlock& block, Micros at) {
-  const std::optional<FaultKind> fault = placed(pick_fault(inv.dialect));
+  const std::optional<FaultKind> fault = placed(pick_fault(inv.dialect()));
   if (fault == FaultKind::CorruptRequest) return send_damaged_requests(inv, block, at);
-  const Micros request_end = put(frame_event(read_request(inv.dialect, inv.station, block)), at);
-  if (fault) timeline_.faults.push_back({request_end, inv.station, std::string(to_string(*fault))});
+  const Micros request_end =
+      wire_.put(frame_event(read_request(inv.dialect(), inv.station(), block)), at);
+  if (fault)
+    timeline_.faults.push_back({request_end, inv.station(), std::string(to_string(*fault))});
   if (fault == FaultKind::Missing) {
-    timeline_.timeouts.push_back({at, request_end, inv.station, block.function});
+    timeline_.timeouts.push_back({at, request_end, inv.station(), block.function});
     return timeout_after(request_end);
   }
   return answer(inv, block, fault, {at, request_end});
 }
 
-BusEvent BusMaster::reply_event(Inverter& inv, const PollBlock& block,
-                                std::optional<FaultKind> fault, Micros request_end) {
-  inv.plant.advance(request_end);
-  fill_registers(inv.plant, inv.image, inv.dialect);
-  PollBlock sent = block;
-  if (fault == FaultKind::CountMismatch) sent.count = static_cast<std::uint16_t>(block.count - 1);
-  Frame reply = fault == FaultKind::ErrorReply
-                    ? error_reply(inv.dialect, inv.station, block, device_of(inv.image),
-                                  random_.percent(50) ? 0x02 : 0x06)
-                    : read_reply(inv.dialect, inv.station, block,
-                                 inv.image.block(sent.start, sent.count), device_of(inv.image));
-  BusEvent rep = frame_event(reply);
-  // The first copy of a duplicated reply is an ordinary reply; the second is the fault.
-  if (fault && fault != FaultKind::Duplicate) rep.fault = std::string(to_string(*fault));
-  if (fault != FaultKind::ErrorReply) rep.values = inv.image.truth(sent.start, sent.count);
-  return rep;
-}
-
 Micros BusMaster::answer(Inverter& inv, const PollBlock& block, std::optional<FaultKind> fault,
                          TimeoutTruth request) {
-  BusEvent rep = reply_event(inv, block, fault, request.request_end);
+  BusEvent rep = inv.reply(block, fault, request.request_end, random_);
   std::optional<FrameDamage> damage;
   if (fault == FaultKind::Corrupt) {
-    damage = damage_frame(rep.bytes, inv.dialect, random_);
+    damage = damage_frame(rep.bytes, inv.dialect(), random_);
     mark_damaged(rep, *damage, FaultKind::Corrupt);
   }
   // A slow reply still comes inside the master's timeout: late, not lost.
@@ -184,10 +108,10 @@ Micros BusMaster::answer(Inverter& inv, const PollBlock& block, std::optional<Fa
                     ? random_.between(std::min<std::int64_t>(300, slow_max), slow_max) * 1000
                     : random_.between(15, 60) * 1000;
   BusEvent copy = rep;
-  Micros end = put(std::move(rep), request.request_end + copy.latency);
+  Micros end = wire_.put(std::move(rep), request.request_end + copy.latency);
   if (damage && damage->reading == DamageReading::Noise) {
     // No reply a reader can see: the request timed out, and the master waited it out.
-    request.station = inv.station;
+    request.station = inv.station();
     request.function = block.function;
     timeline_.timeouts.push_back(request);
     return std::max(end, timeout_after(request.request_end));
@@ -198,15 +122,16 @@ Micros BusMaster::answer(Inverter& inv, const PollBlock& block, std::optional<Fa
     const Micros gap = random_.between(8, 15) * 1000;
     copy.latency = end + gap - request.request_end;
     copy.fault = std::string(to_string(FaultKind::Duplicate));
-    end = put(std::move(copy), end + gap);
+    end = wire_.put(std::move(copy), end + gap);
   }
-  if (fault == FaultKind::Noise) end = put_noise(end + random_.between(8, 20) * 1000);
+  if (fault == FaultKind::Noise)
+    end = wire_.put_noise(end + random_.between(8, 20) * 1000, random_);
   return end + random_.between(20, 60) * 1000;
 }
 
 void BusMaster::set_aside_unexpired_timeouts() {
-  if (timeline_.events.empty()) return;
-  const Micros last = timeline_.events.back().end;
+  if (wire_.events().empty()) return;
+  const Micros last = wire_.events().back().end;
   const Micros wait = ms(config_.timeout_s * 1000.0);
   auto& pending = timeline_.timeouts;
   while (!pending.empty() && pending.back().request_end + wait > last) {
@@ -218,13 +143,13 @@ void BusMaster::set_aside_unexpired_timeouts() {
 // A capture that ends on a damaged request would leave a reader to guess whether its slave
 // ignored it or had no time to answer: the master polls once more, without faults.
 void BusMaster::close_on_a_good_frame(Micros at) {
-  const auto& events = timeline_.events;
+  const auto& events = wire_.events();
   if (events.empty() || events.back().kind != BusEvent::Kind::Frame ||
       events.back().role != Role::Request || events.back().check_ok)
     return;
   closing_ = true;
   Inverter& inv = inverters_.front();
-  for (const PollBlock& block : poll_blocks(inv.dialect)) {
+  for (const PollBlock& block : poll_blocks(inv.dialect())) {
     if (block.first_round_only) continue;
     poll(inv, block, at);
     return;
@@ -237,7 +162,7 @@ BusTimeline BusMaster::run() {
   for (unsigned round = 0; round_start < stop; ++round) {
     Micros at = round_start + random_.between(0, 30) * 1000;  // the logger's own jitter
     for (Inverter& inv : inverters_) {
-      for (const PollBlock& block : poll_blocks(inv.dialect)) {
+      for (const PollBlock& block : poll_blocks(inv.dialect())) {
         if (block.first_round_only && round > 0) continue;
         at = poll(inv, block, at);
       }
@@ -246,6 +171,7 @@ BusTimeline BusMaster::run() {
   }
   close_on_a_good_frame(round_start);  // the next round's first poll
   set_aside_unexpired_timeouts();
+  timeline_.events = wire_.take_events();
   return std::move(timeline_);
 }
 

@@ -1,16 +1,16 @@
-// BusMaster: plays a data logger polling every inverter of the bus in rounds and the
-// inverters answering, faults included; the result is the timeline of bus bytes.
+// BusMaster: plays a data logger polling every inverter of the bus in rounds, faults
+// included; the result is the timeline of bus bytes.
 #pragma once
 
 #include <optional>
 #include <vector>
 
 #include "bus/bus_event.h"
+#include "bus/bus_wire.h"
+#include "bus/inverter.h"
 #include "bus/poll_blocks.h"
 #include "command/sim_config.h"
-#include "faults/frame_damage.h"
-#include "plant/plant_model.h"
-#include "plant/register_image.h"
+#include "faults/fault_plan.h"
 #include "sim_random.h"
 
 namespace pvtap::sim {
@@ -21,13 +21,6 @@ class BusMaster {
   BusTimeline run();
 
  private:
-  struct Inverter {
-    std::uint8_t station;
-    Dialect dialect;
-    PlantModel plant;
-    RegisterImage image;
-  };
-
   // Sends one request and its reply (or the lack of one); returns when the bus is free.
   Micros poll(Inverter& inv, const PollBlock& block, Micros at);
   // A run of damaged requests for one block: the slave ignores each one, the master waits out
@@ -37,18 +30,11 @@ class BusMaster {
   // The reply to a request (the bus is free at the returned time).
   Micros answer(Inverter& inv, const PollBlock& block, std::optional<FaultKind> fault,
                 TimeoutTruth request);
-  BusEvent reply_event(Inverter& inv, const PollBlock& block, std::optional<FaultKind> fault,
-                       Micros request_end);
   std::optional<FaultKind> pick_fault(Dialect d);
-  bool may_damage(Role role) const;
-  // The fault, or none where its damage could not be pinned (see may_damage).
+  // The fault, or none where its damage could not be pinned (see BusWire::may_damage).
   std::optional<FaultKind> placed(std::optional<FaultKind> fault) const;
-  static void mark_damaged(BusEvent& event, const FrameDamage& damage, FaultKind kind);
   Micros timeout_after(Micros request_end);
   void close_on_a_good_frame(Micros at);
-  Micros put(BusEvent event, Micros at);
-  Micros put_noise(Micros at);
-  Micros char_time(std::size_t bytes) const;
   void set_aside_unexpired_timeouts();
 
   static constexpr unsigned kDamagedRetryPercent = 30;
@@ -58,7 +44,8 @@ class BusMaster {
   SimConfig config_;
   SimRandom random_;
   std::vector<Inverter> inverters_;
-  BusTimeline timeline_;
+  BusWire wire_;
+  BusTimeline timeline_;  // the ground truth; its events stay on wire_ until the run ends
   bool closing_ = false;  // the last poll of a run: no faults
 };
 

@@ -1,5 +1,6 @@
 #include "bus/frame_shapes.h"
 
+#include "pvtap/codec/frame_codec.h"
 #include "pvtap/codec/function_codes.h"
 
 namespace pvtap::sim {
@@ -46,6 +47,16 @@ Frame error_reply(Dialect d, std::uint8_t station, const PollBlock& block, Devic
                        static_cast<std::uint8_t>(block.function | fc::kExceptionFlag));
   f.exception_code = gsl_code;
   return f;
+}
+
+BusEvent frame_event(const Frame& frame) {
+  BusEvent e;
+  e.bytes = encode_frame(frame);
+  e.dialect = frame.dialect;
+  e.role = frame.role;
+  e.station = frame.station;
+  e.function = frame.function;
+  return e;
 }
 
 }  // namespace pvtap::sim

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 
+#include "bus/bus_event.h"
 #include "bus/poll_blocks.h"
 #include "pvtap/codec/frame.h"
 
@@ -16,5 +17,8 @@ Frame read_reply(Dialect d, std::uint8_t station, const PollBlock& block, const 
 // GSL exception (code 0x02 or 0x06) or Hybrid 0xFF error reply; ASCII has none.
 Frame error_reply(Dialect d, std::uint8_t station, const PollBlock& block, DeviceNumber device,
                   std::uint8_t gsl_code);
+
+// The bus event of a frame, its bytes from the core's encoder.
+BusEvent frame_event(const Frame& frame);
 
 }  // namespace pvtap::sim

@@ -2,17 +2,13 @@
 // ahead of the caller, so that libpcap's reading overlaps the analysis of earlier records.
 #pragma once
 
-#include <condition_variable>
 #include <cstdint>
-#include <deque>
 #include <memory>
-#include <mutex>
-#include <span>
 #include <string>
-#include <thread>
-#include <vector>
 
 #include "pvtap/capture/capture_file.h"
+#include "pvtap/capture/read_ahead_thread.h"
+#include "pvtap/capture/record_batch.h"
 
 namespace pvtap {
 
@@ -25,7 +21,6 @@ class ReadAheadCapture {
 
   // `read_ahead` false reads on the caller's thread, record by record, as CaptureFile does.
   explicit ReadAheadCapture(bool read_ahead) : read_ahead_(read_ahead) {}
-  ~ReadAheadCapture();
   ReadAheadCapture(const ReadAheadCapture&) = delete;
   ReadAheadCapture& operator=(const ReadAheadCapture&) = delete;
 
@@ -46,44 +41,12 @@ class ReadAheadCapture {
   std::uint64_t position() const { return read_ahead_ ? position_ : file_.position(); }
 
  private:
-  struct Slot {
-    double time;
-    std::uint32_t offset;
-    std::uint32_t size;
-    std::uint32_t length_on_wire;
-  };
-  // Batch: consecutive records, and how the file went on after the last of them.
-  struct Batch {
-    // Records' bytes, back to back; a plain buffer, since a vector's resize would zero what
-    // the copy overwrites at once. `capacity` grows only for a record larger than a batch.
-    std::unique_ptr<std::uint8_t[]> bytes;
-    std::size_t capacity = 0;
-    std::size_t used = 0;
-    std::vector<Slot> slots;
-    std::uint64_t position = 0;
-    CaptureFile::Next after = CaptureFile::Next::Packet;  // End or Truncated: the last batch
-    std::string error;
-  };
-
-  void read_batches();                   // the reading thread
-  CaptureFile::Next fill(Batch& batch);  // reads records until the batch is full
-  static void append(Batch& batch, std::span<const std::uint8_t> bytes);
-  std::unique_ptr<Batch> take_free_batch();  // nullptr once stopped
-  void take_full_batch();                    // the caller's side: waits for the next batch
-
   const bool read_ahead_;
   CaptureFile file_;
-  std::thread reader_;
-
-  std::mutex mutex_;
-  std::condition_variable changed_;
-  std::deque<std::unique_ptr<Batch>> full_;
-  std::vector<std::unique_ptr<Batch>> free_;
-  bool stopping_ = false;
+  ReadAheadThread ahead_;  // after file_: it stops reading before the file closes
 
   // The caller's side, touched by its thread only.
-  std::unique_ptr<Batch> current_;
-  std::size_t next_slot_ = 0;
+  std::unique_ptr<RecordBatch> current_;
   std::uint64_t packets_ = 0;
   std::uint64_t position_ = 0;
   std::string error_;
