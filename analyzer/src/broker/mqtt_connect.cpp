@@ -76,11 +76,6 @@ const char* or_null(const std::string& s) {
 
 }  // namespace
 
-std::string MqttClient::Impl::log_detail() {
-  std::lock_guard lock(log_mutex);
-  return last_error_log.empty() ? std::string() : " (" + last_error_log + ")";
-}
-
 std::string MqttClient::Impl::where() const {
   return "MQTT broker " + config.broker.host + ":" + std::to_string(config.broker.port);
 }
@@ -92,6 +87,7 @@ bool MqttClient::Impl::configure(std::string& error) {
     error = "cannot create an MQTT client: " + std::string(std::strerror(errno));
     return false;
   }
+  outbox.attach(mosq);
   mosquitto_int_option(mosq, MOSQ_OPT_PROTOCOL_VERSION, MQTT_PROTOCOL_V311);
   mosquitto_connect_callback_set(mosq, connect_cb);
   mosquitto_disconnect_callback_set(mosq, disconnect_cb);
@@ -126,7 +122,7 @@ bool MqttClient::Impl::connect_now(std::string& error) {
   if (rc != MOSQ_ERR_SUCCESS) {
     const std::string why = connect_failure(rc, errno, config.broker);
     error = "cannot connect to " + where() + ": " + why;
-    if (rc == MOSQ_ERR_TLS) error += log_detail();
+    if (rc == MOSQ_ERR_TLS) error += last_error.detail();
     return false;
   }
   const auto deadline =
@@ -136,7 +132,7 @@ bool MqttClient::Impl::connect_now(std::string& error) {
     if (rc != MOSQ_ERR_SUCCESS && connack.load() < 0) {
       const std::string why = connect_failure(rc, errno, config.broker);
       error = "connection to " + where() + " failed: " + why;
-      error += log_detail();
+      error += last_error.detail();
       return false;
     }
   }
@@ -153,7 +149,7 @@ bool MqttClient::Impl::connect_now(std::string& error) {
   }
   loop_running = true;
   std::lock_guard lock(mutex);
-  starting = false;
+  warnings.running();
   return true;
 }
 
@@ -169,8 +165,7 @@ MqttClient::Impl::~Impl() {
 
 void MqttClient::Impl::on_log(int level, const char* text) {
   if (level != MOSQ_LOG_ERR || text == nullptr) return;
-  std::lock_guard lock(log_mutex);
-  last_error_log = text;
+  last_error.keep(text);
 }
 
 std::unique_ptr<MqttClient> MqttClient::connect(const MqttClientConfig& config,

@@ -65,7 +65,7 @@ GatewayTraffic::Connection* GatewayTraffic::find_or_open(const Segment& s) {
   const bool syn_only = s.transport == Transport::Tcp &&
                         (s.flags & (tcp_flag::kSyn | tcp_flag::kAck)) == tcp_flag::kSyn;
   if (it != flows_.end() && syn_only &&
-      it->second->stream(Direction::ToSlave).stats().delivered_bytes > 0) {
+      it->second->streams.stream(Direction::ToSlave).stats().delivered_bytes > 0) {
     close(it, 0.0);  // the same ports reused for a new connection
     it = flows_.end();
   }
@@ -93,10 +93,7 @@ void GatewayTraffic::on_segment(const Segment& segment, double time) {
   Connection* c = find_or_open(segment);
   if (c == nullptr) return;
   c->on_segment(segment, time);
-  if (c->transport == Transport::Tcp && c->closed() && !c->to_slave_stream.has_hole() &&
-      !c->from_slave_stream.has_hole()) {
-    close(flows_.find(key_of(segment)), time);
-  }
+  if (c->streams.ended()) close(flows_.find(key_of(segment)), time);
 }
 
 void GatewayTraffic::close(std::map<FlowKey, std::unique_ptr<Connection>>::iterator it,
@@ -112,8 +109,7 @@ void GatewayTraffic::expire_old_state(double now) {
   last_expiry_ = now;
   for (auto it = flows_.begin(); it != flows_.end();) {
     Connection& c = *it->second;
-    c.to_slave_stream.expire(now);
-    c.from_slave_stream.expire(now);
+    c.streams.expire(now);
     const auto next = std::next(it);
     if (now - c.last_seen > kIdleFlow) close(it, now);
     it = next;

@@ -2,19 +2,18 @@
 // text, jsonl and csv ones, plus a periodic tick for what is published per interval.
 #pragma once
 
-#include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 
 #include "broker/mqtt_client.h"
 #include "events/event_writer.h"
-#include "formatting/output_stream.h"
-#include "mqtt/bus_health.h"
+#include "mqtt/event_lines.h"
 #include "mqtt/mqtt_options.h"
 #include "mqtt/mqtt_topics.h"
-#include "mqtt/station_table.h"
-#include "writers/value_json_cache.h"
+#include "mqtt/publish_schedule.h"
+#include "mqtt/retained_topics.h"
 
 namespace pvtap::analyzer {
 
@@ -41,9 +40,7 @@ class MqttPublisher : public EventWriter {
   // The capture clock reads `now`: publishes what is due. Cheap when nothing is.
   void tick(double now);
   // When tick() next has something to publish; nullopt before the first tick.
-  std::optional<double> next_due() const {
-    return next_tick_ > 0 ? std::optional<double>(next_tick_) : std::nullopt;
-  }
+  std::optional<double> next_due() const { return schedule_.next_due(); }
   // A serial tap's driver counters (or none: not counted), for the health of its bus.
   void line_errors(std::string_view bus, const std::optional<LineErrorCounts>& counts);
   // End of input: publishes everything held, then (live) offline; waits a little for the
@@ -51,42 +48,16 @@ class MqttPublisher : public EventWriter {
   void finish(double now);
 
  private:
-  struct Bus {
-    std::string name;
-    std::string level;
-    StationTable stations;
-    BusHealth health;
-    bool health_discovered = false;
-  };
   MqttPublisher(std::unique_ptr<MqttClient> client, const MqttOptions& options, std::string prefix,
                 bool live);
 
-  Bus& bus_of(const EventContext& c);
-  void publish_due(double now);
-  void pace();
-  void publish_event_line(const Bus& bus);
-  void judge_availability(Bus& bus, double now);
-  void publish_retained(Bus& bus, double now);
-  void publish_station(Bus& bus, StationState& s);
-  void publish_discovery(Bus& bus, StationState& s);
-  void publish_health(Bus& bus, double now);
-  void forget_published();
+  void publish_event(const MqttBus& bus, std::string line);
 
   std::unique_ptr<MqttClient> client_;
   MqttTopics topics_;
-  double interval_;
-  bool discovery_;
-  bool live_;
-  std::map<std::string, Bus, std::less<>> buses_;
-  // The jsonl writer renders each event's line into `line_`'s buffer, taken out at once (one
-  // line never reaches the flush size, so nothing is ever written to the sink).
-  std::FILE* line_sink_ = nullptr;
-  std::unique_ptr<OutputStream> line_;
-  std::unique_ptr<EventWriter> jsonl_;
-  ValueJsonCache values_;
-  std::string scratch_;
-  double next_tick_ = 0;
-  std::uint64_t connections_seen_ = 0;
+  PublishSchedule schedule_;
+  RetainedTopics retained_;
+  EventLines lines_;
   bool finished_ = false;
 };
 

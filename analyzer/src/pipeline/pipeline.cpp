@@ -3,6 +3,16 @@
 #include "pvtap/session/carrier_timing.h"
 
 namespace pvtap::analyzer {
+namespace {
+
+void feed(BusSession& bus, const SerialBytes& serial) {
+  const double time = serial.chunk.time;
+  if (serial.lost_before) bus.data_lost(Direction::Unknown, time, std::nullopt);
+  bus.feed(serial.chunk);
+  if (serial.lost_after > 0) bus.data_lost(Direction::Unknown, time, serial.lost_after);
+}
+
+}  // namespace
 
 Pipeline::Pipeline(const PipelineSettings& settings, const RegisterDecoder& decoder,
                    EventWriter& events)
@@ -10,14 +20,17 @@ Pipeline::Pipeline(const PipelineSettings& settings, const RegisterDecoder& deco
       buses_(decoder, events),
       gateway_(GatewayOptions{settings.ports, settings.dialects, 2.0}, *this) {}
 
-Pipeline::~Pipeline() = default;
-
 void Pipeline::begin_input(int link_type, bool batched_serial) {
-  link_type_ = link_type;
-  kind_ = input_kind_of(link_type).value_or(InputKind::Serial);
-  // The first input decides how the one serial bus reads its timestamps.
-  if (kind_ == InputKind::Serial && serial_timing_open()) batched_serial_ = batched_serial;
-  network_ = network_ || kind_ == InputKind::Network;
+  input_.begin(link_type, batched_serial, serial_timing_open());
+}
+
+void Pipeline::record(const CapturedPacket& packet) {
+  const RecordContent content = input_.read(packet);
+  if (const auto* serial = std::get_if<SerialBytes>(&content)) {
+    feed(serial_bus(serial->kind), *serial);
+  } else if (const auto* segment = std::get_if<Segment>(&content)) {
+    gateway_.on_segment(*segment, packet.time);
+  }
 }
 
 BusSessionOptions Pipeline::bus_options(InputKind kind) const {
@@ -26,23 +39,9 @@ BusSessionOptions Pipeline::bus_options(InputKind kind) const {
   o.reassembler.baud = settings_.baud;
   o.matcher.timeout = settings_.timeout;
   o.decode_values = settings_.decode_values;
-  apply_carrier_timing(CarrierTiming{carrier_of(kind), settings_.gateway_gap_ms / 1000.0, {}}, o);
+  const Carrier carrier = input_.carrier_of(kind, settings_.has_timestamps);
+  apply_carrier_timing(CarrierTiming{carrier, settings_.gateway_gap_ms / 1000.0, {}}, o);
   return o;
-}
-
-Carrier Pipeline::carrier_of(InputKind kind) const {
-  if (!settings_.has_timestamps) return Carrier::PlainDump;
-  switch (kind) {
-    case InputKind::Network:
-      return Carrier::GatewaySegments;
-    case InputKind::ExportedPdu:
-      return Carrier::ExportedPdus;
-    case InputKind::Serial:
-      return batched_serial_ ? Carrier::SerialBatches : Carrier::SerialCharacters;
-    case InputKind::RtacSerial:
-      break;
-  }
-  return Carrier::SerialCharacters;
 }
 
 BusSession& Pipeline::add_bus(const std::string& name, const BusSessionOptions& options) {
@@ -82,10 +81,10 @@ AuditReport Pipeline::report() const {
   r.settings.has_timestamps = settings_.has_timestamps;
   r.settings.gsl_ids = settings_.gsl_ids;
   r.buses = buses_.findings();
-  r.network = network_;
+  r.network = input_.network();
   r.flows = gateway_.stats();
-  r.skipped = skipped_;
-  r.latency = tally().latency().summary();
+  r.skipped = input_.skipped();
+  r.latency = buses_.tally().latency().summary();
   return r;
 }
 

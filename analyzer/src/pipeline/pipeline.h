@@ -12,6 +12,7 @@
 #include "events/event_writer.h"
 #include "gateway/gateway_traffic.h"
 #include "pipeline/bus_set.h"
+#include "pipeline/input_records.h"
 #include "pvtap/capture/capture_file.h"
 #include "pvtap/capture/link_types.h"
 #include "pvtap/session/bus_session.h"
@@ -38,7 +39,6 @@ class Pipeline : private BusProvider {
  public:
   // Every event goes to `events`, after its bus has counted it.
   Pipeline(const PipelineSettings& settings, const RegisterDecoder& decoder, EventWriter& events);
-  ~Pipeline();
 
   // Records of the next input have this link type; `batched_serial`: its serial records are
   // read chunks (timestamps batched), not one character each.
@@ -54,8 +54,6 @@ class Pipeline : private BusProvider {
   // A bus fed by its source directly (a serial tap).
   BusSession& add_bus(const std::string& name, const BusSessionOptions& options);
   BusSessionOptions bus_options(InputKind kind) const;
-  // How the bytes of that kind of input reach pvtap, for what their timestamps prove.
-  Carrier carrier_of(InputKind kind) const;
 
   // Live sources: every bus has been silent until `now`.
   void idle(double now);
@@ -64,29 +62,19 @@ class Pipeline : private BusProvider {
   // End of input at `time`: every byte decided, every waiting request judged.
   void finish(double time);
 
-  // What the buses counted so far: merged (latency included), or the counts alone.
-  EventTally tally() const { return buses_.tally(); }
-  EventCounts counts() const { return buses_.counts(); }
-  ReassemblerTotals totals() const { return buses_.totals(); }
+  // The buses, for what they counted so far (tally(), counts(), totals()).
+  const BusSet& buses() const { return buses_; }
   // The report of what was found; the caller adds its inputs, --write and live sources.
   AuditReport report() const;
 
  private:
   BusSession& serial_bus(InputKind kind);
   BusSession& gateway_bus(const std::string& name) override;
-  void on_network_packet(const CapturedPacket& packet);
-  void on_exported_pdu(const CapturedPacket& packet);
-  void on_serial_record(const CapturedPacket& packet);
-  void on_rtac_record(const CapturedPacket& packet);
 
   PipelineSettings settings_;
   BusSet buses_;
   GatewayTraffic gateway_;
-  int link_type_ = -1;
-  InputKind kind_ = InputKind::Serial;
-  bool batched_serial_ = false;
-  bool network_ = false;
-  SkippedRecords skipped_;
+  InputRecords input_;
 };
 
 }  // namespace pvtap::analyzer

@@ -25,8 +25,8 @@ void wait_for_packets(int fd, double wake_at) {
 InterfaceReport interface_report(const LiveCapture& capture, const std::string& name) {
   InterfaceReport r;
   r.name = name;
-  r.filter = capture.filter();
-  r.link_type = capture.link_type_name();
+  r.filter = capture.setup().filter;
+  r.link_type = capture.setup().link_type_name();
   r.packets = capture.packets();
   const LiveDrops drops = capture.drops();
   r.dropped = drops.kernel;
@@ -44,11 +44,11 @@ bool open_capture(LiveCapture& capture, const LiveOptions& live,
                  capture.error().c_str());
     return false;
   }
-  for (const std::string& warning : capture.warnings()) {
+  for (const std::string& warning : capture.setup().warnings) {
     std::fprintf(stderr, "pvtap: %s: %s\n", name.c_str(), warning.c_str());
   }
   std::fprintf(stderr, "pvtap: capturing on %s, link type %s, filter \"%s\"\n", name.c_str(),
-               capture.link_type_name().c_str(), capture.filter().c_str());
+               capture.setup().link_type_name().c_str(), capture.setup().filter.c_str());
   return true;
 }
 
@@ -69,7 +69,7 @@ InterfaceSource::InterfaceSource(const LiveOptions& live, const std::vector<std:
 bool InterfaceSource::open() {
   if (!open_capture(capture_, live_, ports_)) return false;
   // Records are decoded by the link type, as those of a capture file.
-  pipeline_.begin_input(capture_.link_type(), false);
+  pipeline_.begin_input(capture_.setup().link_type, false);
   return true;
 }
 

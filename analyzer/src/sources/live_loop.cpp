@@ -25,7 +25,7 @@ LiveLoop::LiveLoop(const LiveOptions& options, Pipeline& pipeline, RunOutput& ou
       started_(wall_clock_seconds()) {}
 
 bool LiveLoop::count_reached() const {
-  return options_.count > 0 && pipeline_.counts().frames >= options_.count;
+  return options_.count > 0 && pipeline_.buses().counts().frames >= options_.count;
 }
 
 bool LiveLoop::should_stop() const {
@@ -53,8 +53,8 @@ void LiveLoop::after_wake(double now) {
 }
 
 void LiveLoop::show_status(double now) {
-  const ReassemblerTotals sum = pipeline_.totals();
-  const EventTally tally = pipeline_.tally();
+  const ReassemblerTotals sum = pipeline_.buses().totals();
+  const EventTally tally = pipeline_.buses().tally();
   const std::optional<TimedLatency> last = tally.last_latency();
   const std::optional<double> latency = last ? std::optional<double>(last->latency) : std::nullopt;
   char text[160];

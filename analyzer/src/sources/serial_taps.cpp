@@ -71,7 +71,7 @@ void SerialTaps::run(LiveLoop& loop, LiveSources& live) {
   while (!loop.should_stop()) {
     wait(next_wake(now));
     for (auto& tap : taps_) {
-      if (tap->device.fd() >= 0) read(*tap, buffer);
+      if (tap->device.port().fd() >= 0) read(*tap, buffer);
     }
     now = wall_clock_seconds();
     after_wake(now);
@@ -99,7 +99,8 @@ double SerialTaps::next_wake(double now) const {
   // The buses' own deadlines (the end of a t3.5 silence, a reply timeout) are in the loop's.
   double wake = std::min(loop_->wake_at(now), next_sample_);
   for (const auto& tap : taps_) {
-    if (tap->device.gone()) wake = std::min(wake, tap->device.next_attempt());
+    const DeviceOutage& outage = tap->device.outage();
+    if (outage.ongoing()) wake = std::min(wake, outage.next_attempt());
   }
   return wake;
 }
@@ -107,7 +108,8 @@ double SerialTaps::next_wake(double now) const {
 void SerialTaps::wait(double wake_at) {
   std::vector<pollfd> fds;
   for (const auto& tap : taps_) {
-    if (tap->device.fd() >= 0) fds.push_back(pollfd{tap->device.fd(), POLLIN, 0});
+    const int fd = tap->device.port().fd();
+    if (fd >= 0) fds.push_back(pollfd{fd, POLLIN, 0});
   }
   const timespec timeout = timeout_until(wake_at);
   // EINTR (a stop signal) just ends the wait; the loop then sees the request.
@@ -147,8 +149,9 @@ void SerialTaps::lose(Tap& tap, double now) {
 
 void SerialTaps::revive(double now) {
   for (auto& tap : taps_) {
-    if (!tap->device.gone() || now < tap->device.next_attempt()) continue;
-    const double since = tap->device.outage_started();
+    const DeviceOutage& outage = tap->device.outage();
+    if (!outage.ongoing() || now < outage.next_attempt()) continue;
+    const double since = outage.since();
     if (!tap->device.try_reopen(now)) continue;
     tap->quiet_until = now;
     loop_->make_room_on_stderr();
@@ -160,7 +163,7 @@ void SerialTaps::after_wake(double now) {
   revive(now);
   for (auto& tap : taps_) {
     // A tap that is gone has nothing unread: its timeouts run on the clock.
-    tap->bus->idle(tap->device.fd() >= 0 ? tap->quiet_until : now);
+    tap->bus->idle(tap->device.port().fd() >= 0 ? tap->quiet_until : now);
   }
   loop_->after_wake(now);
 }

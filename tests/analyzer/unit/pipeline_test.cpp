@@ -88,7 +88,7 @@ TEST_F(PipelineTest, SerialRecordsPairIntoTransactionsWithLatency) {
   EXPECT_EQ(report.buses[0].name, "");
   EXPECT_EQ(report.totals().transactions, 1u);
   EXPECT_EQ(report.totals().bytes.bytes_in, request.size() + reply.size());
-  EXPECT_EQ(pipeline.counts().frames, 2u);
+  EXPECT_EQ(pipeline.buses().counts().frames, 2u);
   EXPECT_EQ(report.latency.count, 1u);
 }
 
@@ -103,7 +103,7 @@ TEST_F(PipelineTest, TheLiveClockJudgesATimeoutBeforeTheInputEnds) {
   pipeline.idle(51.0);
   ASSERT_EQ(events_.timeouts.size(), 1u);
   EXPECT_EQ(events_.timeouts[0], UnansweredKind::Timeout);
-  EXPECT_EQ(pipeline.counts().timeouts, 1u);
+  EXPECT_EQ(pipeline.buses().counts().timeouts, 1u);
   pipeline.finish(51.0);
   EXPECT_EQ(pipeline.report().totals().timeouts, 1u);
 }

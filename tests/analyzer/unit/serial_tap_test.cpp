@@ -187,17 +187,17 @@ TEST(DeviceTap, RetriesAfterADoublingBackoffAndCountsTheOutage) {
   DeviceTap tap("/dev/pvtap-no-such-tty", 9600, SerialLine{});
   EXPECT_FALSE(tap.open());
   tap.went_away(100.0);
-  EXPECT_TRUE(tap.gone());
-  EXPECT_DOUBLE_EQ(tap.next_attempt(), 100.1);
+  EXPECT_TRUE(tap.outage().ongoing());
+  EXPECT_DOUBLE_EQ(tap.outage().next_attempt(), 100.1);
   EXPECT_FALSE(tap.try_reopen(100.1));
-  EXPECT_DOUBLE_EQ(tap.next_attempt(), 100.3);
+  EXPECT_DOUBLE_EQ(tap.outage().next_attempt(), 100.3);
   double now = 100.3;
   for (int i = 0; i < 10; ++i) {
     EXPECT_FALSE(tap.try_reopen(now));
-    if (i < 10 - 1) now = tap.next_attempt();
+    if (i < 10 - 1) now = tap.outage().next_attempt();
   }
   // 0.1, 0.2, 0.4, ... doubles up to 2 s and stays there.
-  EXPECT_DOUBLE_EQ(tap.next_attempt() - now, 2.0);
+  EXPECT_DOUBLE_EQ(tap.outage().next_attempt() - now, 2.0);
   const DeviceReport report = tap.report(now + 1.0);
   EXPECT_EQ(report.outages, 1u);
   EXPECT_TRUE(report.lost_at_end);
@@ -218,7 +218,7 @@ TEST(DeviceTap, ComesBackWhenThePathLeadsToADeviceAgain) {
   Pty second;
   fs::create_symlink(second.path(), link);
   EXPECT_TRUE(tap.try_reopen(10.3));
-  EXPECT_FALSE(tap.gone());
+  EXPECT_FALSE(tap.outage().ongoing());
   const DeviceReport report = tap.report(11.0);
   EXPECT_EQ(report.outages, 1u);
   EXPECT_FALSE(report.lost_at_end);

@@ -1,0 +1,109 @@
+// InputRecords: one capture record, by the kind of input its link type makes it.
+#include "pipeline/input_records.h"
+
+#include "pvtap/capture/exported_pdu_reader.h"
+#include "pvtap/capture/exported_pdu_tags.h"
+#include "pvtap/capture/rtac_record.h"
+
+namespace pvtap::analyzer {
+namespace {
+
+SerialBytes serial_record(const CapturedPacket& packet) {
+  SerialBytes serial;
+  serial.chunk = BusChunk{packet.bytes, packet.time, Direction::Unknown};
+  if (packet.length_on_wire > packet.bytes.size()) {
+    serial.lost_after = packet.length_on_wire - packet.bytes.size();
+  }
+  return serial;
+}
+
+}  // namespace
+
+void InputRecords::begin(int link_type, bool batched_serial, bool serial_timing_open) {
+  link_type_ = link_type;
+  kind_ = input_kind_of(link_type).value_or(InputKind::Serial);
+  if (kind_ == InputKind::Serial && serial_timing_open) batched_serial_ = batched_serial;
+  network_ = network_ || kind_ == InputKind::Network;
+}
+
+Carrier InputRecords::carrier_of(InputKind kind, bool has_timestamps) const {
+  if (!has_timestamps) return Carrier::PlainDump;
+  switch (kind) {
+    case InputKind::Network:
+      return Carrier::GatewaySegments;
+    case InputKind::ExportedPdu:
+      return Carrier::ExportedPdus;
+    case InputKind::Serial:
+      return batched_serial_ ? Carrier::SerialBatches : Carrier::SerialCharacters;
+    case InputKind::RtacSerial:
+      break;
+  }
+  return Carrier::SerialCharacters;
+}
+
+RecordContent InputRecords::read(const CapturedPacket& packet) {
+  switch (kind_) {
+    case InputKind::Network:
+      return network_packet(packet);
+    case InputKind::ExportedPdu:
+      return exported_pdu(packet);
+    case InputKind::Serial:
+      return serial_record(packet);
+    case InputKind::RtacSerial:
+      return rtac_record(packet);
+  }
+  return {};
+}
+
+RecordContent InputRecords::rtac_record(const CapturedPacket& packet) {
+  const auto record = rtac_serial_record(packet.bytes);
+  if (!record) {
+    ++skipped_.malformed;
+    return {};
+  }
+  SerialBytes serial;
+  serial.kind = InputKind::RtacSerial;
+  serial.lost_before = record->data_lost_before;
+  serial.chunk = BusChunk{record->bytes, packet.time, Direction::Unknown};
+  return serial;
+}
+
+RecordContent InputRecords::network_packet(const CapturedPacket& packet) {
+  Segment segment;
+  switch (decode_network_packet(link_type_, packet.bytes, segment)) {
+    case PacketVerdict::Segment:
+      return segment;
+    case PacketVerdict::NotIp:
+      ++skipped_.not_ip;
+      break;
+    case PacketVerdict::OtherIp:
+      ++skipped_.other_ip;
+      break;
+    case PacketVerdict::Fragment:
+      ++skipped_.fragments;
+      break;
+    case PacketVerdict::Malformed:
+      ++skipped_.malformed;
+      break;
+  }
+  return {};
+}
+
+RecordContent InputRecords::exported_pdu(const CapturedPacket& packet) {
+  const auto record = exported_pdu_record(packet.bytes);
+  if (!record) {
+    ++skipped_.malformed;
+    return {};
+  }
+  if (record->dissector != exported_pdu::kDissectorName) {
+    ++skipped_.foreign_pdus;
+    return {};
+  }
+  // Half duplex: the session ends a side's turn when the other side speaks.
+  SerialBytes serial;
+  serial.kind = InputKind::ExportedPdu;
+  serial.chunk = BusChunk{record->pdu, packet.time, record->direction};
+  return serial;
+}
+
+}  // namespace pvtap::analyzer

@@ -1,0 +1,55 @@
+// InputRecords: the records of the input being read, by its link type: what each brings (bus
+// bytes or a gateway flow's segment), what was skipped, and how its bytes reach pvtap.
+#pragma once
+
+#include <cstdint>
+#include <variant>
+
+#include "pvtap/capture/capture_file.h"
+#include "pvtap/capture/link_types.h"
+#include "pvtap/capture/network_packet.h"
+#include "pvtap/framing/bus_chunk.h"
+#include "pvtap/session/carrier_timing.h"
+#include "report/audit_report.h"
+
+namespace pvtap::analyzer {
+
+// SerialBytes: what a record brings the one serial bus.
+struct SerialBytes {
+  InputKind kind = InputKind::Serial;  // decides the bus's timing when this record makes it
+  bool lost_before = false;            // bytes of unknown count were lost before these
+  BusChunk chunk;
+  std::uint64_t lost_after = 0;  // the record's tail, cut by the capture's snap length
+};
+
+// Nothing (the record was skipped, and counted), bytes of the serial bus, or a segment of a
+// TCP/UDP flow. Spans point into the record.
+using RecordContent = std::variant<std::monostate, SerialBytes, Segment>;
+
+class InputRecords {
+ public:
+  // Records of the next input have this link type; `batched_serial`: its serial records are
+  // read chunks (timestamps batched), not one character each. Only the input that makes the
+  // serial bus decides how it reads its timestamps (`serial_timing_open`).
+  void begin(int link_type, bool batched_serial, bool serial_timing_open);
+  RecordContent read(const CapturedPacket& packet);
+  // How the bytes of that kind of input reach pvtap, for what their timestamps prove.
+  Carrier carrier_of(InputKind kind, bool has_timestamps) const;
+
+  // An input of IP packets was read.
+  bool network() const { return network_; }
+  const SkippedRecords& skipped() const { return skipped_; }
+
+ private:
+  RecordContent network_packet(const CapturedPacket& packet);
+  RecordContent exported_pdu(const CapturedPacket& packet);
+  RecordContent rtac_record(const CapturedPacket& packet);
+
+  int link_type_ = -1;
+  InputKind kind_ = InputKind::Serial;
+  bool batched_serial_ = false;
+  bool network_ = false;
+  SkippedRecords skipped_;
+};
+
+}  // namespace pvtap::analyzer
