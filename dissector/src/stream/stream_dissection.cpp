@@ -6,6 +6,7 @@
 #include <span>
 
 #include "plan/frame_analysis.h"
+#include "settings/register_decoding.h"
 #include "statistics/response_time_stats.h"
 #include "tree/frame_tree.h"
 
@@ -74,14 +75,29 @@ void add_info(packet_info* pinfo, const InverterProtocol& p, const char* text) {
   }
 }
 
+// The packet's pool: freed with the packet, without destructors.
+Arena packet_arena(packet_info* pinfo) {
+  constexpr auto allocate = [](void* pool, std::size_t size) {
+    return wmem_alloc(static_cast<wmem_allocator_t*>(pool), size);
+  };
+  return Arena{allocate, pinfo->pool};
+}
+
 void dissect_frame(const TreeTarget& target, std::span<const std::uint8_t> bytes,
                    FrameRecord& record) {
   // The first packet to show a frame is the one its links point to.
   if (record.packet == 0) {
     record.packet = target.pinfo->num;
-    record.time = target.pinfo->abs_ts;
+    record.time = {target.pinfo->abs_ts.secs, target.pinfo->abs_ts.nsecs};
   }
-  const AnalysisContext actx{target.protocol, &record, target.pinfo->pool, target.tree != nullptr};
+  const InverterProtocol& p = *target.protocol;
+  AnalysisContext actx;
+  actx.decoder = &register_decoder();
+  actx.record = &record;
+  actx.arena = packet_arena(target.pinfo);
+  actx.check_word = p.check_word;
+  actx.verify_check = p.settings.verify_check;
+  actx.with_values = target.tree != nullptr;
   FramePlan plan;
   analyze_frame(bytes, actx, plan);
   add_info(target.pinfo, *target.protocol, plan.summary);

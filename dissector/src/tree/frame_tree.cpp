@@ -3,6 +3,7 @@
 #include <epan/expert.h>
 #include <epan/proto.h>
 
+#include "fields/register_fields.h"
 #include "pvtap/codec/function_codes.h"
 #include "pvtap/registers/register_format.h"
 
@@ -94,23 +95,23 @@ void add_value_warnings(const Builder& b, proto_item* item, const PlannedValue& 
   }
 }
 
-void add_flags(const Builder& b, proto_item* item, const PlannedValue& v) {
-  const RegisterField& f = *v.field;
+void add_flags(const Builder& b, proto_item* item, const PlannedValue& v, const RegisterField& f) {
   proto_tree* flags = proto_item_add_subtree(item, f.ett);
   for (int id : f.bits) {
     if (id >= 0) proto_tree_add_boolean(flags, id, b.t.tvb, b.at(v.span), v.span.length, v.raw);
   }
 }
 
-proto_item* add_value(const Builder& b, const PlannedValue& v) {
+proto_item* add_value(const Builder& b, const PlannedValue& v, Dialect d) {
   const gint start = b.at(v.span);
   const gint length = v.span.length;
-  if (v.field == nullptr) {
+  const RegisterField* field = register_field(d, v.def);
+  if (field == nullptr) {
     return proto_tree_add_uint_format(b.tree, b.hf().word, b.t.tvb, start, length, v.raw,
                                       "%s: %s (not in the register map)", v.label, v.text);
   }
-  const int id = v.field->hf;
-  switch (v.field->type) {
+  const int id = field->hf;
+  switch (field->type) {
     case FT_DOUBLE:
       return proto_tree_add_double_format(b.tree, id, b.t.tvb, start, length, v.number, "%s: %s",
                                           v.label, v.text);
@@ -122,14 +123,14 @@ proto_item* add_value(const Builder& b, const PlannedValue& v) {
   }
   proto_item* item = proto_tree_add_uint_format(b.tree, id, b.t.tvb, start, length, v.raw, "%s: %s",
                                                 v.label, v.text);
-  if (v.field->ett >= 0) add_flags(b, item, v);
+  if (field->ett >= 0) add_flags(b, item, v, *field);
   return item;
 }
 
 void add_values(const Builder& b, const FramePlan& plan) {
   for (std::size_t i = 0; i < plan.value_count; ++i) {
     const PlannedValue& v = plan.values[i];
-    add_value_warnings(b, add_value(b, v), v);
+    add_value_warnings(b, add_value(b, v, plan.dialect), v);
   }
   if (plan.decode_note == nullptr) return;
   expert_field* ei = plan.start_assumed ? &b.ei().start_assumed : &b.ei().start_unknown;
@@ -206,7 +207,9 @@ void add_reply_links(const Builder& b, const FrameRecord& r) {
       delta.secs = static_cast<time_t>(r.latency);
       delta.nsecs = static_cast<int>(ns - static_cast<double>(delta.secs) * 1e9);
     } else {
-      nstime_delta(&delta, &r.time, &r.request->time);
+      const nstime_t shown{static_cast<time_t>(r.time.secs), r.time.nsecs};
+      const nstime_t asked{static_cast<time_t>(r.request->time.secs), r.request->time.nsecs};
+      nstime_delta(&delta, &shown, &asked);
     }
     proto_item* item =
         proto_tree_add_time(b.tree, b.hf().response_time, b.t.tvb, b.t.offset, 0, &delta);
