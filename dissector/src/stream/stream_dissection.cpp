@@ -100,9 +100,15 @@ void dissect_frame(const TreeTarget& target, std::span<const std::uint8_t> bytes
   actx.with_values = target.tree != nullptr;
   FramePlan plan;
   analyze_frame(bytes, actx, plan);
-  add_info(target.pinfo, *target.protocol, plan.summary);
-  queue_response_time(target.pinfo, *target.protocol, record);
-  add_frame_tree(target, plan, record);
+  const DescriptionContext dctx{.arena = actx.arena,
+                                .length = target.length,
+                                .visited = PINFO_FD_VISITED(target.pinfo) != 0,
+                                .check_word = p.check_word};
+  const TreeDescription tree = describe_frame(plan, record, dctx);
+  // Only now the calls that may longjmp: the plan and the tree's description are plain data.
+  add_info(target.pinfo, p, plan.summary);
+  queue_response_time(target.pinfo, p, record);
+  add_tree(target, tree);
 }
 
 void dissect_noise(const TreeTarget& target, std::span<const std::uint8_t> bytes) {
@@ -113,8 +119,10 @@ void dissect_noise(const TreeTarget& target, std::span<const std::uint8_t> bytes
       unknown ? wmem_strdup_printf(target.pinfo->pool, "frame of unknown function code 0x%02X",
                                    unknown->function)
               : wmem_strdup_printf(target.pinfo->pool, "noise (%d bytes)", target.length);
+  const TreeDescription tree =
+      describe_noise(unknown, {.arena = packet_arena(target.pinfo), .length = target.length});
   add_info(target.pinfo, *target.protocol, text);
-  add_noise_tree(target, unknown);
+  add_tree(target, tree);
 }
 
 void dissect_piece(const BusPiece& piece, std::span<const std::uint8_t> bytes, guint offset,

@@ -1,14 +1,16 @@
-// Test helper: an Arena over the heap, frames' bytes, records and plans.
+// Test helper: an Arena over the heap, frames' bytes and plans, and descriptions as text.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "plan/arena.h"
 #include "plan/frame_analysis.h"
 #include "pvtap/codec/frame_codec.h"
+#include "tree/tree_description.h"
 
 namespace pvtap::dissector::test {
 
@@ -73,6 +75,20 @@ struct Planner {
     analyze_frame(bytes, ctx, out);
     return out;
   }
+
+  DescriptionContext description(std::size_t length, bool visited = true) {
+    return {heap.arena(), static_cast<std::int32_t>(length), visited, check_word};
+  }
 };
+
+// One line per item, so that a test compares the whole tree at a glance:
+//   "1 Start [2+2] = 1050 \"0x041A (ID 1050)\""     a field (depth, place, value, label)
+//   "1 CheckStatus = 1 (generated)"                  a value worked out, with no place
+//   "  ! BadCheck on #9: Bad CRC 0x1234, ..."        an expert info on item 9
+//   "1 ! Unanswered [0+0]: Request never ..."        an expert info with its own item
+std::vector<std::string> lines_of(const TreeDescription& description);
+
+const char* name_of(TreeField field);
+const char* name_of(TreeExpert expert);
 
 }  // namespace pvtap::dissector::test
