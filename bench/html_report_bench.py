@@ -6,9 +6,9 @@
 pvtap-sim writes HOURS of a mixed bus of INVERTERS stations (GSL, Hybrid and ASCII in turn,
 a poll round every 5 s at 9600 baud, 1 % of each fault kind) as a link type 252 capture,
 `pvtap audit --summary-only --html` turns it into a report (timed, with its peak RSS), and
-Debian's headless chromium opens the file with no network (see tests/report): the figure is
-the time from navigation to the page's script having drawn every chart (window.pvtap.ready),
-median of REPEAT fresh browsers. Targets (issue "See the bus"): under 10 MB, under 3 s.
+Debian's headless chromium opens the file with no network (see tests/analyzer/report): the
+figure is the time from navigation to the page's script having drawn every chart
+(window.pvtap.ready), median of REPEAT fresh browsers. Targets (issue "See the bus"): under 10 MB, under 3 s.
 """
 
 import argparse
@@ -20,7 +20,7 @@ import tempfile
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "tests", "report"))
+sys.path.insert(0, os.path.join(HERE, "..", "tests", "analyzer", "report"))
 from headless_chromium import HeadlessChromium, find_chromium  # noqa: E402
 
 FAULTS = ("corrupt=1,missing=1,slow=1,noise=1,error_reply=1,count_mismatch=1,duplicate=1,"

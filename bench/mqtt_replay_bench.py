@@ -17,7 +17,7 @@ import time
 
 sys.dont_write_bytecode = True  # no __pycache__ in the source tree
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests",
-                                "mqtt"))
+                                "analyzer", "mqtt"))
 import mqtt_broker  # noqa: E402
 
 

@@ -8,8 +8,8 @@ Measures what a field engineer cares about on a small logger box:
 - latency from the write of a frame's last byte to its jsonl line on pvtap's stdout.
 
 With --mqtt, pvtap also publishes to a mosquitto broker the script starts on a free loopback
-port (tests/mqtt/mqtt_broker.py; run with Debian's /usr/bin/python3 for its paho), and the
-script counts the messages a subscriber receives.
+port (tests/analyzer/mqtt/mqtt_broker.py; run with Debian's /usr/bin/python3 for its paho),
+and the script counts the messages a subscriber receives.
 
 usage: sniff_pty_bench.py --pvtap build/analyzer/pvtap --sim build/captures/pvtap-sim
        [--baud 115200] [--duration 60] [--inverters 16] [--period 0.2] [--busy]
@@ -28,12 +28,12 @@ import threading
 import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests",
-                                "sniff"))
+                                "analyzer", "sniff"))
 sys.dont_write_bytecode = True  # no __pycache__ in the source tree
 import pty_bus  # noqa: E402
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests",
-                                "mqtt"))
+                                "analyzer", "mqtt"))
 
 
 def read_lines(stream, lines):

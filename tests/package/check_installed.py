@@ -12,11 +12,11 @@ import subprocess
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "extcap"))
+sys.path.insert(0, os.path.join(HERE, "..", "analyzer", "extcap"))
 sys.path.insert(0, os.path.join(HERE, "..", "dissector"))
-sys.path.insert(0, os.path.join(HERE, "..", "sniff"))
+sys.path.insert(0, os.path.join(HERE, "..", "analyzer", "sniff"))
 
-import extcap_home  # noqa: E402  (tests/extcap: ptys the unprivileged user may open)
+import extcap_home  # noqa: E402  (tests/analyzer/extcap: ptys the unprivileged user may open)
 import tshark_runner  # noqa: E402  (tests/dissector: the unprivileged user's id)
 
 NOBODY = tshark_runner.NOBODY

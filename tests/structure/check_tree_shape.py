@@ -1,7 +1,10 @@
 #!/usr/bin/env python3
 """The shape of the tree, read from its includes and folders: the core reads no files (sans-I/O:
-callers hand it text and bytes); no product folder holds more than 20 source files; and the
-analyzer's folders are floors, each including only the floors below it (ANALYZER_FLOORS).
+callers hand it text and bytes); no product folder holds more than 20 source files; the
+analyzer's folders are floors, each including only the floors below it (ANALYZER_FLOORS); and
+the tests mirror the products: tests/<product>/ for protocols, capture, analyzer, dissector and
+packaging (tests/package), the core's in tests/protocols/<family>/ for the families of
+protocols/src, beside only the shared tests/support, tests/corpus and tests/structure.
 
     check_tree_shape.py REPOSITORY_ROOT
 
@@ -70,9 +73,31 @@ def analyzer_breaches(repo):
     return breaches
 
 
+# Folders of tests/: one per product (package: packaging/), and what they all share.
+TEST_FOLDERS = {"protocols", "capture", "analyzer", "dissector", "package",
+                "support", "corpus", "structure"}
+
+
+def unmirrored_tests(repo):
+    """Test folders that mirror no product, and core test folders that mirror no family."""
+    breaches = []
+    tests = os.path.join(repo, "tests")
+    for name in sorted(os.listdir(tests)):
+        if os.path.isdir(os.path.join(tests, name)) and name not in TEST_FOLDERS:
+            breaches.append("tests/%s: mirrors no product (tests/<product>/: %s)"
+                            % (name, ", ".join(sorted(TEST_FOLDERS))))
+    families = set(os.listdir(os.path.join(repo, "protocols", "src")))
+    core_tests = os.path.join(tests, "protocols")
+    for name in sorted(os.listdir(core_tests)):
+        if os.path.isdir(os.path.join(core_tests, name)) and name not in families:
+            breaches.append("tests/protocols/%s: no such family in protocols/src" % name)
+    return breaches
+
+
 def main():
     core = os.path.join(sys.argv[1], "protocols")
-    breaches = crowded_folders(sys.argv[1]) + analyzer_breaches(sys.argv[1])
+    breaches = (crowded_folders(sys.argv[1]) + analyzer_breaches(sys.argv[1]) +
+                unmirrored_tests(sys.argv[1]))
     for root, _, _ in os.walk(core):
         names = sources(root)
         for name in names:

@@ -11,6 +11,7 @@
 #include "fields/field_list.h"
 #include "fields/value_tables.h"
 #include "settings/register_maps.h"
+#include "tree/tree_description.h"
 
 namespace pvtap::dissector {
 namespace {
@@ -42,21 +43,16 @@ std::string field_prefix(Dialect d, std::string_view key) {
   return kReservedAsciiKeys.contains(key) ? "invascii.register." : "invascii.";
 }
 
+// The type the tree description gives the entry's item.
 ftenum field_type(const RegisterDef& def) {
-  switch (def.kind) {
-    case RegisterKind::Number:
-    case RegisterKind::Bcd:
-    case RegisterKind::BcdPhaseCapacity:
-      return FT_DOUBLE;
-    case RegisterKind::Raw:
-      return def.words > 1 ? FT_UINT32 : FT_UINT16;
-    case RegisterKind::Bits:
+  switch (register_field_type(def)) {
+    case RegisterFieldType::Uint16:
       return FT_UINT16;
-    case RegisterKind::Enum:
-    case RegisterKind::DeviceNumber:
+    case RegisterFieldType::Uint32:
       return FT_UINT32;
-    case RegisterKind::Text:
-    case RegisterKind::BcdYearMonth:
+    case RegisterFieldType::Double:
+      return FT_DOUBLE;
+    case RegisterFieldType::String:
       return FT_STRING;
   }
   return FT_NONE;

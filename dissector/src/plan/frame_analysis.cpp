@@ -4,7 +4,6 @@
 #include <string>
 #include <vector>
 
-#include "plan/register_decoding.h"
 #include "pvtap/codec/function_codes.h"
 #include "pvtap/matching/frame_summary.h"
 #include "pvtap/registers/register_format.h"
@@ -15,10 +14,6 @@ namespace {
 // Warnings that the tree already shows in another way.
 constexpr auto kShownElsewhere = static_cast<std::uint16_t>(ValueWarning::NotInMap);
 
-const char* pool_text(wmem_allocator_t* pool, std::string_view text) {
-  return wmem_strndup(pool, text.data(), text.size());
-}
-
 std::string hex4(unsigned value) {
   static constexpr char kDigits[] = "0123456789ABCDEF";
   std::string out = "0x";
@@ -27,35 +22,35 @@ std::string hex4(unsigned value) {
 }
 
 // The start address as the reference writes it; GSL wire addresses map back to decimal IDs.
-std::string start_text(Dialect d, std::uint16_t wire) {
-  const auto ids = register_decoder().options().gsl_ids;
+std::string start_text(Dialect d, std::uint16_t wire, GslIdReading ids) {
   const auto written = written_address_of(d, wire, ids);
   if (!written) return hex4(wire);
   const std::string text(format_register_address(d, *written).view());
   return d == Dialect::Gsl ? hex4(wire) + " (ID " + text + ")" : text;
 }
 
-void plan_header(const Frame& f, std::size_t length, wmem_allocator_t* pool, FramePlan& plan) {
+void plan_header(const Frame& f, std::size_t length, const AnalysisContext& ctx, FramePlan& plan) {
   plan.parsed = true;
   plan.station = f.station;
   plan.function = f.function;
   plan.layout = frame_layout(f, length);
   if (f.start) {
     plan.start = *f.start;
-    plan.start_text = pool_text(pool, start_text(f.dialect, *f.start));
+    const GslIdReading ids = ctx.decoder->options().gsl_ids;
+    plan.start_text = ctx.arena.copy(start_text(f.dialect, *f.start, ids));
   }
   if (f.count) plan.count = *f.count;
   if (f.byte_count) plan.byte_count = *f.byte_count;
   if (f.exception_code) plan.exception_code = *f.exception_code;
 }
 
-void plan_device(const Frame& f, wmem_allocator_t* pool, FramePlan& plan) {
+void plan_device(const Frame& f, const AnalysisContext& ctx, FramePlan& plan) {
   if (!f.device) return;
-  const DecodedValue v = register_decoder().decode_device_number(*f.device);
+  const DecodedValue v = ctx.decoder->decode_device_number(*f.device);
   plan.device_type = f.device->type_code;
   plan.device_serial = f.device->serial;
   plan.device_raw = (std::uint32_t{f.device->type_code} << 24) | (f.device->serial & 0xFFFFFFu);
-  plan.device_text = pool_text(pool, format_value(v));
+  plan.device_text = ctx.arena.copy(format_value(v));
 }
 
 // The request whose start places the reply's words, as the bus session chose it.
@@ -74,40 +69,40 @@ std::string value_label(const DecodedValue& v, Dialect d) {
 }
 
 PlannedValue plan_value(const DecodedValue& v, const DecodeReport& report, Dialect d,
-                        const FramePlan& plan, wmem_allocator_t* pool) {
+                        const FramePlan& plan, const Arena& arena) {
   const auto index = static_cast<std::uint16_t>(v.wire_address - report.start) / address_step(d);
   PlannedValue p;
-  p.field = register_field(d, v.def);
+  p.def = v.def;
   p.span = plan.layout.word_span(index, v.words_present > 0 ? v.words_present : 1u);
   // As the text shows it: a display filter `== 220.6` finds it, and tshark 4.6, which
   // writes doubles in full, prints what the text says.
   p.number = value_as_shown(v);
   p.raw = v.raw;
-  p.text = pool_text(pool, format_value(v));
-  p.label = pool_text(pool, value_label(v, d));
-  p.warnings = static_cast<guint16>(v.warnings & ~kShownElsewhere);
+  p.text = arena.copy(format_value(v));
+  p.label = arena.copy(value_label(v, d));
+  p.warnings = static_cast<std::uint16_t>(v.warnings & ~kShownElsewhere);
   return p;
 }
 
-void plan_values(const Frame& f, const Frame* request, wmem_allocator_t* pool, FramePlan& plan) {
+void plan_values(const Frame& f, const Frame* request, const AnalysisContext& ctx,
+                 FramePlan& plan) {
   std::vector<DecodedValue> values;
-  const DecodeReport report = register_decoder().decode(f, request, values);
+  const DecodeReport report = ctx.decoder->decode(f, request, values);
   plan.decode_status = report.status;
   plan.start_assumed = report.start_assumed;
   if (report.status == DecodeStatus::StartUnknown || report.start_assumed) {
-    plan.decode_note = pool_text(pool, describe(report));
+    plan.decode_note = ctx.arena.copy(describe(report));
   }
   if (report.count == 0) return;
-  auto* planned = wmem_alloc_array(pool, PlannedValue, report.count);
+  auto* planned = ctx.arena.make_array<PlannedValue>(report.count);
   for (std::size_t i = 0; i < report.count; ++i) {
-    new (&planned[i])
-        PlannedValue(plan_value(values[report.first + i], report, f.dialect, plan, pool));
+    planned[i] = plan_value(values[report.first + i], report, f.dialect, plan, ctx.arena);
   }
   plan.values = planned;
   plan.value_count = report.count;
 }
 
-std::string summary_text(const FramePlan& plan, const InverterProtocol& protocol) {
+std::string summary_text(const FramePlan& plan, const char* check_word) {
   const bool exception = plan.layout.exception_code.present();
   const auto function =
       static_cast<std::uint8_t>(exception ? plan.function & ~fc::kExceptionFlag : plan.function);
@@ -121,7 +116,7 @@ std::string summary_text(const FramePlan& plan, const InverterProtocol& protocol
   }
   if (plan.check_verified && !plan.check.ok) {
     text += " [bad ";
-    text += protocol.check_word;
+    text += check_word;
     text += ']';
   }
   return text;
@@ -140,25 +135,25 @@ void analyze(std::span<const std::uint8_t> bytes, const AnalysisContext& ctx, Fr
   plan.dialect = r.dialect;
   plan.role = r.role;
   plan.check = verify_check(bytes, r.dialect);
-  plan.check_verified = ctx.protocol->settings.verify_check;
+  plan.check_verified = ctx.verify_check;
   ParseOutcome parsed = parse_frame(bytes, r.dialect, r.role);
   if (!parsed) {
     plan_unparsed_header(bytes.size(), r, plan);
-    plan.parse_error = pool_text(ctx.pool, parsed.diagnostics());
-    plan.summary = pool_text(ctx.pool, "malformed frame: " + parsed.error_text());
+    plan.parse_error = ctx.arena.copy(parsed.diagnostics());
+    plan.summary = ctx.arena.copy("malformed frame: " + parsed.error_text());
     return;
   }
   Frame& f = parsed.value();
-  plan_header(f, bytes.size(), ctx.pool, plan);
+  plan_header(f, bytes.size(), ctx, plan);
   if (ctx.with_values) {
-    plan_device(f, ctx.pool, plan);
+    plan_device(f, ctx, plan);
     // Values only from a good check, placed only by a request with one (as pvtap audit).
     if (r.values_trusted) {
       const std::optional<Frame> request = placing_request(r);
-      plan_values(f, request ? &*request : nullptr, ctx.pool, plan);
+      plan_values(f, request ? &*request : nullptr, ctx, plan);
     }
   }
-  plan.summary = pool_text(ctx.pool, summary_text(plan, *ctx.protocol));
+  plan.summary = ctx.arena.copy(summary_text(plan, ctx.check_word));
 }
 
 }  // namespace

@@ -1,21 +1,22 @@
 // Works out the FramePlan of one frame with the core: parse, match, decode, format.
 #pragma once
 
-#include <epan/wmem_scopes.h>
-
+#include <cstdint>
 #include <span>
 
+#include "plan/arena.h"
 #include "plan/frame_plan.h"
 #include "plan/frame_record.h"
-#include "registration/inverter_protocol.h"
 
 namespace pvtap::dissector {
 
-// AnalysisContext: where the frame is and what to do with it.
+// AnalysisContext: the frame's record, the protocol's settings and where the plan goes.
 struct AnalysisContext {
-  const InverterProtocol* protocol = nullptr;  // of the frame's dialect
-  const FrameRecord* record = nullptr;         // what the bus session decided about it
-  wmem_allocator_t* pool = nullptr;            // pinfo->pool, for the plan's texts
+  const RegisterDecoder* decoder = nullptr;  // the effective maps with the preferred options
+  const FrameRecord* record = nullptr;       // what the bus session decided about it
+  Arena arena;                               // for the plan's texts and values
+  const char* check_word = "CRC";            // "CRC" or "checksum", in the summary
+  bool verify_check = true;                  // the protocol's preference
   bool with_values = true;  // false: no tree is built, register values are not needed
 };
 

@@ -1,9 +1,7 @@
 // FrameRecord: what the first pass learned about one frame, kept for every later pass.
 #pragma once
 
-#include <epan/wmem_scopes.h>
-#include <wsutil/nstime.h>
-
+#include <cstdint>
 #include <type_traits>
 
 #include "pvtap/codec/dialect.h"
@@ -12,14 +10,20 @@
 
 namespace pvtap::dissector {
 
+// PacketTime: a packet's capture time, as Wireshark's nstime_t holds it.
+struct PacketTime {
+  std::int64_t secs = 0;
+  std::int32_t nsecs = 0;
+};
+
 // Lives in wmem file scope, which frees memory without running destructors.
 struct FrameRecord {
-  guint32 packet = 0;  // the packet that shows the frame (0 until it is shown)
-  nstime_t time{};     // that packet's capture time
+  std::uint32_t packet = 0;  // the packet that shows the frame (0 until it is shown)
+  PacketTime time;           // that packet's capture time
   Dialect dialect = Dialect::Gsl;
   Role role = Role::Request;  // after the matcher's correction of GSL write echoes
-  guint8 station = 0;
-  guint8 function = 0;
+  std::uint8_t station = 0;
+  std::uint8_t function = 0;
   bool matched = false;  // the session paired it (its header could be read)
   bool check_ok = true;
   bool role_corrected = false;
@@ -33,22 +37,17 @@ struct FrameRecord {
   UnansweredKind unanswered = UnansweredKind::Timeout;
   double latency = 0;  // replies: seconds from the request's end to the reply's start
   CountUnit count_unit = CountUnit::Bytes;
-  guint16 count_expected = 0;
-  guint16 count_found = 0;
+  std::uint16_t count_expected = 0;
+  std::uint16_t count_found = 0;
   FrameRecord* request = nullptr;       // replies: the request answered (or answered before)
   FrameRecord* response = nullptr;      // requests: the first reply
   FrameRecord* late_for = nullptr;      // unsolicited replies: a request that timed out
   FrameRecord* next_request = nullptr;  // requests given up for the next one to the station
   FrameRecord* placed_by = nullptr;     // the request whose start places a reply's words
-  const guint8* bytes = nullptr;        // requests: their bytes, to decode their replies
-  guint16 length = 0;
+  const std::uint8_t* bytes = nullptr;  // requests: their bytes, to decode their replies
+  std::uint16_t length = 0;
 };
 
 static_assert(std::is_trivially_destructible_v<FrameRecord>);
-
-// A new record in file scope.
-inline FrameRecord* new_frame_record() {
-  return new (wmem_alloc(wmem_file_scope(), sizeof(FrameRecord))) FrameRecord{};
-}
 
 }  // namespace pvtap::dissector

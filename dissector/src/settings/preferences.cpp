@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "plan/register_decoding.h"
+#include "settings/register_decoding.h"
 
 namespace pvtap::dissector {
 namespace {

@@ -70,7 +70,8 @@ void queue_response_time(packet_info* pinfo, const InverterProtocol& p, const Fr
   if (reply.request->packet == 0) return;  // not shown yet: no time to measure from
   auto* sample = wmem_new(pinfo->pool, ResponseTimeSample);
   sample->function = reply.request->function;
-  sample->request_time = reply.request->time;
+  sample->request_time.secs = static_cast<time_t>(reply.request->time.secs);
+  sample->request_time.nsecs = reply.request->time.nsecs;
   tap_queue_packet(p.tap, pinfo, sample);
 }
 

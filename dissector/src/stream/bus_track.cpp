@@ -1,13 +1,21 @@
 #include "stream/bus_track.h"
 
-#include <memory>
+#include <epan/wmem_scopes.h>
 
-#include "plan/register_decoding.h"
+#include <memory>
+#include <new>
+
+#include "settings/register_decoding.h"
 
 namespace pvtap::dissector {
 namespace {
 
 std::vector<std::unique_ptr<BusTrack>> g_tracks;
+
+// A new record in file scope, which frees memory without running destructors.
+FrameRecord* new_frame_record() {
+  return new (wmem_alloc(wmem_file_scope(), sizeof(FrameRecord))) FrameRecord{};
+}
 
 guint16 clamp16(unsigned value) {
   return static_cast<guint16>(value > 0xFFFF ? 0xFFFF : value);

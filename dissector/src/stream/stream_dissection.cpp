@@ -6,6 +6,7 @@
 #include <span>
 
 #include "plan/frame_analysis.h"
+#include "settings/register_decoding.h"
 #include "statistics/response_time_stats.h"
 #include "tree/frame_tree.h"
 
@@ -74,19 +75,40 @@ void add_info(packet_info* pinfo, const InverterProtocol& p, const char* text) {
   }
 }
 
+// The packet's pool: freed with the packet, without destructors.
+Arena packet_arena(packet_info* pinfo) {
+  constexpr auto allocate = [](void* pool, std::size_t size) {
+    return wmem_alloc(static_cast<wmem_allocator_t*>(pool), size);
+  };
+  return Arena{allocate, pinfo->pool};
+}
+
 void dissect_frame(const TreeTarget& target, std::span<const std::uint8_t> bytes,
                    FrameRecord& record) {
   // The first packet to show a frame is the one its links point to.
   if (record.packet == 0) {
     record.packet = target.pinfo->num;
-    record.time = target.pinfo->abs_ts;
+    record.time = {target.pinfo->abs_ts.secs, target.pinfo->abs_ts.nsecs};
   }
-  const AnalysisContext actx{target.protocol, &record, target.pinfo->pool, target.tree != nullptr};
+  const InverterProtocol& p = *target.protocol;
+  AnalysisContext actx;
+  actx.decoder = &register_decoder();
+  actx.record = &record;
+  actx.arena = packet_arena(target.pinfo);
+  actx.check_word = p.check_word;
+  actx.verify_check = p.settings.verify_check;
+  actx.with_values = target.tree != nullptr;
   FramePlan plan;
   analyze_frame(bytes, actx, plan);
-  add_info(target.pinfo, *target.protocol, plan.summary);
-  queue_response_time(target.pinfo, *target.protocol, record);
-  add_frame_tree(target, plan, record);
+  const DescriptionContext dctx{.arena = actx.arena,
+                                .length = target.length,
+                                .visited = PINFO_FD_VISITED(target.pinfo) != 0,
+                                .check_word = p.check_word};
+  const TreeDescription tree = describe_frame(plan, record, dctx);
+  // Only now the calls that may longjmp: the plan and the tree's description are plain data.
+  add_info(target.pinfo, p, plan.summary);
+  queue_response_time(target.pinfo, p, record);
+  add_tree(target, tree);
 }
 
 void dissect_noise(const TreeTarget& target, std::span<const std::uint8_t> bytes) {
@@ -97,8 +119,10 @@ void dissect_noise(const TreeTarget& target, std::span<const std::uint8_t> bytes
       unknown ? wmem_strdup_printf(target.pinfo->pool, "frame of unknown function code 0x%02X",
                                    unknown->function)
               : wmem_strdup_printf(target.pinfo->pool, "noise (%d bytes)", target.length);
+  const TreeDescription tree =
+      describe_noise(unknown, {.arena = packet_arena(target.pinfo), .length = target.length});
   add_info(target.pinfo, *target.protocol, text);
-  add_noise_tree(target, unknown);
+  add_tree(target, tree);
 }
 
 void dissect_piece(const BusPiece& piece, std::span<const std::uint8_t> bytes, guint offset,

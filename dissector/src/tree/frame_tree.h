@@ -1,14 +1,10 @@
-// Puts a planned frame, or a run of noise, into the protocol tree.
+// Puts a tree description into Wireshark's protocol tree.
 #pragma once
 
 #include <epan/packet.h>
 
-#include <optional>
-
-#include "plan/frame_plan.h"
-#include "plan/frame_record.h"
-#include "pvtap/codec/unknown_function_frame.h"
 #include "registration/inverter_protocol.h"
+#include "tree/tree_description.h"
 
 namespace pvtap::dissector {
 
@@ -22,11 +18,9 @@ struct TreeTarget {
   InverterProtocol* protocol = nullptr;
 };
 
-// Adds the frame's subtree, its expert infos and its links to the matching frames. Uses only
-// plain data: Wireshark may throw (longjmp) out of any call made here.
-void add_frame_tree(const TreeTarget& target, const FramePlan& plan, const FrameRecord& record);
-
-// Adds a noise item; `unknown` is set when the noise is a whole frame of an unknown function.
-void add_noise_tree(const TreeTarget& target, const std::optional<UnknownFunctionFrame>& unknown);
+// Adds the described items with the protocol's field, expert and subtree ids. The
+// description is plain data in pinfo->pool: Wireshark may throw (longjmp) out of any call
+// made here.
+void add_tree(const TreeTarget& target, const TreeDescription& description);
 
 }  // namespace pvtap::dissector

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """End-to-end checks of `pvtap sniff --mqtt` and `pvtap audit --mqtt` against a real
-mosquitto broker (mqtt_broker.py): a bus paced onto a pty (tests/sniff/pty_bus.py) is sniffed
+mosquitto broker (mqtt_broker.py): a bus paced onto a pty (tests/analyzer/sniff/pty_bus.py) is sniffed
 with --format jsonl and --mqtt at once, and what reached the broker is judged against the
 jsonl lines of the same run.
 
@@ -347,7 +347,8 @@ def check_replay(args):
     broker = Broker(args.scratch, "replay")
     sub = Subscriber(broker)
     prefix = "test/replay"
-    capture = os.path.join(HERE, "..", "..", "captures", "samples", "mixed-faults.user0.pcap")
+    capture = os.path.join(HERE, "..", "..", "..", "captures", "samples",
+                           "mixed-faults.user0.pcap")
     run = subprocess.run([args.pvtap, "audit", "--format", "jsonl", capture,
                           *mqtt_args(broker, prefix, "--mqtt-discovery")],
                          capture_output=True, text=True, timeout=GUARD_S)

@@ -20,7 +20,8 @@ import time
 
 import pty_bus
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "dissector"))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..",
+                                "dissector"))
 from bus_frames import with_crc  # noqa: E402
 
 BAUD = 9600

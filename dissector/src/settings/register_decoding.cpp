@@ -1,4 +1,4 @@
-#include "plan/register_decoding.h"
+#include "settings/register_decoding.h"
 
 #include <optional>
 

@@ -1,6 +1,6 @@
 // The chunk timeline's queue: first in, first out across wrap-arounds and growth, and told
 // when its elements moved.
-#include "../../protocols/src/framing/ring_buffer.h"
+#include "../../../protocols/src/framing/ring_buffer.h"
 
 #include <gtest/gtest.h>
 

@@ -11,10 +11,10 @@ import subprocess
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "dissector"))
+sys.path.insert(0, os.path.join(HERE, "..", "..", "dissector"))
 sys.path.insert(0, os.path.join(HERE, "..", "sniff"))
 
-import pty_bus  # noqa: E402  (tests/sniff: the pty and the paced writer)
+import pty_bus  # noqa: E402  (tests/analyzer/sniff: the pty and the paced writer)
 import tshark_runner  # noqa: E402  (tests/dissector: the temporary HOME with the plugin)
 
 EXTCAP_SUBDIR = ".local/lib/wireshark/extcap"

@@ -1,0 +1,469 @@
+#include "tree/tree_description.h"
+
+#include <algorithm>
+#include <cstdarg>
+#include <cstdio>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "pvtap/codec/function_codes.h"
+#include "pvtap/registers/register_format.h"
+
+namespace pvtap::dissector {
+namespace {
+
+// Warnings that point at a probable error in the data rather than a gap in the map.
+constexpr auto kSuspicious =
+    static_cast<std::uint16_t>(static_cast<unsigned>(ValueWarning::LowPartOver9999) |
+                               static_cast<unsigned>(ValueWarning::InvalidBcd) |
+                               static_cast<unsigned>(ValueWarning::InvalidDate));
+
+// Depths: the top item, the frame's subtree, the subtrees of its fields.
+constexpr std::uint8_t kTop = 0;
+constexpr std::uint8_t kFrame = 1;
+constexpr std::uint8_t kField = 2;
+
+// printf-style text, for the sentences that print numbers in hex.
+[[gnu::format(printf, 1, 2)]] std::string printed(const char* format, ...) {
+  char text[160];
+  va_list args;
+  va_start(args, format);
+  const int n = std::vsnprintf(text, sizeof text, format, args);
+  va_end(args);
+  return std::string(text,
+                     static_cast<std::size_t>(std::clamp(n, 0, static_cast<int>(sizeof text) - 1)));
+}
+
+// A text of the plan, which a plan made by hand may lack.
+std::string_view text_of(const char* text) {
+  return text != nullptr ? std::string_view(text) : std::string_view();
+}
+
+// Builder: the items of one description, gathered before they are copied to the arena.
+class Builder {
+ public:
+  explicit Builder(const DescriptionContext& ctx) : ctx_(ctx) {}
+
+  const DescriptionContext& ctx() const { return ctx_; }
+  const char* text(std::string_view t) const { return ctx_.arena.copy(t); }
+
+  // Adds an item and returns its index.
+  std::uint32_t add(const TreeItem& item) {
+    items_.push_back(item);
+    return static_cast<std::uint32_t>(items_.size() - 1);
+  }
+  TreeItem& item(std::uint32_t index) { return items_[index]; }
+
+  // A field's value at a place in the frame; skipped when the frame has no such place.
+  std::optional<std::uint32_t> uint(TreeField field, FieldSpan s, std::uint32_t value,
+                                    std::uint8_t depth = kFrame) {
+    if (!s.present()) return std::nullopt;
+    return add(field_item(field, s, value, depth));
+  }
+  // A value worked out rather than read: no place in the frame.
+  std::uint32_t generated_uint(TreeField field, std::uint32_t value) {
+    TreeItem item = field_item(field, FieldSpan{}, value, kFrame);
+    item.generated = true;
+    return add(item);
+  }
+  // An expert info on an item that may not have been added (its field absent).
+  void expert_on(std::optional<std::uint32_t> target, TreeExpert expert, std::string_view message) {
+    TreeItem item;
+    item.kind = ItemKind::Expert;
+    item.expert = expert;
+    item.text = text(message);
+    item.target = target ? static_cast<std::int32_t>(*target) : -1;
+    add(item);
+  }
+  // An expert info with an item of its own; a null message shows the expert's summary.
+  std::uint32_t expert_item(TreeExpert expert, FieldSpan s, const char* message) {
+    TreeItem item;
+    item.kind = ItemKind::ExpertItem;
+    item.expert = expert;
+    item.depth = kFrame;
+    item.offset = s.offset;
+    item.length = s.length;
+    item.text = message;
+    return add(item);
+  }
+
+  TreeDescription finish(Dialect dialect) const {
+    TreeItem* items = ctx_.arena.make_array<TreeItem>(items_.size());
+    std::copy(items_.begin(), items_.end(), items);
+    return {items, items_.size(), dialect};
+  }
+
+ private:
+  static TreeItem field_item(TreeField field, FieldSpan s, std::uint32_t value,
+                             std::uint8_t depth) {
+    TreeItem item;
+    item.field = field;
+    item.depth = depth;
+    item.offset = s.offset;
+    item.length = s.length;
+    item.uint = value;
+    return item;
+  }
+
+  const DescriptionContext& ctx_;
+  std::vector<TreeItem> items_;
+};
+
+std::uint32_t add_top(Builder& b, Subtree subtree, std::string_view appended) {
+  TreeItem top;
+  top.field = TreeField::Protocol;
+  top.type = ValueType::Bytes;
+  top.depth = kTop;
+  top.length = b.ctx().length;
+  top.appended = b.text(appended);
+  top.subtree = subtree;
+  return b.add(top);
+}
+
+void add_device(Builder& b, const FramePlan& plan) {
+  const FrameLayout& l = plan.layout;
+  if (!l.device_type.present()) return;
+  TreeItem device;
+  device.field = TreeField::Device;
+  device.depth = kFrame;
+  device.offset = l.device_type.offset;
+  device.length = l.device_type.length + l.device_serial.length;
+  device.uint = plan.device_raw;
+  device.form = LabelForm::Value;
+  device.text = plan.device_text != nullptr ? plan.device_text : "";
+  device.subtree = Subtree::Device;
+  b.add(device);
+  b.uint(TreeField::DeviceType, l.device_type, plan.device_type, kField);
+  b.uint(TreeField::DeviceSerial, l.device_serial, plan.device_serial, kField);
+}
+
+void add_start(Builder& b, const FramePlan& plan) {
+  const FieldSpan s = plan.layout.start;
+  if (!s.present()) return;
+  TreeItem& start = b.item(*b.uint(TreeField::Start, s, plan.start));
+  start.form = LabelForm::Value;
+  start.text = plan.start_text;
+}
+
+// Header fields in wire order: a counted reply's byte count and device number come before
+// the register it echoes; a GSL 0x10 request's byte count comes after its count.
+void add_header(Builder& b, const FramePlan& plan) {
+  const FrameLayout& l = plan.layout;
+  b.uint(TreeField::Station, l.station, plan.station);
+  b.uint(TreeField::Function, l.function, plan.function);
+  const bool counted_reply = l.byte_count.present() && l.byte_count.offset == 2;
+  if (counted_reply) {
+    b.uint(TreeField::ByteCount, l.byte_count, plan.byte_count);
+    add_device(b, plan);
+  }
+  add_start(b, plan);
+  b.uint(TreeField::Count, l.count, plan.count);
+  if (!counted_reply) b.uint(TreeField::ByteCount, l.byte_count, plan.byte_count);
+}
+
+void add_exception(Builder& b, const FramePlan& plan) {
+  const FieldSpan s = plan.layout.exception_code;
+  if (!s.present()) return;
+  const auto item = b.uint(TreeField::ExceptionCode, s, plan.exception_code);
+  const std::string_view name = fc::exception_name(plan.exception_code);
+  b.expert_on(item, TreeExpert::Exception,
+              "Exception reply: " + std::string(name) + " (code " +
+                  std::to_string(plan.exception_code) + ")");
+}
+
+void add_value_warnings(Builder& b, std::uint32_t item, const PlannedValue& v) {
+  for (unsigned bit = 0; bit < 16; ++bit) {
+    const auto w = static_cast<std::uint16_t>(1u << bit);
+    if ((v.warnings & w) == 0) continue;
+    const std::string_view why = describe(static_cast<ValueWarning>(w));
+    const TreeExpert expert =
+        (w & kSuspicious) != 0 ? TreeExpert::ValueSuspicious : TreeExpert::ValueNote;
+    b.expert_on(item, expert, std::string(text_of(v.label)) + ": " + std::string(why));
+  }
+}
+
+// The named flags of a bits register, one item each in bit order.
+void add_flags(Builder& b, const PlannedValue& v) {
+  unsigned named = 0;
+  for (const BitName& named_bit : v.def->bits) {
+    if (named_bit.index < 16 && !named_bit.name.empty()) named |= 1u << named_bit.index;
+  }
+  for (std::uint8_t bit = 0; bit < 16; ++bit) {
+    if ((named & (1u << bit)) == 0) continue;
+    TreeItem flag;
+    flag.field = TreeField::RegisterFlag;
+    flag.type = ValueType::Boolean;
+    flag.depth = kField;
+    flag.offset = v.span.offset;
+    flag.length = v.span.length;
+    flag.uint = v.raw;
+    flag.def = v.def;
+    flag.bit = bit;
+    b.add(flag);
+  }
+}
+
+std::uint32_t add_value(Builder& b, const PlannedValue& v) {
+  TreeItem item;
+  item.depth = kFrame;
+  item.offset = v.span.offset;
+  item.length = v.span.length;
+  item.form = LabelForm::Whole;
+  item.uint = v.raw;
+  if (v.def == nullptr) {
+    item.field = TreeField::Word;
+    item.text = b.text(std::string(text_of(v.label)) + ": " + std::string(text_of(v.text)) +
+                       " (not in the register map)");
+    return b.add(item);
+  }
+  item.field = TreeField::RegisterValue;
+  item.def = v.def;
+  item.text = b.text(std::string(text_of(v.label)) + ": " + std::string(text_of(v.text)));
+  switch (register_field_type(*v.def)) {
+    case RegisterFieldType::Double:
+      item.type = ValueType::Double;
+      item.number = v.number;
+      break;
+    case RegisterFieldType::String:
+      item.type = ValueType::String;
+      item.string = v.text;
+      break;
+    case RegisterFieldType::Uint16:
+    case RegisterFieldType::Uint32:
+      item.subtree = v.def->kind == RegisterKind::Bits ? Subtree::Flags : Subtree::None;
+      break;
+  }
+  const std::uint32_t index = b.add(item);
+  if (item.subtree == Subtree::Flags) add_flags(b, v);
+  return index;
+}
+
+void add_values(Builder& b, const FramePlan& plan) {
+  for (std::size_t i = 0; i < plan.value_count; ++i) {
+    const PlannedValue& v = plan.values[i];
+    add_value_warnings(b, add_value(b, v), v);
+  }
+  if (plan.decode_note == nullptr) return;
+  const TreeExpert expert =
+      plan.start_assumed ? TreeExpert::StartAssumed : TreeExpert::StartUnknown;
+  b.expert_item(expert, plan.layout.words, plan.decode_note);
+}
+
+void add_check(Builder& b, const FramePlan& plan) {
+  const FieldSpan s = plan.layout.check;
+  if (!s.present()) return;
+  const auto item = b.uint(TreeField::Check, s, plan.check.found);
+  const auto status = [&](CheckStatus st) {
+    b.generated_uint(TreeField::CheckStatus, static_cast<std::uint32_t>(st));
+  };
+  if (!plan.check_verified) {
+    status(CheckStatus::Unverified);
+    return;
+  }
+  status(plan.check.ok ? CheckStatus::Good : CheckStatus::Bad);
+  if (plan.check.ok) return;
+  b.generated_uint(TreeField::CheckExpected, plan.check.expected);
+  b.expert_on(
+      item, TreeExpert::BadCheck,
+      printed("Bad %s 0x%04X, expected 0x%04X", b.ctx().check_word,
+              static_cast<unsigned>(plan.check.found), static_cast<unsigned>(plan.check.expected)));
+}
+
+const char* unanswered_reason(const FrameRecord& r) {
+  if (!r.timed_out) return "no reply before the end of the capture";
+  switch (r.unanswered) {
+    case UnansweredKind::DamagedRequest:
+      return "the request has a bad check: the slave rightly ignored it";
+    case UnansweredKind::AfterLoss:
+      return "capture data was lost while it waited: the reply may be in the gap";
+    case UnansweredKind::InputEnded:
+      return "no reply before the end of the capture";
+    case UnansweredKind::Timeout:
+      break;
+  }
+  switch (r.timeout_reason) {
+    case TimeoutReason::NoReply:
+      return "no reply within the reply timeout";
+    case TimeoutReason::NextRequestFirst:
+      return "the master sent its next request to the station first";
+    case TimeoutReason::CaptureEnded:
+      break;
+  }
+  return "no reply before the end of the capture";
+}
+
+// A frame the session decided but no packet has shown yet (its bytes wait for the next
+// segment of its direction) has no packet to link to.
+bool shown(const FrameRecord* r) {
+  return r != nullptr && r->packet != 0;
+}
+
+void add_request_links(Builder& b, const FrameRecord& r) {
+  if (shown(r.response)) {
+    b.generated_uint(TreeField::ResponseIn, r.response->packet);
+    return;
+  }
+  // Only a later pass knows that no reply came.
+  if (!b.ctx().visited || !r.matched) return;
+  const std::string message = std::string("Request never answered: ") + unanswered_reason(r);
+  TreeItem& item = b.item(b.expert_item(TreeExpert::Unanswered, FieldSpan{}, b.text(message)));
+  if (shown(r.next_request)) item.appended = b.text(printed(" (frame %u)", r.next_request->packet));
+}
+
+// As Wireshark's nstime_delta: b - a, both parts of one sign.
+RelativeTime time_between(const PacketTime& b, const PacketTime& a) {
+  RelativeTime d{b.secs - a.secs, b.nsecs - a.nsecs};
+  constexpr std::int32_t kNsPerSec = 1000000000;
+  if (b.secs < a.secs && d.nsecs > 0) {
+    d.nsecs -= kNsPerSec;
+    d.secs += 1;
+  } else if (b.secs > a.secs && d.nsecs < 0) {
+    d.nsecs += kNsPerSec;
+    d.secs -= 1;
+  }
+  return d;
+}
+
+// The latency the bus session measured (as pvtap audit reports it); a duplicate has none,
+// and shows the time since its request's packet.
+RelativeTime response_time(const FrameRecord& r) {
+  if (!r.has_latency) return time_between(r.time, r.request->time);
+  RelativeTime t;
+  const double ns = r.latency * 1e9;
+  t.secs = static_cast<std::int64_t>(r.latency);
+  t.nsecs = static_cast<std::int32_t>(ns - static_cast<double>(t.secs) * 1e9);
+  return t;
+}
+
+void add_reply_links(Builder& b, const FrameRecord& r) {
+  if (shown(r.request)) {
+    b.generated_uint(TreeField::RequestIn, r.request->packet);
+    TreeItem time;
+    time.field = TreeField::ResponseTime;
+    time.type = ValueType::Time;
+    time.depth = kFrame;
+    time.generated = true;
+    time.time = response_time(r);
+    b.add(time);
+  }
+  if (r.duplicate) {
+    b.expert_item(TreeExpert::Duplicate, FieldSpan{},
+                  "Duplicate reply: the station answered its request again");
+  }
+  if (r.unsolicited) b.expert_item(TreeExpert::Unsolicited, FieldSpan{}, nullptr);
+  if (shown(r.late_for)) {
+    b.expert_item(
+        TreeExpert::LateReply, FieldSpan{},
+        b.text(printed("Reply after its request in frame %u timed out", r.late_for->packet)));
+  }
+}
+
+void add_count_mismatch(Builder& b, const FrameRecord& r) {
+  if (!r.count_mismatch) return;
+  const char* unit = r.count_unit == CountUnit::Words ? "words" : "bytes";
+  const std::uint32_t item = b.generated_uint(TreeField::ExpectedCount, r.count_expected);
+  b.expert_on(
+      item, TreeExpert::CountMismatch,
+      printed("The request asked for %u %s, the reply carries %u",
+              static_cast<unsigned>(r.count_expected), unit, static_cast<unsigned>(r.count_found)));
+}
+
+void add_matching(Builder& b, const FrameRecord& r) {
+  if (r.role_corrected) b.expert_item(TreeExpert::RoleCorrected, FieldSpan{}, nullptr);
+  if (r.role == Role::Request) {
+    add_request_links(b, r);
+  } else {
+    add_reply_links(b, r);
+    add_count_mismatch(b, r);
+  }
+}
+
+void describe(Builder& b, const FramePlan& plan, const FrameRecord& record) {
+  const std::uint32_t top = add_top(b, Subtree::Frame, ", " + std::string(text_of(plan.summary)));
+  b.generated_uint(TreeField::Dialect, static_cast<std::uint32_t>(plan.dialect));
+  b.generated_uint(TreeField::Role, static_cast<std::uint32_t>(plan.role));
+  if (!plan.parsed) {
+    b.expert_on(top, TreeExpert::Malformed,
+                "Malformed frame: " + std::string(text_of(plan.parse_error)));
+    b.uint(TreeField::Station, plan.layout.station, plan.station);
+    b.uint(TreeField::Function, plan.layout.function, plan.function);
+    add_check(b, plan);
+    add_matching(b, record);
+    return;
+  }
+  add_header(b, plan);
+  add_exception(b, plan);
+  add_values(b, plan);
+  add_check(b, plan);
+  add_matching(b, record);
+}
+
+void describe(Builder& b, const std::optional<UnknownFunctionFrame>& unknown) {
+  add_top(b, Subtree::Noise, printed(", noise (%d bytes)", b.ctx().length));
+  TreeItem noise;
+  noise.field = TreeField::Noise;
+  noise.type = ValueType::Bytes;
+  noise.depth = kFrame;
+  noise.length = b.ctx().length;
+  const std::uint32_t bytes = b.add(noise);
+  if (!unknown) {
+    TreeItem expert;
+    expert.kind = ItemKind::Expert;
+    expert.expert = TreeExpert::Noise;
+    expert.target = static_cast<std::int32_t>(bytes);
+    b.add(expert);
+    return;
+  }
+  b.uint(TreeField::Station, FieldSpan{0, 1}, unknown->station);
+  const auto item = b.uint(TreeField::UnknownFunction, FieldSpan{1, 1}, unknown->function);
+  b.expert_on(item, TreeExpert::UnknownFunction,
+              printed("Frame with a good CRC and the unknown function code 0x%02X",
+                      static_cast<unsigned>(unknown->function)));
+}
+
+}  // namespace
+
+TreeDescription describe_frame(const FramePlan& plan, const FrameRecord& record,
+                               const DescriptionContext& ctx) noexcept {
+  try {
+    Builder b(ctx);
+    describe(b, plan, record);
+    return b.finish(plan.dialect);
+  } catch (...) {
+    return {};  // out of memory: no tree rather than a crash
+  }
+}
+
+TreeDescription describe_noise(const std::optional<UnknownFunctionFrame>& unknown,
+                               const DescriptionContext& ctx) noexcept {
+  try {
+    Builder b(ctx);
+    describe(b, unknown);
+    return b.finish(Dialect::Gsl);
+  } catch (...) {
+    return {};
+  }
+}
+
+RegisterFieldType register_field_type(const RegisterDef& def) {
+  switch (def.kind) {
+    case RegisterKind::Number:
+    case RegisterKind::Bcd:
+    case RegisterKind::BcdPhaseCapacity:
+      return RegisterFieldType::Double;
+    case RegisterKind::Raw:
+      return def.words > 1 ? RegisterFieldType::Uint32 : RegisterFieldType::Uint16;
+    case RegisterKind::Bits:
+      return RegisterFieldType::Uint16;
+    case RegisterKind::Enum:
+    case RegisterKind::DeviceNumber:
+      return RegisterFieldType::Uint32;
+    case RegisterKind::Text:
+    case RegisterKind::BcdYearMonth:
+      return RegisterFieldType::String;
+  }
+  return RegisterFieldType::Uint16;
+}
+
+}  // namespace pvtap::dissector
