@@ -29,15 +29,6 @@ CaptureFile::Next RecordBatch::fill(CaptureFile& file, std::size_t bytes) {
   return after_;
 }
 
-bool RecordBatch::next(CapturedPacket& packet) {
-  if (next_ == records_.size()) return false;
-  const Record& record = records_[next_++];
-  packet.time = record.time;
-  packet.bytes = std::span<const std::uint8_t>(bytes_.get() + record.offset, record.size);
-  packet.length_on_wire = record.length_on_wire;
-  return true;
-}
-
 void RecordBatch::append(std::span<const std::uint8_t> bytes) {
   if (used_ + bytes.size() > capacity_) {
     const std::size_t capacity = used_ + bytes.size();

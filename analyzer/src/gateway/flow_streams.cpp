@@ -22,10 +22,6 @@ FlowStreams::FlowStreams(Transport transport, const Endpoint& slave, double hole
       to_slave_(bytes, Direction::ToSlave, hole_wait),
       from_slave_(bytes, Direction::FromSlave, hole_wait) {}
 
-const TcpDirectionStream& FlowStreams::stream(Direction d) const {
-  return d == Direction::ToSlave ? to_slave_.stream : from_slave_.stream;
-}
-
 void FlowStreams::on_segment(const Segment& s, double time) {
   const Direction d = same_endpoint(s.source, slave_) ? Direction::FromSlave : Direction::ToSlave;
   if (transport_ == Transport::Udp) {
@@ -51,16 +47,6 @@ void FlowStreams::expire(double now) {
 void FlowStreams::flush(double time) {
   to_slave_.stream.flush(time);
   from_slave_.stream.flush(time);
-}
-
-bool FlowStreams::other_complete(Direction d) const {
-  return transport_ == Transport::Udp || !stream(other(d)).has_hole();
-}
-
-bool FlowStreams::ended() const {
-  const bool closed = reset_ || (to_slave_.fin && from_slave_.fin);
-  return transport_ == Transport::Tcp && closed && !to_slave_.stream.has_hole() &&
-         !from_slave_.stream.has_hole();
 }
 
 void FlowStreams::add_stats(NetworkStats& into, bool analyzed) const {

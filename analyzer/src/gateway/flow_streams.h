@@ -31,7 +31,9 @@ class FlowStreams {
 
   Transport transport() const { return transport_; }
   const Endpoint& slave() const { return slave_; }
-  const TcpDirectionStream& stream(Direction d) const;
+  const TcpDirectionStream& stream(Direction d) const {
+    return d == Direction::ToSlave ? to_slave_.stream : from_slave_.stream;
+  }
 
   void on_segment(const Segment& s, double time);
   // Gives up holes that waited longer than allowed.
@@ -41,9 +43,17 @@ class FlowStreams {
 
   // No byte of the side opposite `d` is still missing. While one is (a hole waiting for a
   // retransmission), that side's turn is not over.
-  bool other_complete(Direction d) const;
+  bool other_complete(Direction d) const {
+    const TcpDirectionStream& opposite =
+        d == Direction::ToSlave ? from_slave_.stream : to_slave_.stream;
+    return transport_ == Transport::Udp || !opposite.has_hole();
+  }
   // FIN both ways or RST, and no hole left: nothing more will come.
-  bool ended() const;
+  bool ended() const {
+    const bool closed = reset_ || (to_slave_.fin && from_slave_.fin);
+    return transport_ == Transport::Tcp && closed && !to_slave_.stream.has_hole() &&
+           !from_slave_.stream.has_hole();
+  }
   // What reassembly repaired; what it lost only for a flow whose bytes were analyzed.
   void add_stats(NetworkStats& into, bool analyzed) const;
 

@@ -41,10 +41,10 @@ Carrier InputRecords::carrier_of(InputKind kind, bool has_timestamps) const {
   return Carrier::SerialCharacters;
 }
 
-RecordContent InputRecords::read(const CapturedPacket& packet) {
+std::optional<SerialBytes> InputRecords::serial_bytes(const CapturedPacket& packet) {
   switch (kind_) {
     case InputKind::Network:
-      return network_packet(packet);
+      break;
     case InputKind::ExportedPdu:
       return exported_pdu(packet);
     case InputKind::Serial:
@@ -52,14 +52,14 @@ RecordContent InputRecords::read(const CapturedPacket& packet) {
     case InputKind::RtacSerial:
       return rtac_record(packet);
   }
-  return {};
+  return std::nullopt;
 }
 
-RecordContent InputRecords::rtac_record(const CapturedPacket& packet) {
+std::optional<SerialBytes> InputRecords::rtac_record(const CapturedPacket& packet) {
   const auto record = rtac_serial_record(packet.bytes);
   if (!record) {
     ++skipped_.malformed;
-    return {};
+    return std::nullopt;
   }
   SerialBytes serial;
   serial.kind = InputKind::RtacSerial;
@@ -68,11 +68,10 @@ RecordContent InputRecords::rtac_record(const CapturedPacket& packet) {
   return serial;
 }
 
-RecordContent InputRecords::network_packet(const CapturedPacket& packet) {
-  Segment segment;
+bool InputRecords::network_packet(const CapturedPacket& packet, Segment& segment) {
   switch (decode_network_packet(link_type_, packet.bytes, segment)) {
     case PacketVerdict::Segment:
-      return segment;
+      return true;
     case PacketVerdict::NotIp:
       ++skipped_.not_ip;
       break;
@@ -86,18 +85,18 @@ RecordContent InputRecords::network_packet(const CapturedPacket& packet) {
       ++skipped_.malformed;
       break;
   }
-  return {};
+  return false;
 }
 
-RecordContent InputRecords::exported_pdu(const CapturedPacket& packet) {
+std::optional<SerialBytes> InputRecords::exported_pdu(const CapturedPacket& packet) {
   const auto record = exported_pdu_record(packet.bytes);
   if (!record) {
     ++skipped_.malformed;
-    return {};
+    return std::nullopt;
   }
   if (record->dissector != exported_pdu::kDissectorName) {
     ++skipped_.foreign_pdus;
-    return {};
+    return std::nullopt;
   }
   // Half duplex: the session ends a side's turn when the other side speaks.
   SerialBytes serial;

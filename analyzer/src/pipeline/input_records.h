@@ -3,7 +3,7 @@
 #pragma once
 
 #include <cstdint>
-#include <variant>
+#include <optional>
 
 #include "pvtap/capture/capture_file.h"
 #include "pvtap/capture/link_types.h"
@@ -22,17 +22,19 @@ struct SerialBytes {
   std::uint64_t lost_after = 0;  // the record's tail, cut by the capture's snap length
 };
 
-// Nothing (the record was skipped, and counted), bytes of the serial bus, or a segment of a
-// TCP/UDP flow. Spans point into the record.
-using RecordContent = std::variant<std::monostate, SerialBytes, Segment>;
-
 class InputRecords {
  public:
   // Records of the next input have this link type; `batched_serial`: its serial records are
   // read chunks (timestamps batched), not one character each. Only the input that makes the
   // serial bus decides how it reads its timestamps (`serial_timing_open`).
   void begin(int link_type, bool batched_serial, bool serial_timing_open);
-  RecordContent read(const CapturedPacket& packet);
+  // Records of IP packets: a segment of a TCP/UDP flow is read into `segment` (spans point
+  // into the record); false when the record was skipped, and counted. The segment is the
+  // caller's, so that the audit's hot path copies none.
+  bool is_network() const { return kind_ == InputKind::Network; }
+  bool network_packet(const CapturedPacket& packet, Segment& segment);
+  // Records of the serial bus: its bytes; nullopt when the record was skipped, and counted.
+  std::optional<SerialBytes> serial_bytes(const CapturedPacket& packet);
   // How the bytes of that kind of input reach pvtap, for what their timestamps prove.
   Carrier carrier_of(InputKind kind, bool has_timestamps) const;
 
@@ -41,9 +43,8 @@ class InputRecords {
   const SkippedRecords& skipped() const { return skipped_; }
 
  private:
-  RecordContent network_packet(const CapturedPacket& packet);
-  RecordContent exported_pdu(const CapturedPacket& packet);
-  RecordContent rtac_record(const CapturedPacket& packet);
+  std::optional<SerialBytes> exported_pdu(const CapturedPacket& packet);
+  std::optional<SerialBytes> rtac_record(const CapturedPacket& packet);
 
   int link_type_ = -1;
   InputKind kind_ = InputKind::Serial;

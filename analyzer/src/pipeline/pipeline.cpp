@@ -25,11 +25,11 @@ void Pipeline::begin_input(int link_type, bool batched_serial) {
 }
 
 void Pipeline::record(const CapturedPacket& packet) {
-  const RecordContent content = input_.read(packet);
-  if (const auto* serial = std::get_if<SerialBytes>(&content)) {
+  if (input_.is_network()) {
+    Segment segment;
+    if (input_.network_packet(packet, segment)) gateway_.on_segment(segment, packet.time);
+  } else if (const std::optional<SerialBytes> serial = input_.serial_bytes(packet)) {
     feed(serial_bus(serial->kind), *serial);
-  } else if (const auto* segment = std::get_if<Segment>(&content)) {
-    gateway_.on_segment(*segment, packet.time);
   }
 }
 

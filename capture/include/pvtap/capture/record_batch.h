@@ -24,7 +24,15 @@ class RecordBatch {
   CaptureFile::Next fill(CaptureFile& file, std::size_t bytes);
   // The next record not handed out since fill(); false when none is left. `bytes` stays
   // valid until the batch is filled again.
-  bool next(CapturedPacket& packet);
+  // Inline: called once per record on the audit's hot path.
+  bool next(CapturedPacket& packet) {
+    if (next_ == records_.size()) return false;
+    const Record& record = records_[next_++];
+    packet.time = record.time;
+    packet.bytes = std::span<const std::uint8_t>(bytes_.get() + record.offset, record.size);
+    packet.length_on_wire = record.length_on_wire;
+    return true;
+  }
 
   std::uint64_t position() const { return position_; }  // the file's, after the last record
   CaptureFile::Next after() const { return after_; }    // End or Truncated: the last batch
