@@ -78,6 +78,17 @@ def refuse_system_plugin():
             % ", ".join(copies))
 
 
+# The longest one tshark run may take before it is given up (see TsharkHome.run).
+RUN_TIMEOUT_S = 90
+
+
+def as_text(output):
+    """What a killed process had printed (bytes or text, or None)."""
+    if output is None:
+        return ""
+    return output.decode(errors="replace") if isinstance(output, bytes) else output
+
+
 class TsharkHome:
     """A temporary HOME holding the plugin, user register maps and the test captures."""
 
@@ -122,8 +133,17 @@ class TsharkHome:
                        "--clear-groups"] + command
         return command
 
-    def run(self, args, check=True):
-        result = subprocess.run(self.command(args), capture_output=True, text=True, timeout=120)
+    def run(self, args, check=True, timeout=RUN_TIMEOUT_S):
+        """tshark ARGS to its end. A guard, not a timing check: a tshark that has not ended
+        after `timeout` seconds is killed, and the failure says which run it was and what it
+        had printed, before the test's own CTest timeout can end it without a word."""
+        try:
+            result = subprocess.run(self.command(args), capture_output=True, text=True,
+                                    timeout=timeout)
+        except subprocess.TimeoutExpired as e:
+            raise AssertionError("tshark %s: still running after %d s (killed); it printed:\n%s%s"
+                                 % (" ".join(args), timeout, as_text(e.stdout),
+                                    as_text(e.stderr))) from None
         if check and result.returncode != 0:
             raise AssertionError("tshark %s failed (%d):\n%s" % (" ".join(args), result.returncode,
                                                                  result.stderr))

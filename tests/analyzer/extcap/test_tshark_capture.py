@@ -85,7 +85,7 @@ class TsharkCapture(unittest.TestCase):
         self.wait_for_pvtap(tshark)
         with open("/proc/%d/cmdline" % holders_of(self.pty.path)[0]) as f:
             command = f.read().split("\0")
-        out, err = tshark.communicate(timeout=GUARD_S)
+        out, err = self.finish(tshark, GUARD_S)
         self.assertEqual(tshark.returncode, 0, err)
         for option, value in (("--baud", "19200"), ("--parity", "none"), ("--stop-bits", "2"),
                               ("--dialect", "gsl")):
@@ -97,6 +97,17 @@ class TsharkCapture(unittest.TestCase):
                                  self.setting("baud", "1234"), check=False)
         self.assertNotEqual(result.returncode, 0)
         self.assertIn("pvtap: --baud 1234: not one of", result.stderr)
+
+    def finish(self, tshark, seconds):
+        """The output of a tshark that stops by its own -a duration; a guard, not a timing
+        check: one still running `seconds` later is killed and the failure says so."""
+        try:
+            return tshark.communicate(timeout=seconds)
+        except subprocess.TimeoutExpired:
+            tshark.kill()
+            out, err = tshark.communicate()
+            self.fail("tshark still running %d s after its -a duration ended (killed); it "
+                      "printed:\n%s%s" % (seconds, out, err))
 
     def wait_for_pvtap(self, tshark):
         deadline = time.monotonic() + GUARD_S
@@ -115,7 +126,7 @@ class TsharkCapture(unittest.TestCase):
         self.wait_for_pvtap(tshark)
         events = self.truth["events"]
         pty_bus.play(self.pty.master, pty_bus.byte_schedule(events, BAUD), time.monotonic())
-        out, err = tshark.communicate(timeout=CAPTURE_S + GUARD_S)
+        out, err = self.finish(tshark, CAPTURE_S + GUARD_S)
         self.assertEqual(tshark.returncode, 0, err)
         found = [decoded(line) for line in out.splitlines()]
         expected = [(e["hex"].lower(), e["station"], e["function"]) for e in events

@@ -97,6 +97,28 @@ def keep_time():
         pass
 
 
+# The longest the reader may leave the pty full before play() gives up: a guard against a
+# reader that stopped (a pty holds a few KiB; a reading pvtap empties it in milliseconds).
+STALL_S = 30
+
+
+def write_all(master, chunk):
+    """Writes `chunk` to the non-blocking master side; raises when the reader takes nothing
+    for STALL_S seconds, naming how much was left, instead of waiting forever."""
+    stalled_since = None
+    while chunk:
+        try:
+            chunk = chunk[os.write(master, chunk):]
+            stalled_since = None
+        except BlockingIOError:
+            now = time.monotonic()
+            stalled_since = stalled_since or now
+            if now - stalled_since > STALL_S:
+                raise RuntimeError("the pty's reader took none of the last %d bytes for %d s: "
+                                   "it stopped reading" % (len(chunk), STALL_S)) from None
+            time.sleep(0.001)
+
+
 def play(master, schedule, start, writes=None):
     """Writes each byte at start + its due offset; bytes that are due together go in one
     write, as a USB adapter batches them. Returns the most any write was late (seconds).
@@ -114,12 +136,7 @@ def play(master, schedule, start, writes=None):
         j = i
         while j < len(schedule) and start + schedule[j][0] <= now:
             j += 1
-        chunk = bytes(b for _, b in schedule[i:j])
-        while chunk:
-            try:
-                chunk = chunk[os.write(master, chunk):]
-            except BlockingIOError:
-                time.sleep(0.001)
+        write_all(master, bytes(b for _, b in schedule[i:j]))
         i = j
         if writes is not None:
             writes.append((i, time.monotonic()))
