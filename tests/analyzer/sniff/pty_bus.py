@@ -114,7 +114,7 @@ def write_all(master, chunk):
             now = time.monotonic()
             stalled_since = stalled_since or now
             if now - stalled_since > STALL_S:
-                raise RuntimeError("the pty's reader took none of the last %d bytes for %d s: "
+                raise RuntimeError("the pty's reader took none of the last %d bytes for %g s: "
                                    "it stopped reading" % (len(chunk), STALL_S)) from None
             time.sleep(0.001)
 
