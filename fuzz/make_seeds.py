@@ -108,6 +108,25 @@ def core_seeds(out, max_bytes):
             records.add(b"\x01" + header + r)
 
 
+def plan_seeds(out):
+    """dissector_plan: a record header (dialect, flags, more flags, counts, latency, packet),
+    the request's bytes with their length, then the frame: each reply of a sample with the
+    request before it, and each request alone, as the first pass would have recorded them."""
+    corpus = Corpus(out, "dissector_plan")
+    for path in samples(".pdu.pcap"):
+        name = os.path.basename(path)
+        dialect = 0 if name.startswith("ascii") else 1 if name.startswith("hybrid") else 2
+        _, recs = read_pcap(path)
+        pdus = [pdu_of(r) for _, r in recs][:24]
+        for (d0, first), (d1, second) in zip(pdus, pdus[1:]):
+            if d0 != 1 or d1 != 2:
+                continue
+            header = struct.pack(">BBBBBII", dialect, 0x0F, 0, 0, 0, 1200, 7)
+            corpus.add(header + bytes([min(len(first), 63)]) + first[:63] + second)
+            request = struct.pack(">BBBBBII", dialect, 0x0E, 0, 0, 0, 0, 6)
+            corpus.add(request + b"\x00" + first)
+
+
 def tcp_segments(path):
     """The TCP segments (src port, seq, flags, payload, time) of an Ethernet IPv4 capture."""
     _, recs = read_pcap(path)
@@ -225,6 +244,7 @@ def main():
     capture_seeds(a.out, a.max_bytes, a.test_captures)
     map_seeds(a.out)
     argument_seeds(a.out)
+    plan_seeds(a.out)
     for target in sorted(os.listdir(a.out)):
         print("%-20s %4d seeds" % (target, len(os.listdir(os.path.join(a.out, target)))))
     return 0
