@@ -78,7 +78,8 @@ void check_items(const TreeDescription& d, std::size_t size) {
   for (std::size_t i = 0; i < d.count; ++i) {
     const pvtap::dissector::TreeItem& item = d.items[i];
     PVTAP_FUZZ_CHECK(item.offset >= 0 && item.length >= 0);
-    PVTAP_FUZZ_CHECK(static_cast<std::size_t>(item.offset) + item.length <= size);
+    PVTAP_FUZZ_CHECK(
+        static_cast<std::size_t>(item.offset) + static_cast<std::size_t>(item.length) <= size);
     PVTAP_FUZZ_CHECK(item.target < static_cast<std::int32_t>(d.count));
   }
 }
