@@ -18,6 +18,10 @@ import subprocess
 import sys
 import tempfile
 
+# The longest one program this test runs may take: a guard, not a timing check. On expiry
+# subprocess raises TimeoutExpired, which names the command that was waited for.
+RUN_GUARD_S = 120
+
 SKIP = 77
 SUMMARY_COUNTS = ("bytes", "frames", "requests", "responses", "bad_checks", "timeouts",
                   "noise_bytes", "exceptions", "lost_bytes", "gaps", "unsolicited",
@@ -244,7 +248,7 @@ def mode_usage(options, checks):
                  ["--baud", "0", capture], ["--no-such-option", capture], [],
                  ["--raw", capture, capture], ["--port", "http", capture]):
         run(options.pvtap, args, 2, checks)
-    top = subprocess.run([options.pvtap], capture_output=True, text=True)
+    top = subprocess.run([options.pvtap], capture_output=True, text=True, timeout=RUN_GUARD_S)
     checks.equal("pvtap without a subcommand", top.returncode, 2)
     helped = run(options.pvtap, ["--help"], 0, checks)
     for phrase in ("--format", "--fail-on", "Exit status", "USER0", "--raw"):
@@ -298,7 +302,8 @@ def mode_user_maps(options, checks):
 
 
 def mode_version(options, checks):
-    result = subprocess.run([options.pvtap, "--version"], capture_output=True, text=True)
+    result = subprocess.run([options.pvtap, "--version"], capture_output=True, text=True,
+                            timeout=RUN_GUARD_S)
     checks.equal("exit status of pvtap --version", result.returncode, 0)
     pattern = (r"pvtap \d+\.\d+\.\d+\n"
                r"Wireshark plugin (built for Wireshark \d+\.\d+\.\d+|not built)\n")

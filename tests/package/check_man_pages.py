@@ -8,13 +8,17 @@ import re
 import subprocess
 import sys
 
+# The longest one program this test runs may take: a guard, not a timing check. On expiry
+# subprocess raises TimeoutExpired, which names the command that was waited for.
+RUN_GUARD_S = 120
+
 PAGES = {"pvtap": [], "pvtap-audit": ["audit"], "pvtap-sniff": ["sniff"]}
 
 
 def help_options(pvtap, subcommand):
     """The long options of `pvtap [SUBCOMMAND] --help`, from its option lines."""
     text = subprocess.run([pvtap, *subcommand, "--help"], capture_output=True, text=True,
-                          check=True).stdout
+                          check=True, timeout=RUN_GUARD_S).stdout
     return sorted(set(re.findall(r"^ {2,12}(?:-[a-z], *)?(--[a-z][a-z-]*)", text, re.MULTILINE)))
 
 
@@ -22,7 +26,7 @@ def rendered(path):
     """The page as man shows it, wide enough that no option is broken across lines."""
     env = dict(os.environ, MANWIDTH="1000", LC_ALL="C.UTF-8", MAN_KEEP_FORMATTING="")
     result = subprocess.run(["man", "-l", path], capture_output=True, text=True, env=env,
-                            check=True)
+                            check=True, timeout=RUN_GUARD_S)
     # Drop overstrike formatting in case the pager kept it, and Unicode hyphens.
     return re.sub(r".\x08", "", result.stdout).replace("\u2010", "-").replace("\u2212", "-")
 
@@ -36,7 +40,7 @@ def section(text, name):
 def main():
     pvtap, man_dir = sys.argv[1], sys.argv[2]
     version = subprocess.run([pvtap, "--version"], capture_output=True, text=True,
-                             check=True).stdout.split()[1]
+                             check=True, timeout=RUN_GUARD_S).stdout.split()[1]
     failures = []
     for page, subcommand in PAGES.items():
         text = rendered(os.path.join(man_dir, page + ".1.gz"))

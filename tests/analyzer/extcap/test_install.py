@@ -7,6 +7,10 @@ import subprocess
 import tempfile
 import unittest
 
+# The longest one program this test runs may take: a guard, not a timing check. On expiry
+# subprocess raises TimeoutExpired, which names the command that was waited for.
+RUN_GUARD_S = 120
+
 PREFIX = "/usr/local"
 
 
@@ -21,7 +25,8 @@ class Install(unittest.TestCase):
 
     def test_extcap_folder_gets_a_link_to_the_installed_pvtap(self):
         subprocess.run(["cmake", "--install", self.build, "--prefix", PREFIX], check=True,
-                       capture_output=True, env=dict(os.environ, DESTDIR=self.destdir))
+                       capture_output=True, env=dict(os.environ, DESTDIR=self.destdir),
+                       timeout=RUN_GUARD_S)
         link = self.destdir + os.path.join(self.extcap_dir, "pvtap")
         self.assertTrue(os.path.islink(link), link + " is no link")
         # Relative, so that it resolves to the installed binary under DESTDIR too.
@@ -31,7 +36,7 @@ class Install(unittest.TestCase):
         binary = self.destdir + target
         self.assertTrue(os.access(binary, os.X_OK), binary)
         answer = subprocess.run([binary, "--extcap-interfaces"], capture_output=True, text=True,
-                                check=True)
+                                check=True, timeout=RUN_GUARD_S)
         self.assertTrue(answer.stdout.startswith("extcap {version="), answer.stdout)
 
 

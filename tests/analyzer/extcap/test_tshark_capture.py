@@ -12,6 +12,10 @@ import unittest
 
 from extcap_home import ExtcapHome, ReadablePty, holders_of, interface_of, pty_bus
 
+# The longest one program this test runs may take: a guard, not a timing check. On expiry
+# subprocess raises TimeoutExpired, which names the command that was waited for.
+RUN_GUARD_S = 120
+
 BAUD = 9600
 # tshark's own stop; the bus below plays for 3 s once pvtap has opened the pty, well before.
 CAPTURE_S = 10
@@ -28,7 +32,7 @@ def simulate(folder):
     truth_path = os.path.join(folder, "truth.json")
     subprocess.run([sim, "--baud", str(BAUD), "--period", "1", "--dialect", "gsl,hybrid,ascii",
                     "--inverters", "3", "--duration", "3", "--seed", "5", "--truth", truth_path],
-                   check=True, capture_output=True)
+                   check=True, capture_output=True, timeout=RUN_GUARD_S)
     with open(truth_path, encoding="utf-8") as f:
         return json.load(f)
 

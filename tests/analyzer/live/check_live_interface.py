@@ -28,6 +28,10 @@ import sys
 import time
 import tty
 
+# The longest one program this test runs may take: a guard, not a timing check. On expiry
+# subprocess raises TimeoutExpired, which names the command that was waited for.
+RUN_GUARD_S = 120
+
 SKIP = 77
 # Waits are for processes to get somewhere; running out of one is a failure, never a pass.
 PATIENCE_S = 30.0
@@ -71,7 +75,8 @@ def capture_refused_for_privilege(pvtap):
     if os.geteuid() == 0:
         return False
     run = subprocess.run([pvtap, "sniff", "--interface", "lo", "--duration", "0.1",
-                          "--summary-only"], capture_output=True, text=True, check=False)
+                          "--summary-only"], capture_output=True, text=True, check=False,
+                         timeout=RUN_GUARD_S)
     return run.returncode == 2 and "permission denied" in run.stderr
 
 
@@ -131,7 +136,7 @@ def pcap_records(path):
 
 def audit(pvtap, capture, port):
     run = subprocess.run([pvtap, "audit", "--format", "jsonl", "--port", str(port), capture],
-                         capture_output=True, text=True, check=False)
+                         capture_output=True, text=True, check=False, timeout=RUN_GUARD_S)
     if run.returncode != 0:
         raise Failure(f"pvtap audit exited {run.returncode}: {run.stderr.strip()}")
     return jsonl(run.stdout)
@@ -262,7 +267,7 @@ class Rig:
 def sim_truth(sim, scratch):
     path = os.path.join(scratch, "truth.json")
     run = subprocess.run([sim, *SIM_ARGS, "--truth", path], capture_output=True, text=True,
-                         check=False)
+                         check=False, timeout=RUN_GUARD_S)
     if run.returncode != 0:
         raise Failure(f"pvtap-sim exited {run.returncode}: {run.stderr.strip()}")
     with open(path, encoding="utf-8") as f:
@@ -403,7 +408,7 @@ def check_gateway(args):
 
 def check_no_such_interface(args):
     run = subprocess.run([args.pvtap, "sniff", "--interface", "no-such-if0", "--port", "4001"],
-                         capture_output=True, text=True, check=False)
+                         capture_output=True, text=True, check=False, timeout=RUN_GUARD_S)
     bad = []
     if run.returncode != 2:
         bad.append(f"exit status {run.returncode}, expected 2")
@@ -420,7 +425,8 @@ def check_no_such_interface(args):
 def check_bad_filter(args):
     bogus = "tcp port and nonsense ((("
     run = subprocess.run([args.pvtap, "sniff", "--interface", "lo", "--port", "4001",
-                          "--filter", bogus], capture_output=True, text=True, check=False)
+                          "--filter", bogus], capture_output=True, text=True, check=False,
+                         timeout=RUN_GUARD_S)
     bad = []
     if run.returncode != 2:
         bad.append(f"exit status {run.returncode}, expected 2")

@@ -12,6 +12,10 @@ import time
 
 import paho.mqtt.client as paho
 
+# The longest one program this test runs may take: a guard, not a timing check. On expiry
+# subprocess raises TimeoutExpired, which names the command that was waited for.
+RUN_GUARD_S = 120
+
 USER, PASSWORD = "pvtap", "s3cret-pw"
 ADMIN, ADMIN_PASSWORD = "watcher", "watcher-pw"
 GUARD_S = 20
@@ -25,7 +29,8 @@ def free_port():
 
 def make_ca(folder, name):
     """A CA and a server certificate it signed for 127.0.0.1 and localhost (EC keys: fast)."""
-    run = lambda *a: subprocess.run(["openssl", *a], check=True, capture_output=True)
+    run = lambda *a: subprocess.run(["openssl", *a], check=True, capture_output=True,
+                                    timeout=RUN_GUARD_S)
     ca_key, ca_crt = (os.path.join(folder, f"{name}-ca.{e}") for e in ("key", "crt"))
     key, csr, crt = (os.path.join(folder, f"{name}-server.{e}") for e in ("key", "csr", "crt"))
     ext = os.path.join(folder, f"{name}.ext")
@@ -57,7 +62,7 @@ class Broker:
             os.remove(passwd)
         for user, pw in ((USER, PASSWORD), (ADMIN, ADMIN_PASSWORD)):
             subprocess.run(["mosquitto_passwd", "-b", *(["-c"] if user == USER else []), passwd,
-                            user, pw], check=True, capture_output=True)
+                            user, pw], check=True, capture_output=True, timeout=RUN_GUARD_S)
         os.chmod(passwd, 0o644)
         self.password_file = os.path.join(self.folder, "pvtap.pw")
         with open(self.password_file, "w") as f:

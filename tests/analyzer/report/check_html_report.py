@@ -22,6 +22,10 @@ import time
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from headless_chromium import HeadlessChromium, find_chromium  # noqa: E402
 
+# The longest one program this test runs may take: a guard, not a timing check. On expiry
+# subprocess raises TimeoutExpired, which names the command that was waited for.
+RUN_GUARD_S = 120
+
 # What the page is asked, from inside: the tiles as shown, the timeline's points per kind read
 # back from the dygraph (requests/replies weighted by the bucket counts), and the last point of
 # every series of every value chart.
@@ -115,7 +119,7 @@ def hover_tooltip(browser, kind):
 
 
 def run(args):
-    result = subprocess.run(args, capture_output=True, text=True)
+    result = subprocess.run(args, capture_output=True, text=True, timeout=RUN_GUARD_S)
     if result.returncode != 0:
         sys.exit("FAIL: %s exited %d: %s" % (" ".join(args), result.returncode, result.stderr))
     return result.stdout

@@ -9,10 +9,15 @@ network interface at all: nothing it tries to fetch can leave the machine.
 import base64
 import json
 import os
+import select
 import shutil
 import subprocess
 import tempfile
 import time
+
+# The longest one program this test runs may take: a guard, not a timing check. On expiry
+# subprocess raises TimeoutExpired, which names the command that was waited for.
+RUN_GUARD_S = 120
 
 
 def find_chromium():
@@ -28,7 +33,8 @@ def _network_namespace_prefix():
     if unshare is None:
         return []
     for prefix in ([unshare, "-n"], [unshare, "-rn"]):
-        if subprocess.run(prefix + ["true"], capture_output=True).returncode == 0:
+        probe = subprocess.run(prefix + ["true"], capture_output=True, timeout=RUN_GUARD_S)
+        if probe.returncode == 0:
             return prefix
     return []
 
@@ -78,8 +84,11 @@ class HeadlessChromium:
 
     def _read_message(self, deadline):
         while b"\0" not in self._buffer:
-            if time.monotonic() > deadline:
-                raise TimeoutError("chromium did not answer in time")
+            # A read waits only as long as the deadline allows: a chromium that hangs without
+            # a word must fail the test, not block it.
+            left = deadline - time.monotonic()
+            if left <= 0 or not select.select([self._from_browser], [], [], left)[0]:
+                raise TimeoutError("chromium did not answer on its DevTools pipe in time")
             chunk = os.read(self._from_browser, 1 << 20)
             if not chunk:
                 raise EOFError("chromium closed its DevTools pipe")

@@ -24,6 +24,10 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
                                 "dissector"))
 from bus_frames import with_crc  # noqa: E402
 
+# The longest one program this test runs may take: a guard, not a timing check. On expiry
+# subprocess raises TimeoutExpired, which names the command that was waited for.
+RUN_GUARD_S = 120
+
 BAUD = 9600
 # Longest wait for pvtap to open a device or to exit by itself; a guard against hangs, not
 # a timing requirement.
@@ -177,7 +181,7 @@ def check_events(events, truth, bad, label="bus"):
 
 def audit_frames(args, pcap):
     run = subprocess.run([args.pvtap, "audit", "--format", "jsonl", pcap],
-                         capture_output=True, text=True, check=False)
+                         capture_output=True, text=True, check=False, timeout=RUN_GUARD_S)
     if run.returncode != 0:
         raise RuntimeError(f"pvtap audit {pcap} exited {run.returncode}: {run.stderr}")
     return frames_of([json.loads(line) for line in run.stdout.splitlines()])

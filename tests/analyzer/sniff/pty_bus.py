@@ -10,11 +10,15 @@ import termios
 import time
 import tty
 
+# The longest one program this test runs may take: a guard, not a timing check. On expiry
+# subprocess raises TimeoutExpired, which names the command that was waited for.
+RUN_GUARD_S = 120
+
 
 def simulate(sim, scratch, name, args):
     """Runs pvtap-sim with `args`, returns its ground truth (a dict)."""
     truth_path = os.path.join(scratch, name + ".truth.json")
-    subprocess.run([sim, *args, "--truth", truth_path], check=True)
+    subprocess.run([sim, *args, "--truth", truth_path], check=True, timeout=RUN_GUARD_S)
     with open(truth_path, encoding="utf-8") as f:
         return json.load(f)
 
