@@ -32,6 +32,8 @@ constexpr FieldSpec kFields[] = {
      "Hybrid device number: type code and serial number"},
     {&CommonFields::device_serial, "Device serial number", "device.serial", FT_UINT24, BASE_DEC,
      true, nullptr},
+    {&CommonFields::error_body, "Error reply body", "error_body", FT_UINT32, BASE_HEX, true,
+     "The fixed body of a Hybrid error reply (0x1000 0x00FF), not a register range"},
     {&CommonFields::word, "Unmapped word", "word", FT_UINT16, BASE_HEX, false,
      "A data word that no register map entry covers"},
     {&CommonFields::noise, "Noise", "noise", FT_BYTES, BASE_NONE, false,

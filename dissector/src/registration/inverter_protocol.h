@@ -22,7 +22,8 @@ struct CommonFields {
   int device_type = -1;
   int device_serial = -1;
   int exception_code = -1;
-  int word = -1;  // a data word no register map entry covers
+  int error_body = -1;  // the fixed body of a Hybrid error reply
+  int word = -1;        // a data word no register map entry covers
   int check = -1;
   int check_status = -1;
   int check_expected = -1;

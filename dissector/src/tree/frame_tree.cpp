@@ -39,6 +39,8 @@ int common_field_id(const CommonFields& hf, TreeField field) {
       return hf.device_serial;
     case TreeField::ExceptionCode:
       return hf.exception_code;
+    case TreeField::ErrorBody:
+      return hf.error_body;
     case TreeField::Word:
       return hf.word;
     case TreeField::Check:

@@ -146,6 +146,27 @@ void add_start(Builder& b, const FramePlan& plan) {
   start.text = plan.start_text;
 }
 
+bool hybrid_error_reply(const FramePlan& plan) {
+  return plan.parsed && plan.dialect == Dialect::Hybrid && plan.role == Role::Response &&
+         plan.function == fc::kHybridError;
+}
+
+// A Hybrid error reply carries 0x1000 0x00FF where other replies echo a start and a count:
+// shown as the fixed body it is, and raised as the exception reply it is (pvtap audit counts
+// it with the exceptions).
+void add_error_body(Builder& b, const FramePlan& plan) {
+  const FieldSpan start = plan.layout.start;
+  const FieldSpan count = plan.layout.count;
+  if (!start.present() || !count.present()) return;
+  const FieldSpan body{start.offset,
+                       static_cast<std::uint16_t>(count.offset + count.length - start.offset)};
+  const std::uint32_t value = (std::uint32_t{plan.start} << 16) | plan.count;
+  const auto item = b.uint(TreeField::ErrorBody, body, value);
+  b.expert_on(item, TreeExpert::Exception,
+              printed("Error reply: the inverter rejected the request (body 0x%04X 0x%04X)",
+                      static_cast<unsigned>(plan.start), static_cast<unsigned>(plan.count)));
+}
+
 // Header fields in wire order: a counted reply's byte count and device number come before
 // the register it echoes; a GSL 0x10 request's byte count comes after its count.
 void add_header(Builder& b, const FramePlan& plan) {
@@ -156,6 +177,10 @@ void add_header(Builder& b, const FramePlan& plan) {
   if (counted_reply) {
     b.uint(TreeField::ByteCount, l.byte_count, plan.byte_count);
     add_device(b, plan);
+  }
+  if (hybrid_error_reply(plan)) {
+    add_error_body(b, plan);
+    return;
   }
   add_start(b, plan);
   b.uint(TreeField::Count, l.count, plan.count);

@@ -28,7 +28,8 @@ enum class TreeField : std::uint8_t {
   DeviceType,
   DeviceSerial,
   ExceptionCode,
-  Word,  // a data word no register map entry covers
+  ErrorBody,  // a Hybrid error reply's fixed body
+  Word,       // a data word no register map entry covers
   Check,
   CheckStatus,
   CheckExpected,

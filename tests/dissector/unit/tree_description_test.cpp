@@ -203,6 +203,25 @@ TEST(TreeDescription, ExceptionReplyRaisesAnExpertInfoOnItsCode) {
                    check_line(wire(f)), "1 CheckStatus = 1 (generated)"}));
 }
 
+TEST(TreeDescription, HybridErrorReplyShowsItsFixedBodyAndRaisesAnException) {
+  Planner p;
+  // PROTOCOLS.md section 2: the error reply of station 6 (device 0x31, serial 103), whose
+  // fixed body 0x1000 0x00FF is not a start and a count.
+  const auto bytes = hex_bytes("06 FF 08 31 00 00 67 10 00 00 FF F9 CF");
+  const Lines lines = described(p, bytes, record_of(Dialect::Hybrid, Role::Response, 2));
+  const Lines body = from(lines, "1 ErrorBody");
+  ASSERT_GE(body.size(), 2u) << ::testing::PrintToString(lines);
+  EXPECT_EQ(body[0], "1 ErrorBody [7+4] = 268435711");
+  EXPECT_EQ(body[1].rfind("  ! Exception on #", 0), 0u) << body[1];
+  EXPECT_NE(body[1].find("Error reply: the inverter rejected the request (body 0x1000 0x00FF)"),
+            std::string::npos)
+      << body[1];
+  for (const std::string& line : lines) {
+    EXPECT_NE(line.rfind("1 Start ", 0), 0u) << line;
+    EXPECT_NE(line.rfind("1 Count ", 0), 0u) << line;
+  }
+}
+
 TEST(TreeDescription, MalformedFrameShowsItsHeaderAndCheck) {
   Planner p;
   const auto bytes = wire(read_request(Dialect::Gsl, 5, fc::kGslReadHolding, 0x0400, 1));
