@@ -103,7 +103,8 @@ void dissect_frame(const TreeTarget& target, std::span<const std::uint8_t> bytes
   const DescriptionContext dctx{.arena = actx.arena,
                                 .length = target.length,
                                 .visited = PINFO_FD_VISITED(target.pinfo) != 0,
-                                .check_word = p.check_word};
+                                .check_word = p.check_word,
+                                .reply_timeout_ms = p.settings.reply_timeout_ms};
   const TreeDescription tree = describe_frame(plan, record, dctx);
   // Only now the calls that may longjmp: the plan and the tree's description are plain data.
   add_info(target.pinfo, p, plan.summary);

@@ -295,7 +295,7 @@ void add_check(Builder& b, const FramePlan& plan) {
               static_cast<unsigned>(plan.check.found), static_cast<unsigned>(plan.check.expected)));
 }
 
-const char* unanswered_reason(const FrameRecord& r) {
+std::string unanswered_reason(const FrameRecord& r, const DescriptionContext& ctx) {
   if (!r.timed_out) return "no reply before the end of the capture";
   switch (r.unanswered) {
     case UnansweredKind::DamagedRequest:
@@ -309,7 +309,11 @@ const char* unanswered_reason(const FrameRecord& r) {
   }
   switch (r.timeout_reason) {
     case TimeoutReason::NoReply:
-      return "no reply within the reply timeout";
+      // The timeout is a preference: say which one judged, so that a reader can tell a
+      // silent station from a timeout set too short.
+      if (ctx.reply_timeout_ms == 0) return "no reply within the reply timeout";
+      return printed("no reply within the reply timeout (%u ms)",
+                     static_cast<unsigned>(ctx.reply_timeout_ms));
     case TimeoutReason::NextRequestFirst:
       return "the master sent its next request to the station first";
     case TimeoutReason::CaptureEnded:
@@ -331,7 +335,7 @@ void add_request_links(Builder& b, const FrameRecord& r) {
   }
   // Only a later pass knows that no reply came.
   if (!b.ctx().visited || !r.matched) return;
-  const std::string message = std::string("Request never answered: ") + unanswered_reason(r);
+  const std::string message = "Request never answered: " + unanswered_reason(r, b.ctx());
   TreeItem& item = b.item(b.expert_item(TreeExpert::Unanswered, FieldSpan{}, b.text(message)));
   if (shown(r.next_request)) item.appended = b.text(printed(" (frame %u)", r.next_request->packet));
 }

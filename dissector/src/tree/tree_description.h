@@ -136,10 +136,11 @@ static_assert(std::is_trivially_destructible_v<TreeItem>);
 
 // DescriptionContext: what a description needs besides the plan and the record.
 struct DescriptionContext {
-  Arena arena;                     // for the items and their texts
-  std::int32_t length = 0;         // the frame's or noise run's bytes
-  bool visited = false;            // a later pass, which knows that a request went unanswered
-  const char* check_word = "CRC";  // "CRC" or "checksum", inside sentences
+  Arena arena;                         // for the items and their texts
+  std::int32_t length = 0;             // the frame's or noise run's bytes
+  bool visited = false;                // a later pass, which knows that a request went unanswered
+  const char* check_word = "CRC";      // "CRC" or "checksum", inside sentences
+  std::uint32_t reply_timeout_ms = 0;  // the reply timeout the session judged by (0: unknown)
 };
 
 // The frame's subtree, its expert infos and its links to the matching frames. Never throws:

@@ -62,6 +62,7 @@ struct Planner {
   const char* check_word = "CRC";
   bool verify_check = true;
   bool with_values = true;
+  std::uint32_t reply_timeout_ms = 0;  // the protocol's preference; 0: not known
 
   FramePlan plan(const std::vector<std::uint8_t>& bytes, const FrameRecord& record) {
     AnalysisContext ctx;
@@ -77,7 +78,7 @@ struct Planner {
   }
 
   DescriptionContext description(std::size_t length, bool visited = true) {
-    return {heap.arena(), static_cast<std::int32_t>(length), visited, check_word};
+    return {heap.arena(), static_cast<std::int32_t>(length), visited, check_word, reply_timeout_ms};
   }
 };
 

@@ -156,6 +156,18 @@ TEST(TreeDescription, UnansweredRequestOnlyOnALaterPass) {
   EXPECT_EQ(from(described(p, bytes, record, true), "1 !"), Lines{});
 }
 
+TEST(TreeDescription, ATimeoutSaysWhichTimeoutJudgedIt) {
+  Planner p;
+  p.reply_timeout_ms = 2500;
+  const auto bytes = wire(read_request(Dialect::Gsl, 3, fc::kGslReadHolding, kGslId1050, 2));
+  FrameRecord record = record_of(Dialect::Gsl, Role::Request, 7);
+  record.timed_out = true;
+  record.timeout_reason = TimeoutReason::NoReply;
+  EXPECT_EQ(from(described(p, bytes, record, true), "1 !"),
+            (Lines{"1 ! Unanswered [0+0]: Request never answered: no reply within the reply "
+                   "timeout (2500 ms)"}));
+}
+
 TEST(TreeDescription, SequenceExpertInfosOfReplies) {
   Planner p;
   FrameRecord reply = record_of(Dialect::Gsl, Role::Response, 8);
