@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "pvtap/codec/function_codes.h"
+#include "pvtap/matching/reply_rules.h"
 #include "pvtap/registers/register_format.h"
 
 namespace pvtap::dissector {
@@ -146,9 +147,12 @@ void add_start(Builder& b, const FramePlan& plan) {
   start.text = plan.start_text;
 }
 
+// The core's reply rule decides what a Hybrid error reply is, as it does for pvtap audit.
 bool hybrid_error_reply(const FramePlan& plan) {
-  return plan.parsed && plan.dialect == Dialect::Hybrid && plan.role == Role::Response &&
-         plan.function == fc::kHybridError;
+  FrameSummary reply;
+  reply.dialect = plan.dialect;
+  reply.function = plan.function;
+  return plan.parsed && plan.role == Role::Response && reply_kind(reply) == ReplyKind::HybridError;
 }
 
 // A Hybrid error reply carries 0x1000 0x00FF where other replies echo a start and a count:
