@@ -6,12 +6,11 @@
 // item beyond the bytes throws, and this runs on untrusted captures.
 #include <cstddef>
 #include <cstdint>
-#include <memory>
 #include <optional>
-#include <vector>
 
 #include "fuzz_input.h"
 #include "plan/frame_analysis.h"
+#include "plan/heap_arena.h"
 #include "pvtap/codec/unknown_function_frame.h"
 #include "tree/tree_description.h"
 
@@ -20,21 +19,6 @@ namespace {
 using pvtap::dissector::FramePlan;
 using pvtap::dissector::FrameRecord;
 using pvtap::dissector::TreeDescription;
-
-// BlockArena: the plugin's packet pool as plain heap blocks, freed after each input.
-class BlockArena {
- public:
-  pvtap::dissector::Arena arena() { return {&BlockArena::allocate, this}; }
-
- private:
-  static void* allocate(void* self, std::size_t size) {
-    constexpr std::size_t unit = sizeof(std::max_align_t);
-    auto& blocks = static_cast<BlockArena*>(self)->blocks_;
-    blocks.push_back(std::make_unique<std::max_align_t[]>((size + unit - 1) / unit + 1));
-    return blocks.back().get();
-  }
-  std::vector<std::unique_ptr<std::max_align_t[]>> blocks_;
-};
 
 bool bit(std::uint8_t flags, int n) {
   return ((flags >> n) & 1) != 0;
@@ -102,7 +86,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   const auto bytes = in.rest();
 
-  BlockArena arena;
+  pvtap::dissector::HeapArena arena;
   pvtap::dissector::AnalysisContext ctx;
   ctx.decoder = &decoder;
   ctx.record = &record;

@@ -9,26 +9,11 @@
 
 #include "plan/arena.h"
 #include "plan/frame_analysis.h"
+#include "plan/heap_arena.h"
 #include "pvtap/codec/frame_codec.h"
 #include "tree/tree_description.h"
 
 namespace pvtap::dissector::test {
-
-// HeapArena: blocks owned by the test, freed with it (the plugin uses pinfo->pool).
-class HeapArena {
- public:
-  Arena arena() { return {&HeapArena::allocate, this}; }
-
- private:
-  static void* allocate(void* self, std::size_t size) {
-    constexpr std::size_t unit = sizeof(std::max_align_t);
-    auto& blocks = static_cast<HeapArena*>(self)->blocks_;
-    blocks.push_back(std::make_unique<std::max_align_t[]>((size + unit - 1) / unit));
-    return blocks.back().get();
-  }
-
-  std::vector<std::unique_ptr<std::max_align_t[]>> blocks_;
-};
 
 // The bytes of a frame the core encodes (with its check).
 inline std::vector<std::uint8_t> wire(const Frame& frame) {
