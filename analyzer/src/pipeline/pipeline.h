@@ -17,7 +17,6 @@
 #include "pvtap/capture/link_types.h"
 #include "pvtap/session/bus_session.h"
 #include "pvtap/session/carrier_timing.h"
-#include "pvtap/session/event_tally.h"
 #include "report/audit_report.h"
 
 namespace pvtap::analyzer {

@@ -56,14 +56,13 @@ void LiveLoop::show_status(double now) {
   const ReassemblerTotals sum = pipeline_.buses().totals();
   const EventTally tally = pipeline_.buses().tally();
   const std::optional<TimedLatency> last = tally.last_latency();
-  const std::optional<double> latency = last ? std::optional<double>(last->latency) : std::nullopt;
   char text[160];
   std::snprintf(
       text, sizeof text, "%llu bytes, %llu frames, %llu bad checks, %llu timeouts, last latency %s",
       static_cast<unsigned long long>(sum.bytes_in), static_cast<unsigned long long>(sum.frames),
       static_cast<unsigned long long>(sum.bad_frames),
       static_cast<unsigned long long>(tally.counts().timeouts),
-      latency ? (std::to_string(std::lround(*latency * 1e3)) + " ms").c_str() : "-");
+      last ? (std::to_string(std::lround(last->latency * 1e3)) + " ms").c_str() : "-");
   status_.show(now, text);
 }
 
