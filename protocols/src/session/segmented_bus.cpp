@@ -71,10 +71,11 @@ void SegmentedBus::add(Direction d, std::uint64_t offset, std::span<const std::u
 SegmentedBus::CallSpan SegmentedBus::show(Direction d, std::uint64_t from,
                                           std::span<const std::uint8_t> bytes, double time,
                                           bool can_wait) {
+  const std::uint64_t end = from + bytes.size();
+  const std::uint64_t handed_to = std::clamp(impl_->streams[index_of(d)].fed_to, from, end);
   add(d, from, bytes, time);
   if (!can_wait) end_turn(d);
-  const std::uint64_t end = from + bytes.size();
-  return CallSpan{from, std::clamp(decided_to(d), from, end)};
+  return CallSpan{from, std::clamp(decided_to(d), from, end), handed_to};
 }
 
 void SegmentedBus::end_turn(Direction d) {

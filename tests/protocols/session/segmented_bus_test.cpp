@@ -94,6 +94,17 @@ TEST(SegmentedBus, AFrameSplitOverSegmentsIsShownWhenItsLastPieceCame) {
   EXPECT_EQ(pieces, (std::vector<Piece>{{0, 8, true, true}}));
 }
 
+TEST(SegmentedBus, ACallSaysHowMuchOfItWasHandedBefore) {
+  Shown s;
+  const std::span<const std::uint8_t> request(kGoodRequest);
+  s.call(kMaster, 0, {request.begin(), request.begin() + 6});
+  EXPECT_EQ(s.last.handed_to, 0u) << "nothing was handed before the first call";
+  s.call(kMaster, 0, kGoodRequest);
+  EXPECT_EQ(s.last.handed_to, 6u) << "the six bytes held back came again";
+  s.call(kMaster, 8, kGoodRequest);
+  EXPECT_EQ(s.last.handed_to, 8u) << "a call after the bytes handed so far: none handed again";
+}
+
 TEST(SegmentedBus, TruncatedFrameIsNoiseWhenNothingMoreCanCome) {
   Shown s;
   const std::span<const std::uint8_t> request(kGoodRequest);
@@ -247,8 +258,7 @@ std::vector<Piece> dissector_cuts(const std::vector<std::uint8_t>& stream,
 }
 
 std::vector<Piece> reassembler_events(const std::vector<std::uint8_t>& stream,
-                                      const std::vector<std::size_t>& cuts,
-                                      ReassemblerOptions o) {
+                                      const std::vector<std::size_t>& cuts, ReassemblerOptions o) {
   ReassemblerEvents sink;
   StreamReassembler r(o, sink);
   std::size_t at = 0;
@@ -271,8 +281,8 @@ void check_property(DialectSet dialects, std::uint32_t first_seed, std::uint32_t
     const auto shown = dissector_cuts(stream, cuts, o);
     ASSERT_EQ(shown, reassembler_events(stream, cuts, o.reassembler)) << "same segments";
     o.reassembler.segment_ends_pin = false;
-    ASSERT_EQ(dissector_cuts(stream, cuts, o), reassembler_events(stream, {stream.size()},
-                                                                  o.reassembler))
+    ASSERT_EQ(dissector_cuts(stream, cuts, o),
+              reassembler_events(stream, {stream.size()}, o.reassembler))
         << "any split, against the stream in one piece";
     for (const Piece& p : shown) frames += p.frame;
   }

@@ -47,6 +47,8 @@ class SegmentedBus {
   struct CallSpan {
     std::uint64_t from = 0;
     std::uint64_t shown_to = 0;  // pieces in [from, shown_to) are decided; the rest waits
+    // [from, handed_to): bytes an earlier call was handed (held back then, handed again now).
+    std::uint64_t handed_to = 0;
   };
   // A dissector's call: adds `bytes` (stream position `from` on), decides all of them when
   // they cannot wait for more (`can_wait` false: a datagram, a record), and says how much of
