@@ -40,6 +40,9 @@ def ascii_flow(pcap):
     flow.reply(with_crc(bytes.fromhex("11 01 00 13 00 25"))); mark("rtu_shaped_noise")
     flow.request(ascii_request(1, 0x0004, 4)); mark("faults_req_again")
     flow.reply(ascii_reply(1, 0x0004, FAULTS)); mark("faults_again")
+    # Past station 2's reply timeout: the first packet after it announces the timeout.
+    flow.request(ascii_request(1, 0x0020, 2), after=1.5); mark("late_req")
+    flow.reply(ascii_reply(1, 0x0020, PV)); mark("late")
     return at
 
 
@@ -97,7 +100,12 @@ class AsciiOverTcp(PluginTestCase, unittest.TestCase):
     def test_two_requests_in_one_segment_and_one_never_answered(self):
         a = self.at
         self.assertEqual(self.cell(a["power_reqs"], "invascii.station"), ["1", "2"])
-        self.assertEqual(self.matching("invascii.unanswered"), [a["power_reqs"]])
+        # The verdict is on the packet where the timeout became known; the request links to it.
+        self.assertEqual(self.matching("invascii.timeout_in"), [a["power_reqs"]])
+        announced = self.matching("invascii.unanswered")
+        self.assertEqual(announced, [a["late_req"]])
+        self.assertEqual(self.matching("invascii.unanswered_request == %d" % a["power_reqs"]),
+                         announced)
         self.assertEqual(self.cell(a["power_reqs"], "invascii.response_in"), [str(a["power"])])
 
     def test_bad_checksum_between_noise(self):

@@ -58,6 +58,10 @@ def gsl_flow(pcap):
     flow.request(READ_COILS); mark("read_coils")
     # Undecided bytes at a segment's end wait for that direction's next segment.
     flow.request(rtu_read_request(1, 0x03, 1056, 1)); mark("after_coils")
+    flow.reply(gsl_read_reply(1, [4998])); mark("rep_after_coils")
+    # Past station 3's reply timeout: the first packet after it announces the timeout.
+    flow.request(rtu_read_request(1, 0x03, 1056, 1), after=1.5); mark("late_req")
+    flow.reply(gsl_read_reply(1, [4997])); mark("late_rep")
     return at
 
 
@@ -173,19 +177,35 @@ class RtuOverTcp(PluginTestCase, unittest.TestCase):
                                0.04 - 19 * 10 / 9600, places=6)
         self.assertEqual(self.cell(g["req_c_d"], "invrtu.response_in"), [str(g["rep_c_bad"])])
 
-    def test_unanswered_request_gets_an_expert_note(self):
+    def test_unanswered_request_is_announced_where_its_timeout_became_known(self):
         g = self.gsl
-        self.assertEqual(self.packets_matching("invrtu.unanswered && invrtu.station == 3"),
+        # The expert is on the packet that announced it (the same in one pass and in two); the
+        # request links to that packet.
+        announced = self.packets_matching("invrtu.unanswered && invrtu.station == 3")
+        self.assertEqual(announced, [g["late_req"]])
+        self.assertIn("no reply to frame %d" % g["req_c_d"],
+                      "|".join(self.cell(g["late_req"], "_ws.col.Info")))
+        self.assertEqual(self.packets_matching("invrtu.unanswered_request == %d" % g["req_c_d"]),
+                         announced)
+        self.assertEqual(self.packets_matching("invrtu.timeout_in && invrtu.station == 3"),
                          [g["req_c_d"]])
-        self.assertNotIn(g["req_a"], self.packets_matching("invrtu.unanswered"))
+        self.assertNotIn(g["req_a"], self.packets_matching("invrtu.timeout_in"))
 
     def test_reply_with_no_request(self):
         g = self.gsl
         self.assertEqual(self.packets_matching("invrtu.unsolicited"), [g["unsolicited"]])
         self.assertEqual(self.cell(g["unsolicited"], "invrtu.request_in"), [])
 
+    def test_bad_crc_reply_shows_its_data_as_not_decoded(self):
+        g = self.gsl
+        self.assertIn(g["rep_c_bad"], self.packets_matching("invrtu.undecoded"))
+        self.assertNotIn(g["rep_a"], self.packets_matching("invrtu.undecoded"))
+        self.assertEqual(self.packets_matching("invrtu.undecoded == 08:fc:09:06"), [g["rep_c_bad"]])
+
     def test_duplicate_reply(self):
         g = self.gsl
+        self.assertIn("(duplicate)", self.cell(g["rep_dup_2"], "_ws.col.Info")[0])
+        self.assertNotIn("(duplicate)", self.cell(g["rep_dup_1"], "_ws.col.Info")[0])
         self.assertEqual(self.packets_matching("invrtu.duplicate"), [g["rep_dup_2"]])
         self.assertEqual(self.cell(g["req_dup"], "invrtu.response_in"), [str(g["rep_dup_1"])])
 
@@ -248,8 +268,8 @@ class RtuOverTcp(PluginTestCase, unittest.TestCase):
 
     def test_every_frame_is_found(self):
         frames = sum(len(r[self.names.index("invrtu.function")]) for r in self.rows.values())
-        # GSL: 20 frames (two segments hold two each); Hybrid: 13 frames.
-        self.assertEqual(frames, 33)
+        # GSL: 23 frames (two segments hold two each); Hybrid: 13 frames.
+        self.assertEqual(frames, 36)
 
 
 class RtuOnConfiguredPort(PluginTestCase, unittest.TestCase):

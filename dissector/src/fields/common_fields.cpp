@@ -36,6 +36,8 @@ constexpr FieldSpec kFields[] = {
      "The fixed body of a Hybrid error reply (0x1000 0x00FF), not a register range"},
     {&CommonFields::word, "Unmapped word", "word", FT_UINT16, BASE_HEX, false,
      "A data word that no register map entry covers"},
+    {&CommonFields::undecoded, "Data, not decoded", "undecoded", FT_BYTES, BASE_NONE, false,
+     "A frame's data or body, not decoded because its check failed or it did not parse"},
     {&CommonFields::noise, "Noise", "noise", FT_BYTES, BASE_NONE, false,
      "Bytes that belong to no frame"},
     {&CommonFields::unknown_function, "Unknown function code", "unknown_function", FT_UINT8,
@@ -100,6 +102,11 @@ void add_special_fields(InverterProtocol& p, bool rtu, FieldList& list) {
            FRAMENUM_TYPE(FT_FRAMENUM_REQUEST));
   list.add(&hf.response_in, "Response in frame", name_in(p, "response_in"), FT_FRAMENUM, BASE_NONE,
            FRAMENUM_TYPE(FT_FRAMENUM_RESPONSE));
+  list.add(&hf.unanswered_request, "Unanswered request in frame", name_in(p, "unanswered_request"),
+           FT_FRAMENUM, BASE_NONE, FRAMENUM_TYPE(FT_FRAMENUM_REQUEST), 0,
+           "The request this packet's timeout announcement is about");
+  list.add(&hf.timeout_in, "Timeout announced in frame", name_in(p, "timeout_in"), FT_FRAMENUM,
+           BASE_NONE, nullptr, 0, "The packet that showed that this request got no reply");
   list.add(&hf.dialect, "Dialect", name_in(p, "dialect"), FT_UINT8, BASE_DEC,
            VALS(dialect_names()));
   list.add(&hf.role, "Role", name_in(p, "role"), FT_UINT8, BASE_DEC, VALS(role_names()));

@@ -18,8 +18,9 @@ struct PacketTime {
 
 // Lives in wmem file scope, which frees memory without running destructors.
 struct FrameRecord {
-  std::uint32_t packet = 0;  // the packet that shows the frame (0 until it is shown)
-  PacketTime time;           // that packet's capture time
+  std::uint32_t packet = 0;        // the packet that shows the frame (0 until it is shown)
+  std::uint32_t announced_in = 0;  // requests: the packet that showed their timeout (0: none)
+  PacketTime time;                 // that packet's capture time
   Dialect dialect = Dialect::Gsl;
   Role role = Role::Request;  // after the matcher's correction of GSL write echoes
   std::uint8_t station = 0;

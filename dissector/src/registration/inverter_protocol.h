@@ -24,6 +24,7 @@ struct CommonFields {
   int exception_code = -1;
   int error_body = -1;  // the fixed body of a Hybrid error reply
   int word = -1;        // a data word no register map entry covers
+  int undecoded = -1;   // data or body not decoded: a bad check, or a frame that did not parse
   int check = -1;
   int check_status = -1;
   int check_expected = -1;
@@ -31,6 +32,8 @@ struct CommonFields {
   int unknown_function = -1;
   int request_in = -1;
   int response_in = -1;
+  int unanswered_request = -1;  // the request a timeout announcement is about
+  int timeout_in = -1;          // on a request: the packet that announced its timeout
   int response_time = -1;
   int expected_count = -1;
 };

@@ -4,8 +4,10 @@
 #include <epan/proto_data.h>
 
 #include <span>
+#include <vector>
 
 #include "plan/frame_analysis.h"
+#include "pvtap/codec/noise_resemblance.h"
 #include "settings/register_decoding.h"
 #include "statistics/response_time_stats.h"
 #include "tree/frame_tree.h"
@@ -31,17 +33,35 @@ PacketCounters& counters_of(packet_info* pinfo, int proto) {
   return *c;
 }
 
-using CallView = SegmentedBus::CallSpan;
+using CallSpan = SegmentedBus::CallSpan;
+
+// CallView: what one call shows, the same on every pass. Lives in wmem file scope.
+struct CallView {
+  std::uint64_t from = 0;
+  std::uint64_t decided_to = 0;      // the bytes after it are handed back to TCP
+  std::uint64_t shown_to = 0;        // the pieces in [from, shown_to) are this call's to show
+  bool extends_pdu = false;          // a call later passes do not make (see extends_pdu)
+  FrameRecord** timeouts = nullptr;  // the timeouts this call announces
+  std::uint32_t timeout_count = 0;
+};
 
 // First pass: feeds the new bytes to the bus and notes what is decided. noexcept: the core may
 // allocate, and nothing may be thrown into Wireshark.
-CallView feed(std::span<const std::uint8_t> bytes, std::uint64_t from, double time,
+CallSpan feed(std::span<const std::uint8_t> bytes, std::uint64_t from, double time,
               const StreamContext& ctx) noexcept {
   try {
     return ctx.bus->bus().show(ctx.direction, from, bytes, time, ctx.desegment);
   } catch (...) {
-    return CallView{from, from};  // out of memory: show these bytes as undecided
+    return CallSpan{from, from, from};  // out of memory: show these bytes as undecided
   }
+}
+
+// Asked for more from within the bytes it handed again (the offset at most the old length),
+// TCP extends the PDU it was reassembling instead of starting a new one: this call is then not
+// made in later passes, so it shows nothing, and the call that completes the PDU shows what
+// this one decided. A first pass so shows each piece once, where a later pass shows it.
+bool extends_pdu(const CallSpan& s, std::uint64_t end, const StreamContext& ctx) {
+  return ctx.desegment && s.shown_to < end && s.shown_to <= s.handed_to;
 }
 
 std::uint64_t stream_start(tvbuff_t* tvb, const StreamContext& ctx, std::size_t captured) {
@@ -51,17 +71,44 @@ std::uint64_t stream_start(tvbuff_t* tvb, const StreamContext& ctx, std::size_t 
   return ctx.bus->stream_offset(ctx.direction, ctx.tcp->nxtseq - length);
 }
 
-const CallView* view_of_call(tvbuff_t* tvb, packet_info* pinfo, const StreamContext& ctx,
-                             std::span<const std::uint8_t> bytes) {
+CallView* view_of_call(tvbuff_t* tvb, packet_info* pinfo, const StreamContext& ctx,
+                       std::span<const std::uint8_t> bytes) {
   const int proto = ctx.protocol->proto;
   const guint32 key = 1 + counters_of(pinfo, proto).calls++;
   auto* view = static_cast<CallView*>(p_get_proto_data(wmem_file_scope(), pinfo, proto, key));
   if (view != nullptr || PINFO_FD_VISITED(pinfo)) return view;
   const std::uint64_t from = stream_start(tvb, ctx, bytes.size());
-  view = new (wmem_alloc(wmem_file_scope(), sizeof(CallView)))
-      CallView(feed(bytes, from, nstime_to_sec(&pinfo->abs_ts), ctx));
+  const CallSpan span = feed(bytes, from, nstime_to_sec(&pinfo->abs_ts), ctx);
+  view = new (wmem_alloc(wmem_file_scope(), sizeof(CallView))) CallView{};
+  view->from = from;
+  view->decided_to = span.shown_to;
+  view->extends_pdu = extends_pdu(span, from + bytes.size(), ctx);
+  view->shown_to = view->extends_pdu ? view->from : span.shown_to;
   p_add_proto_data(wmem_file_scope(), pinfo, proto, key, view);
   return view;
+}
+
+// The timeouts not announced yet. noexcept: nothing may be thrown into Wireshark.
+std::vector<FrameRecord*> unannounced(const StreamContext& ctx) noexcept {
+  try {
+    return ctx.bus->take_timeouts();
+  } catch (...) {
+    return {};  // out of memory: a later call announces them
+  }
+}
+
+// First pass, once the call's pieces are shown: the timeouts it announces (none when a later
+// pass will not make the call).
+void note_timeouts(CallView& view, packet_info* pinfo, const StreamContext& ctx) {
+  if (PINFO_FD_VISITED(pinfo) || view.extends_pdu) return;
+  const std::vector<FrameRecord*> ready = unannounced(ctx);
+  if (ready.empty()) return;
+  view.timeouts = wmem_alloc_array(wmem_file_scope(), FrameRecord*, ready.size());
+  view.timeout_count = static_cast<std::uint32_t>(ready.size());
+  for (std::size_t i = 0; i < ready.size(); ++i) {
+    view.timeouts[i] = ready[i];
+    ready[i]->announced_in = pinfo->num;
+  }
 }
 
 void add_info(packet_info* pinfo, const InverterProtocol& p, const char* text) {
@@ -107,15 +154,20 @@ void dissect_frame(const TreeTarget& target, std::span<const std::uint8_t> bytes
                                 .reply_timeout_ms = p.settings.reply_timeout_ms};
   const TreeDescription tree = describe_frame(plan, record, dctx);
   // Only now the calls that may longjmp: the plan and the tree's description are plain data.
-  add_info(target.pinfo, p, plan.summary);
+  add_info(target.pinfo, p,
+           record.duplicate ? wmem_strdup_printf(target.pinfo->pool, "%s (duplicate)", plan.summary)
+                            : plan.summary);
   queue_response_time(target.pinfo, p, record);
   add_tree(target, tree);
 }
 
-void dissect_noise(const TreeTarget& target, std::span<const std::uint8_t> bytes) {
-  // Only RTU noise can hold an RTU frame of an unknown function.
+// Noise goes to the protocol whose frames it resembles: a damaged ASCII frame to invascii,
+// anything else to the conversation's protocol. Only RTU noise can hold an RTU frame of an
+// unknown function.
+void dissect_noise(TreeTarget target, std::span<const std::uint8_t> bytes) {
   const auto unknown =
       target.protocol->dialects.rtu() ? unknown_function_frame(bytes) : std::nullopt;
+  if (!unknown && resembles_ascii_frame(bytes)) target.protocol = &ascii_protocol();
   const char* text =
       unknown ? wmem_strdup_printf(target.pinfo->pool, "frame of unknown function code 0x%02X",
                                    unknown->function)
@@ -140,6 +192,29 @@ void dissect_piece(const BusPiece& piece, std::span<const std::uint8_t> bytes, g
   }
 }
 
+// A timeout under the protocol of its request's dialect, as an item of its own.
+void dissect_timeout(const FrameRecord& request, tvbuff_t* tvb, packet_info* pinfo,
+                     proto_tree* tree) {
+  InverterProtocol& p = protocol_of(request.dialect);
+  const DescriptionContext dctx{.arena = packet_arena(pinfo),
+                                .visited = PINFO_FD_VISITED(pinfo) != 0,
+                                .check_word = p.check_word,
+                                .reply_timeout_ms = p.settings.reply_timeout_ms};
+  const TreeDescription description = describe_timeout(request, dctx);
+  add_info(pinfo, p, wmem_strdup_printf(pinfo->pool, "no reply to frame %u", request.packet));
+  add_tree(TreeTarget{tvb, pinfo, tree, 0, 0, &p}, description);
+}
+
+void show_pieces(const CallView& view, std::span<const std::uint8_t> bytes, tvbuff_t* tvb,
+                 packet_info* pinfo, proto_tree* tree, const StreamContext& ctx) {
+  for (const BusPiece& piece : ctx.bus->bus().pieces(ctx.direction, view.from, view.shown_to)) {
+    const std::uint64_t offset = piece.offset - view.from;
+    if (offset + piece.length > bytes.size()) break;
+    dissect_piece(piece, bytes.subspan(offset, piece.length), static_cast<guint>(offset), tvb,
+                  pinfo, tree, ctx);
+  }
+}
+
 }  // namespace
 
 int dissect_stream(tvbuff_t* tvb, packet_info* pinfo, proto_tree* tree, const StreamContext& ctx) {
@@ -147,16 +222,15 @@ int dissect_stream(tvbuff_t* tvb, packet_info* pinfo, proto_tree* tree, const St
   if (captured == 0) return 0;
   const auto* data = static_cast<const guint8*>(tvb_memdup(pinfo->pool, tvb, 0, captured));
   const std::span<const std::uint8_t> bytes(data, captured);
-  const CallView* view = view_of_call(tvb, pinfo, ctx, bytes);
+  CallView* view = view_of_call(tvb, pinfo, ctx, bytes);
   if (view == nullptr) return static_cast<int>(captured);
-  for (const BusPiece& piece : ctx.bus->bus().pieces(ctx.direction, view->from, view->shown_to)) {
-    const std::uint64_t offset = piece.offset - view->from;
-    if (offset + piece.length > captured) break;
-    dissect_piece(piece, bytes.subspan(offset, piece.length), static_cast<guint>(offset), tvb,
-                  pinfo, tree, ctx);
+  show_pieces(*view, bytes, tvb, pinfo, tree, ctx);
+  note_timeouts(*view, pinfo, ctx);
+  for (std::uint32_t i = 0; i < view->timeout_count; ++i) {
+    dissect_timeout(*view->timeouts[i], tvb, pinfo, tree);
   }
-  if (ctx.desegment && view->shown_to < view->from + captured) {
-    pinfo->desegment_offset = static_cast<int>(view->shown_to - view->from);
+  if (ctx.desegment && view->decided_to < view->from + captured) {
+    pinfo->desegment_offset = static_cast<int>(view->decided_to - view->from);
     pinfo->desegment_len = DESEGMENT_ONE_MORE_SEGMENT;
   }
   return static_cast<int>(captured);

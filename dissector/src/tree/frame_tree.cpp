@@ -59,8 +59,14 @@ int common_field_id(const CommonFields& hf, TreeField field) {
       return hf.response_in;
     case TreeField::ResponseTime:
       return hf.response_time;
+    case TreeField::Undecoded:
+      return hf.undecoded;
     case TreeField::ExpectedCount:
       return hf.expected_count;
+    case TreeField::UnansweredRequest:
+      return hf.unanswered_request;
+    case TreeField::TimeoutIn:
+      return hf.timeout_in;
     case TreeField::None:
     case TreeField::Protocol:
     case TreeField::RegisterValue:

@@ -300,7 +300,6 @@ void add_check(Builder& b, const FramePlan& plan) {
 }
 
 std::string unanswered_reason(const FrameRecord& r, const DescriptionContext& ctx) {
-  if (!r.timed_out) return "no reply before the end of the capture";
   switch (r.unanswered) {
     case UnansweredKind::DamagedRequest:
       return "the request has a bad check: the slave rightly ignored it";
@@ -332,16 +331,24 @@ bool shown(const FrameRecord* r) {
   return r != nullptr && r->packet != 0;
 }
 
+// The reason, and the request that came first where that was the reason.
+std::string unanswered_text(const FrameRecord& r, const DescriptionContext& ctx) {
+  std::string text = unanswered_reason(r, ctx);
+  if (shown(r.next_request)) text += printed(" (frame %u)", r.next_request->packet);
+  return text;
+}
+
 void add_request_links(Builder& b, const FrameRecord& r) {
   if (shown(r.response)) {
     b.generated_uint(TreeField::ResponseIn, r.response->packet);
     return;
   }
-  // Only a later pass knows that no reply came.
-  if (!b.ctx().visited || !r.matched) return;
-  const std::string message = "Request never answered: " + unanswered_reason(r, b.ctx());
-  TreeItem& item = b.item(b.expert_item(TreeExpert::Unanswered, FieldSpan{}, b.text(message)));
-  if (shown(r.next_request)) item.appended = b.text(printed(" (frame %u)", r.next_request->packet));
+  // Only a later pass knows where the timeout was announced; the verdict stays there.
+  if (!b.ctx().visited || r.announced_in == 0) return;
+  TreeItem& item = b.item(b.generated_uint(TreeField::TimeoutIn, r.announced_in));
+  item.form = LabelForm::Whole;
+  item.text = b.text(printed("No reply: %s; announced in frame %u",
+                             unanswered_text(r, b.ctx()).c_str(), r.announced_in));
 }
 
 // As Wireshark's nstime_delta: b - a, both parts of one sign.
@@ -412,6 +419,28 @@ void add_matching(Builder& b, const FrameRecord& r) {
   }
 }
 
+// The bytes a frame carries but the tree does not decode, as bytes: a reader sees what came,
+// and that it was not trusted.
+void add_undecoded(Builder& b, FieldSpan s, const char* why) {
+  if (!s.present()) return;
+  TreeItem item;
+  item.field = TreeField::Undecoded;
+  item.type = ValueType::Bytes;
+  item.depth = kFrame;
+  item.offset = s.offset;
+  item.length = s.length;
+  item.appended = b.text(printed(" (%u bytes, not decoded: %s)", s.length, why));
+  b.add(item);
+}
+
+// The bytes between a frame's header (station and function) and its check.
+FieldSpan body_span(const FrameLayout& l) {
+  const int from = l.function.offset + l.function.length;
+  if (!l.function.present() || !l.check.present() || l.check.offset <= from) return FieldSpan{};
+  return FieldSpan{static_cast<std::uint16_t>(from),
+                   static_cast<std::uint16_t>(l.check.offset - from)};
+}
+
 void describe(Builder& b, const FramePlan& plan, const FrameRecord& record) {
   const std::uint32_t top = add_top(b, Subtree::Frame, ", " + std::string(text_of(plan.summary)));
   b.generated_uint(TreeField::Dialect, static_cast<std::uint32_t>(plan.dialect));
@@ -421,6 +450,7 @@ void describe(Builder& b, const FramePlan& plan, const FrameRecord& record) {
                 "Malformed frame: " + std::string(text_of(plan.parse_error)));
     b.uint(TreeField::Station, plan.layout.station, plan.station);
     b.uint(TreeField::Function, plan.layout.function, plan.function);
+    add_undecoded(b, body_span(plan.layout), "the frame did not parse");
     add_check(b, plan);
     add_matching(b, record);
     return;
@@ -428,8 +458,21 @@ void describe(Builder& b, const FramePlan& plan, const FrameRecord& record) {
   add_header(b, plan);
   add_exception(b, plan);
   add_values(b, plan);
+  if (!record.values_trusted && !record.check_ok) {
+    add_undecoded(b, plan.layout.words, b.text(printed("the %s failed", b.ctx().check_word)));
+  }
   add_check(b, plan);
   add_matching(b, record);
+}
+
+void describe_announcement(Builder& b, const FrameRecord& r) {
+  add_top(b, Subtree::Frame, printed(", no reply to the request in frame %u", r.packet));
+  // The station, for filters by station; no function or role, which would count it as a frame.
+  b.generated_uint(TreeField::Station, r.station);
+  const std::uint32_t request = b.generated_uint(TreeField::UnansweredRequest, r.packet);
+  b.expert_on(
+      request, TreeExpert::Unanswered,
+      printed("Request in frame %u never answered: ", r.packet) + unanswered_text(r, b.ctx()));
 }
 
 void describe(Builder& b, const std::optional<UnknownFunctionFrame>& unknown) {
@@ -465,6 +508,17 @@ TreeDescription describe_frame(const FramePlan& plan, const FrameRecord& record,
     return b.finish(plan.dialect);
   } catch (...) {
     return {};  // out of memory: no tree rather than a crash
+  }
+}
+
+TreeDescription describe_timeout(const FrameRecord& request,
+                                 const DescriptionContext& ctx) noexcept {
+  try {
+    Builder b(ctx);
+    describe_announcement(b, request);
+    return b.finish(request.dialect);
+  } catch (...) {
+    return {};
   }
 }
 

@@ -30,6 +30,7 @@ enum class TreeField : std::uint8_t {
   ExceptionCode,
   ErrorBody,  // a Hybrid error reply's fixed body
   Word,       // a data word no register map entry covers
+  Undecoded,  // a frame's data or body, shown as bytes: its check failed or it did not parse
   Check,
   CheckStatus,
   CheckExpected,
@@ -39,8 +40,10 @@ enum class TreeField : std::uint8_t {
   ResponseIn,
   ResponseTime,
   ExpectedCount,
-  RegisterValue,  // the field of the map entry `def`
-  RegisterFlag,   // the flag `bit` of the map entry `def`
+  UnansweredRequest,  // the request a timeout announcement is about
+  TimeoutIn,          // on a request: the packet that announced its timeout
+  RegisterValue,      // the field of the map entry `def`
+  RegisterFlag,       // the flag `bit` of the map entry `def`
 };
 
 // TreeExpert: the expert info an item raises.
@@ -138,7 +141,7 @@ static_assert(std::is_trivially_destructible_v<TreeItem>);
 struct DescriptionContext {
   Arena arena;                         // for the items and their texts
   std::int32_t length = 0;             // the frame's or noise run's bytes
-  bool visited = false;                // a later pass, which knows that a request went unanswered
+  bool visited = false;                // a later pass, which knows where a timeout was announced
   const char* check_word = "CRC";      // "CRC" or "checksum", inside sentences
   std::uint32_t reply_timeout_ms = 0;  // the reply timeout the session judged by (0: unknown)
 };
@@ -151,6 +154,12 @@ TreeDescription describe_frame(const FramePlan& plan, const FrameRecord& record,
 // A noise item; `unknown` is set when the noise is a whole frame of an unknown function.
 TreeDescription describe_noise(const std::optional<UnknownFunctionFrame>& unknown,
                                const DescriptionContext& ctx) noexcept;
+
+// The announcement, on the packet where it became known, that `request` got no reply: the
+// one place its verdict is shown, so that a first pass (a live capture) shows it as a later
+// pass does.
+TreeDescription describe_timeout(const FrameRecord& request,
+                                 const DescriptionContext& ctx) noexcept;
 
 // RegisterFieldType: the type of the field the plugin registers for a map entry.
 enum class RegisterFieldType : std::uint8_t { Uint16, Uint32, Double, String };

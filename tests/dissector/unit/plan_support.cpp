@@ -90,13 +90,35 @@ std::vector<std::string> lines_of(const TreeDescription& description) {
 }
 
 const char* name_of(TreeField field) {
-  static constexpr const char* kNames[] = {
-      "None",        "Protocol",     "Dialect",       "Role",          "Station",
-      "Function",    "Start",        "Count",         "ByteCount",     "Device",
-      "DeviceType",  "DeviceSerial", "ExceptionCode", "ErrorBody",     "Word",
-      "Check",       "CheckStatus",  "CheckExpected", "Noise",         "UnknownFunction",
-      "RequestIn",   "ResponseIn",   "ResponseTime",  "ExpectedCount", "RegisterValue",
-      "RegisterFlag"};
+  static constexpr const char* kNames[] = {"None",
+                                           "Protocol",
+                                           "Dialect",
+                                           "Role",
+                                           "Station",
+                                           "Function",
+                                           "Start",
+                                           "Count",
+                                           "ByteCount",
+                                           "Device",
+                                           "DeviceType",
+                                           "DeviceSerial",
+                                           "ExceptionCode",
+                                           "ErrorBody",
+                                           "Word",
+                                           "Undecoded",
+                                           "Check",
+                                           "CheckStatus",
+                                           "CheckExpected",
+                                           "Noise",
+                                           "UnknownFunction",
+                                           "RequestIn",
+                                           "ResponseIn",
+                                           "ResponseTime",
+                                           "ExpectedCount",
+                                           "UnansweredRequest",
+                                           "TimeoutIn",
+                                           "RegisterValue",
+                                           "RegisterFlag"};
   static_assert(std::size(kNames) == static_cast<std::size_t>(TreeField::RegisterFlag) + 1);
   return kNames[static_cast<std::size_t>(field)];
 }

@@ -134,7 +134,8 @@ TEST(TreeDescription, ResponseTimeWithoutALatencyIsTheTimeBetweenThePackets) {
             "1 ResponseTime = -1 s -950000000 ns (generated)");
 }
 
-TEST(TreeDescription, UnansweredRequestOnlyOnALaterPass) {
+// The verdict is the announcement's (describe_timeout); a later pass links the request to it.
+TEST(TreeDescription, AnUnansweredRequestLinksToItsAnnouncementOnALaterPass) {
   Planner p;
   const auto bytes = wire(read_request(Dialect::Gsl, 3, fc::kGslReadHolding, kGslId1050, 2));
   FrameRecord record = record_of(Dialect::Gsl, Role::Request, 7);
@@ -142,30 +143,31 @@ TEST(TreeDescription, UnansweredRequestOnlyOnALaterPass) {
   record.timeout_reason = TimeoutReason::NextRequestFirst;
   FrameRecord next = record_of(Dialect::Gsl, Role::Request, 9);
   record.next_request = &next;
-  EXPECT_EQ(from(described(p, bytes, record, false), "1 !"), Lines{});
+  record.announced_in = 9;
+  EXPECT_EQ(from(described(p, bytes, record, false), "1 TimeoutIn"), Lines{});
   EXPECT_EQ(
-      from(described(p, bytes, record, true), "1 !"),
-      (Lines{"1 ! Unanswered [0+0]: Request never answered: the master sent its next request to "
-             "the station first +\" (frame 9)\""}));
-  next.packet = 0;  // not shown by any packet yet: no link
-  record.timed_out = false;
-  EXPECT_EQ(from(described(p, bytes, record, true), "1 !"),
-            (Lines{"1 ! Unanswered [0+0]: Request never answered: no reply before the end of the "
-                   "capture"}));
-  record.matched = false;  // its header could not be read: the session paired nothing
-  EXPECT_EQ(from(described(p, bytes, record, true), "1 !"), Lines{});
+      from(described(p, bytes, record, true), "1 TimeoutIn"),
+      (Lines{"1 TimeoutIn = 9 label \"No reply: the master sent its next request to the station "
+             "first (frame 9); announced in frame 9\" (generated)"}));
+  EXPECT_EQ(from(described(p, bytes, record, true), "1 !"), Lines{})
+      << "the verdict is the announcement's: one pass and two show it once";
+  record.announced_in = 0;  // not announced (the capture ended first)
+  EXPECT_EQ(from(described(p, bytes, record, true), "1 TimeoutIn"), Lines{});
 }
 
-TEST(TreeDescription, ATimeoutSaysWhichTimeoutJudgedIt) {
+TEST(TreeDescription, ATimeoutAnnouncementSaysWhichTimeoutJudgedIt) {
   Planner p;
   p.reply_timeout_ms = 2500;
-  const auto bytes = wire(read_request(Dialect::Gsl, 3, fc::kGslReadHolding, kGslId1050, 2));
   FrameRecord record = record_of(Dialect::Gsl, Role::Request, 7);
+  record.station = 3;
+  record.function = fc::kGslReadHolding;
   record.timed_out = true;
   record.timeout_reason = TimeoutReason::NoReply;
-  EXPECT_EQ(from(described(p, bytes, record, true), "1 !"),
-            (Lines{"1 ! Unanswered [0+0]: Request never answered: no reply within the reply "
-                   "timeout (2500 ms)"}));
+  EXPECT_EQ(lines_of(describe_timeout(record, p.description(0, false))),
+            (Lines{"0 Protocol +\", no reply to the request in frame 7\" {frame}",
+                   "1 Station = 3 (generated)", "1 UnansweredRequest = 7 (generated)",
+                   "  ! Unanswered on #2: Request in frame 7 never answered: no reply within the "
+                   "reply timeout (2500 ms)"}));
 }
 
 TEST(TreeDescription, SequenceExpertInfosOfReplies) {
@@ -242,12 +244,28 @@ TEST(TreeDescription, MalformedFrameShowsItsHeaderAndCheck) {
   record.function = 0x03;
   const FramePlan plan = p.plan(bytes, record);
   const Lines lines = lines_of(describe_frame(plan, record, p.description(bytes.size())));
-  ASSERT_EQ(lines.size(), 8u) << ::testing::PrintToString(lines);
+  ASSERT_EQ(lines.size(), 9u) << ::testing::PrintToString(lines);
   EXPECT_EQ(lines[3], "  ! Malformed on #0: Malformed frame: " + std::string(plan.parse_error));
   EXPECT_EQ(lines[4], "1 Station [0+1] = 5");
   EXPECT_EQ(lines[5], "1 Function [1+1] = 3");
-  EXPECT_EQ(lines[6], check_line(bytes));
-  EXPECT_EQ(lines[7], "1 CheckStatus = 1 (generated)");
+  EXPECT_EQ(lines[6], "1 Undecoded [2+4] +\" (4 bytes, not decoded: the frame did not parse)\"");
+  EXPECT_EQ(lines[7], check_line(bytes));
+  EXPECT_EQ(lines[8], "1 CheckStatus = 1 (generated)");
+}
+
+TEST(TreeDescription, ABadCheckReplyShowsItsDataAsNotDecoded) {
+  Planner p;
+  auto bytes = gsl_reply(1, {0x0102, 0x0304});
+  bytes.back() ^= 0xFF;
+  FrameRecord reply = record_of(Dialect::Gsl, Role::Response, 2);
+  reply.check_ok = false;
+  reply.values_trusted = false;
+  const Lines lines = described(p, bytes, reply);
+  const Lines tail = from(lines, "1 Undecoded");
+  ASSERT_EQ(tail.size(), 5u) << ::testing::PrintToString(lines);
+  EXPECT_EQ(tail[0], "1 Undecoded [3+4] +\" (4 bytes, not decoded: the CRC failed)\"");
+  EXPECT_EQ(tail[1], check_line(bytes)) << "the data comes before the check, as on the wire";
+  EXPECT_EQ(tail[4].rfind("  ! BadCheck", 0), 0u) << ::testing::PrintToString(lines);
 }
 
 TEST(TreeDescription, BitsRegisterOpensASubtreeOfItsNamedFlags) {
