@@ -118,9 +118,8 @@ void unknown_station_line(const BusReport& b, std::string& o) {
 }
 
 void station_table(const AuditReport& r, const BusReport& b, std::string& o) {
-  if (b.stations.empty() && b.unknown_station.damaged_frames == 0 && b.bytes.noise_bytes == 0) {
-    return;
-  }
+  // Noise alone (a file of other bytes) makes no table: the findings count it.
+  if (b.stations.empty() && b.unknown_station.damaged_frames == 0) return;
   o += report_line("stations:");
   o += report_line("  %-8s %9s %9s %5s %8s %10s %11s %10s  %s", "station", "requests", "responses",
                    "bad", "timeouts", "exceptions", "unsolicited", "duplicates",
