@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
 """Runs `pvtap audit --format jsonl` on one sample capture and compares what it finds with
 the simulator's ground truth: frames (bytes, roles, check verdicts), timeouts, noise, register
-values, the poll blocks and the summary's totals. Timestamps, latencies and poll periods are
-compared only on the link type 252 carrier, whose records keep the bus timing; the other
-carriers re-time the bytes.
+values, the poll blocks, the stations and the summary's totals. Timestamps, latencies and poll
+periods are compared only on the link type 252 carrier, whose records keep the bus timing; the
+other carriers re-time the bytes.
 
 usage: check_sample_audit.py PVTAP CAPTURE TRUTH
 """
@@ -129,6 +129,24 @@ def compare_polls(summary, truth_frames, timed, bad):
                     f"truth {want[1:]}")
 
 
+def compare_stations(summary, truth, bad):
+    """The stations are the simulated inverters: a damaged frame's station byte names none. The
+    bad checks are each counted once, under a station or the unknown station."""
+    inverters = list(range(truth["first_station"], truth["first_station"] + truth["inverters"]))
+    found = sorted(int(key) for key in summary.get("stations", {}))
+    if found != inverters:
+        bad.add(f"stations: audit {found}, truth {inverters}")
+    unknown = summary.get("unknown_station", {})
+    counted = sum(s["bad_checks"] for s in summary.get("stations", {}).values())
+    counted += unknown.get("damaged_frames", 0)
+    if counted != summary.get("bad_checks"):
+        bad.add(f"bad checks by station {counted} (unknown {unknown}), "
+                f"summary {summary.get('bad_checks')}")
+    claimed = sum(unknown.get("claimed", {}).values())
+    if claimed != unknown.get("damaged_frames", 0):
+        bad.add(f"unknown station: claimed {unknown.get('claimed')} != its damaged frames")
+
+
 def main():
     pvtap, capture, truth_path = sys.argv[1:4]
     with open(truth_path, encoding="utf-8") as f:
@@ -155,6 +173,7 @@ def main():
         bad.add(f"unanswered at end: audit {summary.get('unanswered_at_end')}, "
                 f"truth {len(truth['unanswered_at_end'])}")
     compare_polls(summary, [e for e in truth["events"] if e["type"] == "frame"], timed, bad)
+    compare_stations(summary, truth, bad)
     for key in SUMMARY_KEYS:
         if summary.get(key) != truth["summary"][key]:
             bad.add(f"summary {key}: audit {summary.get(key)}, truth {truth['summary'][key]}")

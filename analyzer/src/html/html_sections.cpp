@@ -94,6 +94,22 @@ void station_row(std::string& o, const AuditReport& r, const BusFindings& bus,
   o += "</tr>\n";
 }
 
+// The last row: the damaged frames no station can be named for (a damaged frame's station
+// byte may be the damage), with the addresses they claimed, and the noise.
+void unknown_station_row(std::string& o, const BusReport& b) {
+  const UnknownStation& unknown = b.unknown_station;
+  if (unknown.damaged_frames == 0 && b.bytes.noise_bytes == 0) return;
+  std::string label = "unknown (claimed " + claimed_addresses(unknown) + "; ";
+  append_uint(label, b.bytes.noise_bytes);
+  label += " noise bytes)";
+  o += "<tr class=\"unknown-station\">";
+  cell(o, label);
+  o += "<td class=\"n\">-</td><td class=\"n\">-</td>";
+  count_cell(o, unknown.damaged_frames);
+  o += "<td class=\"n\">-</td><td class=\"n\">-</td><td class=\"n\">-</td>"
+       "<td class=\"n\">-</td><td class=\"n\">-</td></tr>\n";
+}
+
 void frame_example(std::string& o, const AuditReport& r, const FrameExample& e) {
   std::string raw, expected, function;
   append_spaced_hex(raw, e.bytes);
@@ -289,6 +305,7 @@ void append_html_stations(std::string& o, const AuditReport& r) {
          "<th>replies</th><th>damaged</th><th>timeouts</th><th>exceptions</th>"
          "<th>latency p50 ms</th><th>p95</th><th>max</th></tr>\n";
     for (const StationSummary& s : bus.report.stations) station_row(o, r, bus, s);
+    unknown_station_row(o, bus.report);
     o += "</table>\n";
   }
   o += "</section>\n";

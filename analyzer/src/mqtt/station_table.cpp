@@ -69,9 +69,9 @@ bool StationState::answering(double now) const {
 }
 
 void StationTable::record(const SessionFrame& f) {
-  if (!is_good_reply(f)) return;
-  StationState& s = stations_[f.frame->station];
-  s.address = f.frame->station;
+  if (!is_good_reply(f) || !f.station) return;
+  StationState& s = stations_[*f.station];
+  s.address = *f.station;
   s.dialect = f.dialect;
   s.last_reply = std::max(s.last_reply, f.start_time);
   s.replied_since_state = true;

@@ -12,6 +12,7 @@ BusReport AuditReport::totals() const {
   for (const BusFindings& bus : buses) {
     const BusReport& r = bus.report;
     t.counters() += r.counters();
+    t.unknown_station += r.unknown_station;
     for (const ExceptionTally& e : r.exception_codes) codes[{e.dialect, e.code}] += e.count;
   }
   for (const auto& [key, count] : codes) {

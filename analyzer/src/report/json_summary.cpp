@@ -41,7 +41,6 @@ void station_object(std::string& o, const StationSummary& s) {
   append_json_count(o, "bad_checks", s.bad_checks);
   append_json_count(o, "timeouts", s.timeouts);
   append_json_count(o, "damaged_replies", s.damaged_replies);
-  append_json_count(o, "unanswered_damaged_requests", s.unanswered_damaged_requests);
   append_json_count(o, "exceptions", s.exceptions);
   append_json_count(o, "unsolicited", s.unsolicited);
   append_json_count(o, "duplicates", s.duplicates);
@@ -70,6 +69,26 @@ void stations(std::string& o, const AuditReport& report) {
     }
   }
   o += '}';
+}
+
+// {"damaged_frames":n,"unanswered_damaged_requests":n,"claimed":{"88":1,...}}: the damaged
+// frames no station can be named for, by the address they claimed.
+void unknown_station(std::string& o, const UnknownStation& u) {
+  append_json_key(o, "unknown_station");
+  o += "{\"damaged_frames\":";
+  append_uint(o, u.damaged_frames);
+  append_json_count(o, "unanswered_damaged_requests", u.unanswered_damaged_requests);
+  append_json_key(o, "claimed");
+  o += '{';
+  for (std::size_t i = 0; i < u.claimed.size(); ++i) {
+    if (i > 0) o += ',';
+    std::string address;
+    append_uint(address, u.claimed[i].station);
+    append_json_string(o, address);
+    o += ':';
+    append_uint(o, u.claimed[i].frames);
+  }
+  o += "}}";
 }
 
 void timing(std::string& o, const BusReport& r, const AuditSettings& settings) {
@@ -214,6 +233,7 @@ void write_json_summary(const AuditReport& report, OutputStream& out) {
   append_json_key(o, "latency_ms");
   distribution(o, report.latency);
   stations(o, report);
+  unknown_station(o, t.unknown_station);
   details(o, report, t);
   buses(o, report);
   append_live_sources_json(report.live, o);

@@ -19,5 +19,7 @@ void append_live_sources_json(const LiveSources& live, std::string& o);
 
 // Key of a station in the report: "1", or "10.0.0.5:4001/1" when there are several buses.
 std::string station_key(const AuditReport& report, const BusFindings& bus, std::uint8_t station);
+// The addresses the unknown station's damaged frames claimed: "33, 81, 88", or "none".
+std::string claimed_addresses(const UnknownStation& unknown);
 
 }  // namespace pvtap::analyzer

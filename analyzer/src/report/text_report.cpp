@@ -107,8 +107,19 @@ void totals(const AuditReport& r, std::string& o) {
   }
 }
 
+// "unknown station: 3 damaged frames (claimed 33, 81, 88), 12 noise bytes": what no station
+// can be named for (a damaged frame's station byte may be the damage).
+void unknown_station_line(const BusReport& b, std::string& o) {
+  const UnknownStation& unknown = b.unknown_station;
+  if (unknown.damaged_frames == 0 && b.bytes.noise_bytes == 0) return;
+  const std::string claimed = claimed_addresses(unknown);
+  o += report_line("  unknown station: %llu damaged frames (claimed %s), %llu noise bytes",
+                   u(unknown.damaged_frames), claimed.c_str(), u(b.bytes.noise_bytes));
+}
+
 void station_table(const AuditReport& r, const BusReport& b, std::string& o) {
-  if (b.stations.empty()) return;
+  // Noise alone (a file of other bytes) makes no table: the findings count it.
+  if (b.stations.empty() && b.unknown_station.damaged_frames == 0) return;
   o += report_line("stations:");
   o += report_line("  %-8s %9s %9s %5s %8s %10s %11s %10s  %s", "station", "requests", "responses",
                    "bad", "timeouts", "exceptions", "unsolicited", "duplicates",
@@ -125,6 +136,7 @@ void station_table(const AuditReport& r, const BusReport& b, std::string& o) {
                      u(s.requests), u(s.responses), u(s.bad_checks), u(s.timeouts), u(s.exceptions),
                      u(s.unsolicited), u(s.duplicates), latency.c_str());
   }
+  unknown_station_line(b, o);
   (void)r;
 }
 
@@ -253,6 +265,15 @@ void latest_values(const AuditReport& r, const BusReport& b, std::string& o) {
 }
 
 }  // namespace
+
+std::string claimed_addresses(const UnknownStation& unknown) {
+  std::string text;
+  for (const ClaimedStation& c : unknown.claimed) {
+    if (!text.empty()) text += ", ";
+    append_uint(text, c.station);
+  }
+  return text.empty() ? "none" : text;
+}
 
 std::string station_key(const AuditReport& report, const BusFindings& bus, std::uint8_t station) {
   std::string key = report.buses.size() > 1 && !bus.name.empty() ? bus.name + "/" : "";

@@ -1,4 +1,6 @@
-// operator+= of the counter sets (ReassemblerTotals, BusCounters): the one place they add up.
+// operator+= of the counter sets (ReassemblerTotals, BusCounters, UnknownStation): the one
+// place they add up.
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 
@@ -70,6 +72,22 @@ BusCounters& BusCounters::operator+=(const BusCounters& o) {
   role_corrections += o.role_corrections;
   exceptions += o.exceptions;
   gaps += o.gaps;
+  return *this;
+}
+
+UnknownStation& UnknownStation::operator+=(const UnknownStation& o) {
+  damaged_frames += o.damaged_frames;
+  unanswered_damaged_requests += o.unanswered_damaged_requests;
+  for (const ClaimedStation& c : o.claimed) {
+    const auto at = std::lower_bound(
+        claimed.begin(), claimed.end(), c.station,
+        [](const ClaimedStation& a, std::uint8_t station) { return a.station < station; });
+    if (at != claimed.end() && at->station == c.station) {
+      at->frames += c.frames;
+    } else {
+      claimed.insert(at, c);
+    }
+  }
   return *this;
 }
 

@@ -7,6 +7,7 @@
 
 #include "pvtap/matching/reply_rules.h"
 #include "pvtap/session/event_tally.h"
+#include "pvtap/session/station_rule.h"
 #include "session/bus_tally.h"
 #include "session/reply_values.h"
 #include "session/session_times.h"
@@ -81,9 +82,10 @@ void take_findings(SessionFrame& out, Frame& frame, const FrameMatch& match) {
   }
 }
 
-// The station a latency belongs to: the request's, since a damaged reply's may be wrong.
-std::uint8_t answering_station(const Frame& frame, const FrameMatch& match) {
-  return match.transaction ? match.transaction->station : frame.station;
+// The station a latency belongs to: the transaction's, since a damaged reply's may be wrong.
+std::optional<std::uint8_t> answering_station(const FrameMatch& match) {
+  if (!match.transaction) return std::nullopt;
+  return transaction_station(*match.transaction);
 }
 
 }  // namespace
@@ -91,6 +93,7 @@ std::uint8_t answering_station(const Frame& frame, const FrameMatch& match) {
 void BusSession::Impl::report(const Timeout& t) {
   SessionTimeout out;
   out.timeout = t;
+  out.station = unanswered_station(t);
   const detail::RequestRecord* request = replies.waiting_request(t);
   if (request != nullptr) {
     out.request_start = request->start_time;
@@ -142,6 +145,7 @@ void BusSession::Impl::handle_parsed(SessionFrame& out, const FrameEvent& e) {
   report(match.timeouts);
   if (match.transaction) tally.add_transaction(*match.transaction);
   take_findings(out, frame, match);
+  out.station = frame_station(e.check.ok, frame.station, match);
   if (match.role == Role::Request) {
     replies.remember_request(out, frame);
   } else {
@@ -149,7 +153,7 @@ void BusSession::Impl::handle_parsed(SessionFrame& out, const FrameEvent& e) {
     out.reply_kind = reply_kind(summary);
   }
   replies.take(out, frame, match);
-  times.add(out, frame, answering_station(frame, match), e.max_inner_gap);
+  times.add(out, frame, answering_station(match), e.max_inner_gap);
 }
 
 BusSession::BusSession(BusSessionOptions options, const RegisterDecoder& decoder,

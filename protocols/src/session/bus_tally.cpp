@@ -10,15 +10,6 @@ bool wants_example(const std::vector<T>& examples) {
 
 }  // namespace
 
-BusTally::StationCounters& BusTally::station(std::uint8_t s) {
-  StationCounters& c = stations_[s];
-  if (!c.seen) {
-    c.seen = true;
-    c.summary.station = s;
-  }
-  return c;
-}
-
 FrameExample BusTally::example_of(const SessionFrame& f) {
   FrameExample e;
   e.id = f.id;
@@ -36,72 +27,49 @@ void BusTally::count_exception(const SessionFrame& f) {
   const std::optional<std::uint8_t> code = exception_code(f);
   if (!code) return;
   ++exception_codes_[{f.dialect, *code}];
-  ++station(f.frame->station).summary.exceptions;
 }
 
 void BusTally::add_frame(const SessionFrame& f) {
   events_.add(f);
+  stations_.add_frame(f);
   if (!f.check.ok && wants_example(bad_check_examples_)) {
     bad_check_examples_.push_back(example_of(f));
   }
   if (!f.parse_error.empty()) ++counts_.malformed_frames;
   if (f.frame == nullptr) return;
-  StationSummary& s = station(f.frame->station).summary;
   const auto dialect = static_cast<std::size_t>(f.dialect);
   if (f.role == Role::Request) {
     ++counts_.requests;
     ++counts_.by_dialect[dialect].requests;
-    ++s.requests;
-    ++s.by_dialect[dialect].requests;
   } else {
     ++counts_.responses;
     ++counts_.by_dialect[dialect].responses;
-    ++s.responses;
-    ++s.by_dialect[dialect].responses;
   }
-  if (!f.check.ok) ++s.bad_checks;
   if (f.unsolicited) {
-    ++s.unsolicited;
     if (f.late_by) ++counts_.late_replies;
     if (wants_example(unsolicited_examples_)) {
       unsolicited_examples_.push_back(example_of(f));
     }
   }
-  if (f.duplicate) {
-    ++counts_.duplicates;
-    ++s.duplicates;
-  }
-  if (f.count_mismatch) {
-    ++counts_.count_mismatches;
-    ++s.count_mismatches;
-  }
+  if (f.duplicate) ++counts_.duplicates;
+  if (f.count_mismatch) ++counts_.count_mismatches;
   if (f.role_corrected) ++counts_.role_corrections;
   count_exception(f);
 }
 
 void BusTally::add_transaction(const Transaction& t) {
   ++counts_.transactions;
-  if (t.reply_check_ok) return;
-  ++counts_.damaged_replies;
-  ++station(t.station).summary.damaged_replies;
+  stations_.add_transaction(t);
+  if (!t.reply_check_ok) ++counts_.damaged_replies;
 }
 
 void BusTally::add_timeout(const SessionTimeout& t) {
   events_.add(t);
-  switch (t.kind) {
-    case UnansweredKind::DamagedRequest:
-      ++station(t.timeout.station).summary.unanswered_damaged_requests;
-      break;
-    case UnansweredKind::Timeout:
-      ++station(t.timeout.station).summary.timeouts;
-      ++counts_.timeouts_by_reason[t.timeout.reason == TimeoutReason::NextRequestFirst ? 1 : 0];
-      if (wants_example(timeout_examples_)) {
-        timeout_examples_.push_back(TimeoutExample{t.timeout, t.request_start});
-      }
-      break;
-    case UnansweredKind::InputEnded:
-    case UnansweredKind::AfterLoss:
-      break;
+  stations_.add_timeout(t);
+  if (t.kind != UnansweredKind::Timeout) return;
+  ++counts_.timeouts_by_reason[t.timeout.reason == TimeoutReason::NextRequestFirst ? 1 : 0];
+  if (wants_example(timeout_examples_)) {
+    timeout_examples_.push_back(TimeoutExample{t.timeout, t.request_start});
   }
 }
 
@@ -126,13 +94,6 @@ void BusTally::fill(BusReport& r) const {
   r.bad_check_examples = bad_check_examples_;
   r.timeout_examples = timeout_examples_;
   r.unsolicited_examples = unsolicited_examples_;
-}
-
-void BusTally::fill_stations(BusReport& r) const {
-  r.stations.clear();
-  for (const StationCounters& c : stations_) {
-    if (c.seen) r.stations.push_back(c.summary);
-  }
 }
 
 }  // namespace pvtap::detail

@@ -1,5 +1,6 @@
 // BusTally: the counters and examples of a BusReport, filled frame by frame: the event counts
-// by the one EventTally, and what only the report keeps (per station and dialect, examples).
+// by the one EventTally, the stations by the StationTally, and what only the report keeps (per
+// dialect, examples).
 #pragma once
 
 #include <array>
@@ -12,6 +13,7 @@
 #include "pvtap/session/bus_report.h"
 #include "pvtap/session/bus_session.h"
 #include "pvtap/session/event_tally.h"
+#include "session/station_tally.h"
 
 namespace pvtap::detail {
 
@@ -27,19 +29,14 @@ class BusTally {
   // Writes the counters and examples into `r` (byte totals, timing and values come from
   // elsewhere: its bytes are zero here).
   void fill(BusReport& r) const;
-  // The per-station counters, for the stations that appeared.
-  void fill_stations(BusReport& r) const;
+  // The per-station counters, for the stations that exist, and the unknown station.
+  void fill_stations(BusReport& r) const { stations_.fill(r); }
 
  private:
-  struct StationCounters {
-    bool seen = false;
-    StationSummary summary;
-  };
-  StationCounters& station(std::uint8_t s);
   void count_exception(const SessionFrame& f);
   static FrameExample example_of(const SessionFrame& f);
 
-  std::array<StationCounters, 256> stations_{};
+  StationTally stations_;
   EventTally events_;
   BusCounters counts_;  // what EventTally does not count
   std::vector<FrameExample> bad_check_examples_;

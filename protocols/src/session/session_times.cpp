@@ -25,8 +25,8 @@ void SessionTimes::settle_start(SessionFrame& out) {
   bus_free_at_ = out.end_time;
 }
 
-void SessionTimes::add(const SessionFrame& out, const Frame& frame, std::uint8_t station,
-                       double max_inner_gap) {
+void SessionTimes::add(const SessionFrame& out, const Frame& frame,
+                       std::optional<std::uint8_t> station, double max_inner_gap) {
   if (!has_timestamps_) return;
   // With timestamps declared too coarse the bus gaps are never judged; requests alone give
   // the poll periods, and the gap statistics are spared the other frames.

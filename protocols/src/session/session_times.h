@@ -27,7 +27,8 @@ class SessionTimes {
   // The bus is half duplex: nothing starts before the frame before it ended.
   void settle_start(SessionFrame& out);
   // The frame's gaps and, for a reply, the latency of `station`, the request's.
-  void add(const SessionFrame& out, const Frame& frame, std::uint8_t station, double max_inner_gap);
+  void add(const SessionFrame& out, const Frame& frame, std::optional<std::uint8_t> station,
+           double max_inner_gap);
   TimingReport report(const TimestampQuality& quality) const { return timing_.report(quality); }
 
  private:

@@ -21,9 +21,9 @@ void TimingStatistics::add_poll(const FrameTiming& request) {
   it->second.add_event(request.start_time);
 }
 
-void TimingStatistics::add_latency(std::uint8_t station, double seconds) {
+void TimingStatistics::add_latency(std::optional<std::uint8_t> station, double seconds) {
   latency_.add(seconds);
-  latency_by_station_[station].add(seconds);
+  if (station) latency_by_station_[*station].add(seconds);
 }
 
 TimingReport TimingStatistics::report(const TimestampQuality& quality) const {

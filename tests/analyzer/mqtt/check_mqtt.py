@@ -340,6 +340,23 @@ def check_tls(args):
     return bad.exit_status("tls")
 
 
+def check_no_phantom_station(latest, prefix, capture, bad):
+    """A damaged frame's station byte (mixed-faults has damaged frames claiming 0 and 34) makes
+    no retained station topic and no Home Assistant device: only the simulated inverters do."""
+    truth_path = re.sub(r"\.[a-z0-9]+\.pcap$", ".truth.json", capture)
+    with open(truth_path, encoding="utf-8") as f:
+        truth = json.load(f)
+    inverters = set(range(truth["first_station"], truth["first_station"] + truth["inverters"]))
+    retained = {int(m.group(1)) for m in
+                (re.match(re.escape(prefix) + r"/bus/(\d+)/", t) for t in latest) if m}
+    devices = {int(m.group(1)) for m in
+               (re.match(r"homeassistant/\w+/.*_bus_(\d+)/", t) for t in latest) if m}
+    bad.check(retained == inverters, f"retained station topics {sorted(retained)}, "
+              f"inverters {sorted(inverters)}")
+    bad.check(devices <= inverters, f"Home Assistant devices {sorted(devices)}, "
+              f"inverters {sorted(inverters)}")
+
+
 def check_replay(args):
     """pvtap audit --mqtt replays a capture: events and states carry the capture's times,
     no status is claimed for the site."""
@@ -358,6 +375,7 @@ def check_replay(args):
     sub.wait_for(lambda m: len(mqtt_events(m, prefix)) >= len(want))
     check_values_and_events(sub, prefix, lines, bad)
     bad.check(f"{prefix}/status" not in sub.latest(), "a replay published the site's status")
+    check_no_phantom_station(sub.latest(), prefix, capture, bad)
     sub.close()
     broker.stop()
     return bad.exit_status("replay")

@@ -62,10 +62,9 @@ struct StationSummary {
   std::uint64_t requests = 0;
   std::uint64_t responses = 0;
   std::uint64_t bad_checks = 0;
-  std::uint64_t timeouts = 0;                     // good requests that got no reply
-  std::uint64_t damaged_replies = 0;              // replies with a bad check to its requests
-  std::uint64_t unanswered_damaged_requests = 0;  // its requests with a bad check, no reply
-  std::uint64_t exceptions = 0;                   // GSL exceptions and Hybrid error replies
+  std::uint64_t timeouts = 0;         // good requests that got no reply
+  std::uint64_t damaged_replies = 0;  // replies with a bad check to its requests
+  std::uint64_t exceptions = 0;       // GSL exceptions and Hybrid error replies
   std::uint64_t unsolicited = 0;
   std::uint64_t duplicates = 0;
   std::uint64_t count_mismatches = 0;
@@ -74,6 +73,22 @@ struct StationSummary {
   // The newest value of every register the station reported (read replies and write echoes
   // with good checks), sorted by dialect and address.
   std::vector<LatestValue> latest_values;
+};
+
+// ClaimedStation: an address that damaged frames of no station claimed, and how many did.
+struct ClaimedStation {
+  std::uint8_t station = 0;
+  std::uint64_t frames = 0;
+};
+
+// UnknownStation: the damaged frames that no station can be named for (see station_rule.h):
+// their station byte may be the damaged one. Noise is of no station either (BusCounters::bytes).
+struct UnknownStation {
+  std::uint64_t damaged_frames = 0;
+  std::uint64_t unanswered_damaged_requests = 0;  // of them, requests no reply answered
+  std::vector<ClaimedStation> claimed;            // sorted by address
+
+  UnknownStation& operator+=(const UnknownStation& o);
 };
 
 // GapTally: capture data lost on the way to the analyzer.
@@ -128,7 +143,9 @@ struct BusReport : BusCounters {
   double first_time = 0;  // first and last byte seen, when has_timestamps and bytes arrived
   double last_time = 0;
   TimingReport timing;
-  std::vector<StationSummary> stations;  // sorted by address; only stations that appeared
+  // Sorted by address: the stations a frame with a good check named (station_rule.h).
+  std::vector<StationSummary> stations;
+  UnknownStation unknown_station;
 };
 
 }  // namespace pvtap

@@ -47,6 +47,9 @@ struct SessionFrame {
   Role role = Role::Request;  // as corrected by the matcher (GSL 0x06 echoes)
   FrameCheck check;
   const Frame* frame = nullptr;  // null when the bytes do not parse (see parse_error)
+  // The station it is counted under (station_rule.h); nullopt for a damaged frame paired with
+  // no good frame (yet: a damaged request waits for its reply or its timeout).
+  std::optional<std::uint8_t> station;
   std::string_view parse_error;
   // Replies: the request answered, and the latency (when the input has timestamps).
   std::optional<std::uint64_t> request_id;
@@ -82,6 +85,7 @@ enum class UnansweredKind : std::uint8_t {
 struct SessionTimeout {
   Timeout timeout;
   UnansweredKind kind = UnansweredKind::Timeout;
+  std::optional<std::uint8_t> station;  // the station it is counted under (station_rule.h)
   double request_start = 0;
   double request_end = 0;
   double time = 0;  // when it was given up: request_end + timeout.waited

@@ -78,7 +78,8 @@ class TimingStatistics {
   explicit TimingStatistics(BusTiming timing) : gaps_(timing) {}
 
   void add_frame(const FrameTiming& frame);
-  void add_latency(std::uint8_t station, double seconds);
+  // A latency of no station (both frames of its transaction damaged) is in the bus's alone.
+  void add_latency(std::optional<std::uint8_t> station, double seconds);
   TimingReport report(const TimestampQuality& quality) const;
 
  private:

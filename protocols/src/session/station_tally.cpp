@@ -1,0 +1,99 @@
+#include "session/station_tally.h"
+
+#include "pvtap/session/event_tally.h"
+#include "pvtap/session/station_rule.h"
+
+namespace pvtap::detail {
+namespace {
+
+constexpr std::uint8_t kBroadcastAddress = 0xFF;
+
+}  // namespace
+
+StationSummary& StationTally::station(std::uint8_t s) {
+  Slot& slot = stations_[s];
+  if (!slot.seen) {
+    slot.seen = true;
+    slot.summary.station = s;
+  }
+  return slot.summary;
+}
+
+void StationTally::count_unknown(std::uint8_t claimed) {
+  ++unknown_frames_;
+  ++claimed_[claimed];
+}
+
+void StationTally::count_frame(StationSummary& s, const SessionFrame& f) {
+  RoleCounts& by_dialect = s.by_dialect[static_cast<std::size_t>(f.dialect)];
+  if (f.role == Role::Request) {
+    ++s.requests;
+    ++by_dialect.requests;
+  } else {
+    ++s.responses;
+    ++by_dialect.responses;
+  }
+  if (!f.check.ok) ++s.bad_checks;
+  if (f.unsolicited) ++s.unsolicited;
+  if (f.duplicate) ++s.duplicates;
+  if (f.count_mismatch) ++s.count_mismatches;
+  if (exception_code(f)) ++s.exceptions;
+}
+
+void StationTally::count_request(std::optional<std::uint8_t> owner, std::uint8_t claimed,
+                                 Dialect d) {
+  if (!owner) {
+    count_unknown(claimed);
+    return;
+  }
+  StationSummary& s = station(*owner);
+  ++s.requests;
+  ++s.by_dialect[static_cast<std::size_t>(d)].requests;
+  ++s.bad_checks;
+}
+
+void StationTally::add_frame(const SessionFrame& f) {
+  if (f.frame == nullptr) return;
+  if (f.station) {
+    count_frame(station(*f.station), f);
+  } else if (f.role != Role::Request) {
+    count_unknown(f.frame->station);
+  }
+  // A damaged request is counted when its reply or its timeout says whose it is.
+}
+
+void StationTally::add_transaction(const Transaction& t) {
+  if (!t.reply_check_ok) {
+    if (const auto s = transaction_station(t)) ++station(*s).damaged_replies;
+  }
+  if (t.request_check_ok || last_settled_request_ == t.request_id) return;
+  last_settled_request_ = t.request_id;
+  count_request(answered_request_station(t), t.broadcast ? kBroadcastAddress : t.station,
+                t.dialect);
+}
+
+void StationTally::add_timeout(const SessionTimeout& t) {
+  if (t.timeout.request_check_ok) {
+    if (t.kind == UnansweredKind::Timeout && t.station) ++station(*t.station).timeouts;
+    return;
+  }
+  count_request(t.station, t.timeout.station, t.timeout.dialect);
+  if (t.kind == UnansweredKind::DamagedRequest && !t.station) ++unknown_unanswered_;
+}
+
+void StationTally::fill(BusReport& r) const {
+  r.stations.clear();
+  for (const Slot& s : stations_) {
+    if (s.seen) r.stations.push_back(s.summary);
+  }
+  UnknownStation& u = r.unknown_station;
+  u = UnknownStation{};
+  u.damaged_frames = unknown_frames_;
+  u.unanswered_damaged_requests = unknown_unanswered_;
+  for (std::size_t a = 0; a < claimed_.size(); ++a) {
+    if (claimed_[a] > 0)
+      u.claimed.push_back(ClaimedStation{static_cast<std::uint8_t>(a), claimed_[a]});
+  }
+}
+
+}  // namespace pvtap::detail
