@@ -3,7 +3,9 @@
 The same frames (dialect, role, station, function, check verdict), the same noise runs and
 bytes, the same unanswered requests, on the Wireshark series the plugin was built for. tshark
 runs two-pass (-2), as a display filter typed after loading sees it, and one-pass, as a live
-capture and a filter given at start-up see it: both passes show the same verdicts. USER0 captures go
+capture and a filter given at start-up see it: both passes show the same verdicts. USER0
+captures are read as they are (the plugin claims USER0-15 and reassembles frames across
+records) and as `pvtap audit --write` writes them (link type 252). USER0 captures go
 through `pvtap audit --write` (link type 252), which the plugin reads; gateway and
 exported-PDU captures are read as they are.
 
@@ -134,27 +136,37 @@ class SampleLibrary(PluginTestCase, unittest.TestCase):
         self.tshark._hand_over()
         return copy
 
+    def assert_both_passes_give(self, capture, audit):
+        plugin = self.plugin_verdicts(capture)
+        self.assertEqual(plugin.as_dict(), audit.as_dict())
+        one_pass = self.plugin_verdicts(capture, passes=1)
+        self.assertEqual((one_pass.as_dict(), one_pass.others), (plugin.as_dict(), plugin.others),
+                         "one pass differs from two")
+
     def test_every_sample_gets_the_verdicts_of_pvtap_audit(self):
         self.assertGreater(len(SAMPLES), 20, "the sample library was not found")
         for sample in SAMPLES:
             name = os.path.basename(sample)
             with self.subTest(sample=name):
+                capture = self.readable_copy(sample)
+                written = None
                 if ".user0." in name:
                     written = self.tshark.path(name.replace(".user0.", ".written."))
-                    audit = audit_verdicts(sample, written)
-                    capture = written
-                    self.tshark._hand_over()
-                else:
-                    audit = audit_verdicts(sample)
-                    capture = self.readable_copy(sample)
+                audit = audit_verdicts(sample, written)
                 self.assertGreater(sum(audit.frames.values()), 0)
                 if ".pdu." in name:
                     audit.noise_runs = truth_noise_runs(sample)
-                plugin = self.plugin_verdicts(capture)
-                self.assertEqual(plugin.as_dict(), audit.as_dict())
-                one_pass = self.plugin_verdicts(capture, passes=1)
-                self.assertEqual((one_pass.as_dict(), one_pass.others),
-                                 (plugin.as_dict(), plugin.others), "one pass differs from two")
+                self.assert_both_passes_give(capture, audit)
+                if written:
+                    self.tshark._hand_over()
+                    self.assertEqual(self.plugin_verdicts(written).as_dict(), audit.as_dict(),
+                                     "the records pvtap audit --write wrote")
+
+    def test_user_link_types_can_be_left_to_the_user_dlt_table(self):
+        capture = self.readable_copy(os.path.join(SAMPLE_DIR, "gsl-clean.user0.pcap"))
+        off = ["-o", "pvtap_serial.user_link_types:FALSE"]
+        self.assertEqual(self.tshark.fields(capture, ["frame.number"], "invrtu", options=off), [])
+        self.assertGreater(len(self.tshark.fields(capture, ["frame.number"], "invrtu")), 0)
 
     def test_noise_is_filed_under_the_dialect_it_resembles(self):
         capture = self.readable_copy(os.path.join(SAMPLE_DIR, "demo.gateway.pcap"))

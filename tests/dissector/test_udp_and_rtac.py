@@ -1,4 +1,4 @@
-"""Datagram transports: UDP found by the heuristic, RTAC serial payloads by Decode As."""
+"""Datagram transports: UDP found by the heuristic; RTAC serial payloads, claimed by default."""
 
 import struct
 import unittest
@@ -32,17 +32,22 @@ class DatagramTransports(PluginTestCase, unittest.TestCase):
         # the RTU frame in it is shown by invrtu.
         self.assertEqual(rows[2][4], ["1"])
 
-    def test_rtac_serial_payload_by_decode_as(self):
+    def test_rtac_serial_payloads_are_one_bus_reassembled_across_records(self):
         pcap = Pcap(LINKTYPE_RTAC_SERIAL)
         rtac_record(pcap, 2.00, 1, rtu_read_request(1, 0x03, 1056, 1))
-        rtac_record(pcap, 2.04, 2, gsl_read_reply(1, [4998]))
+        reply = gsl_read_reply(1, [4998])
+        rtac_record(pcap, 2.04, 2, reply[:4])
+        rtac_record(pcap, 2.045, 2, reply[4:])
         capture = self.tshark.write("rtac.pcap", pcap)
-        rows = self.tshark.fields(capture, ["invrtu.role", "invrtu.gsl.grid_frequency",
-                                            "invrtu.request_in"],
+        fields = ["invrtu.role", "invrtu.gsl.grid_frequency", "invrtu.request_in"]
+        for passes in ([], ["-2"]):
+            rows = [r for r in self.tshark.run(passes + ["-r", capture, "-T", "fields"] + sum(
+                (["-e", f] for f in fields), [])).stdout.splitlines()]
+            self.assertEqual(rows, ["0\t\t", "\t\t", "1\t49.98\t1"], passes)
+        # Decode As still chooses: invrtu itself takes each payload as a datagram of its own.
+        rows = self.tshark.fields(capture, ["invrtu.role", "invrtu.noise"],
                                   options=["-d", "rtacser.data,invrtu"])
-        self.assertEqual(rows, [[["0"], [], []], [["1"], ["49.98"], ["1"]]])
-        plain = self.tshark.fields(capture, ["invrtu.role"])
-        self.assertEqual(plain, [[[]], [[]]])
+        self.assertEqual(rows[1], [[], ["01030213"]])
 
 
 if __name__ == "__main__":

@@ -6,6 +6,7 @@
 #include "fields/register_fields.h"
 #include "registration/inverter_protocol.h"
 #include "registration/record_dissector.h"
+#include "registration/serial_link_types.h"
 #include "registration/transport_entry.h"
 #include "settings/preferences.h"
 #include "settings/register_maps.h"
@@ -34,6 +35,7 @@ void register_protocols() {
   register_register_fields(rtu_protocol().proto, Dialect::Gsl);
   register_register_fields(ascii_protocol().proto, Dialect::Ascii);
   register_record_dissector();
+  register_serial_link_types();
   apply_preferences();
   register_cleanup_routine(release_bus_tracks);
 }
@@ -41,6 +43,7 @@ void register_protocols() {
 void register_handoffs() {
   register_transport_handoffs(rtu_protocol());
   register_transport_handoffs(ascii_protocol());
+  claim_serial_link_types();
 }
 
 }  // namespace pvtap::dissector

@@ -21,14 +21,12 @@ guint16 clamp16(unsigned value) {
   return static_cast<guint16>(value > 0xFFFF ? 0xFFFF : value);
 }
 
-BusSessionOptions session_options(const ProtocolSettings& s) {
+BusSessionOptions session_options(const ProtocolSettings& s, Carrier carrier) {
   BusSessionOptions o;
   o.reassembler.dialects = DialectSet::all();  // a gateway may carry ASCII and RTU stations
   o.reassembler.baud = s.baud >= 300 ? s.baud : 9600;
-  // Segment times are the gateway's, not the characters' (as pvtap audit reads gateways).
-  o.reassembler.timestamps = TimestampTrust::Untrusted;
-  o.reassembler.boundary_gap = s.gateway_gap_ms / 1000.0;
-  o.reassembler.segment_ends_pin = true;
+  // What the timestamps prove, as pvtap audit reads the same carrier.
+  apply_carrier_timing(CarrierTiming{carrier, s.gateway_gap_ms / 1000.0, {}}, o);
   if (s.reply_timeout_ms > 0) o.matcher.timeout = s.reply_timeout_ms / 1000.0;
   o.decode_values = false;  // decoded when shown, into the tree
   return o;
@@ -36,8 +34,8 @@ BusSessionOptions session_options(const ProtocolSettings& s) {
 
 }  // namespace
 
-BusTrack::BusTrack(const ProtocolSettings& settings)
-    : bus_(session_options(settings), register_decoder(), *this) {}
+BusTrack::BusTrack(const ProtocolSettings& settings, Carrier carrier)
+    : bus_(session_options(settings, carrier), register_decoder(), *this) {}
 
 std::uint64_t BusTrack::stream_offset(Direction d, guint32 seq) {
   const std::size_t i = index_of(d);
@@ -116,8 +114,8 @@ std::vector<FrameRecord*> BusTrack::take_timeouts() {
   return ready;
 }
 
-BusTrack* new_bus_track(const ProtocolSettings& settings) {
-  g_tracks.push_back(std::make_unique<BusTrack>(settings));
+BusTrack* new_bus_track(const ProtocolSettings& settings, Carrier carrier) {
+  g_tracks.push_back(std::make_unique<BusTrack>(settings, carrier));
   return g_tracks.back().get();
 }
 

@@ -8,8 +8,10 @@
 #include <vector>
 
 #include "plan/frame_record.h"
+#include "pvtap/session/carrier_timing.h"
 #include "pvtap/session/segmented_bus.h"
 #include "registration/inverter_protocol.h"
+#include "stream/held_bytes.h"
 
 namespace pvtap::dissector {
 
@@ -18,9 +20,13 @@ namespace pvtap::dissector {
 // the same frames, verdicts, request links and latencies for the same bytes.
 class BusTrack final : public BusSessionSink {
  public:
-  explicit BusTrack(const ProtocolSettings& settings);
+  // `carrier`: how the bytes come (a gateway's segments, serial records), which decides what
+  // their timestamps prove, as for pvtap audit.
+  BusTrack(const ProtocolSettings& settings, Carrier carrier);
 
   SegmentedBus& bus() { return bus_; }
+  // Serial records: the bytes not decided yet.
+  HeldBytes& held() { return held_; }
   // The record of a frame of the session; null for an id it never reported.
   FrameRecord* record(std::uint64_t frame_id) const {
     return frame_id < records_.size() ? records_[frame_id] : nullptr;
@@ -44,10 +50,12 @@ class BusTrack final : public BusSessionSink {
   std::array<guint32, 3> first_seq_{};
   std::array<bool, 3> seq_known_{};
   std::array<std::uint64_t, 3> datagram_end_{};
+  HeldBytes held_;
 };
 
 // A track that lives until the capture file is closed.
-BusTrack* new_bus_track(const ProtocolSettings& settings);
+BusTrack* new_bus_track(const ProtocolSettings& settings,
+                        Carrier carrier = Carrier::GatewaySegments);
 
 // Frees every track; registered as a cleanup routine.
 void release_bus_tracks();

@@ -17,8 +17,10 @@ struct ConversationState {
   BusTrack* bus = nullptr;
 };
 
-// The state of the packet's conversation for a protocol, made on first use.
-ConversationState& conversation_state(packet_info* pinfo, InverterProtocol& protocol);
+// The state of the packet's conversation for a protocol, made on first use with a bus for
+// `carrier`.
+ConversationState& conversation_state(packet_info* pinfo, InverterProtocol& protocol,
+                                      Carrier carrier = Carrier::GatewaySegments);
 
 // Records which side is the slave: the sender of this packet, or its receiver.
 void set_slave_side(ConversationState& state, packet_info* pinfo, bool sender_is_slave);

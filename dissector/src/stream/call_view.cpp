@@ -1,0 +1,51 @@
+#include "stream/call_view.h"
+
+#include <epan/proto_data.h>
+
+#include <vector>
+
+#include "stream/piece_display.h"
+
+namespace pvtap::dissector {
+namespace {
+
+// The timeouts not announced yet. noexcept: nothing may be thrown into Wireshark.
+std::vector<FrameRecord*> unannounced(BusTrack& bus) noexcept {
+  try {
+    return bus.take_timeouts();
+  } catch (...) {
+    return {};  // out of memory: a later call announces them
+  }
+}
+
+}  // namespace
+
+void note_timeouts(CallView& view, packet_info* pinfo, BusTrack& bus) {
+  if (PINFO_FD_VISITED(pinfo) || view.extends_pdu) return;
+  const std::vector<FrameRecord*> ready = unannounced(bus);
+  if (ready.empty()) return;
+  view.timeouts = wmem_alloc_array(wmem_file_scope(), FrameRecord*, ready.size());
+  view.timeout_count = static_cast<std::uint32_t>(ready.size());
+  for (std::size_t i = 0; i < ready.size(); ++i) {
+    view.timeouts[i] = ready[i];
+    ready[i]->announced_in = pinfo->num;
+  }
+}
+
+CallView* noted_view(packet_info* pinfo, int proto, guint32 number) {
+  return static_cast<CallView*>(p_get_proto_data(wmem_file_scope(), pinfo, proto, number));
+}
+
+CallView& note_view(packet_info* pinfo, int proto, guint32 number) {
+  auto* view = new (wmem_alloc(wmem_file_scope(), sizeof(CallView))) CallView{};
+  p_add_proto_data(wmem_file_scope(), pinfo, proto, number, view);
+  return *view;
+}
+
+void show_timeouts(const CallView& view, tvbuff_t* tvb, packet_info* pinfo, proto_tree* tree) {
+  for (std::uint32_t i = 0; i < view.timeout_count; ++i) {
+    show_timeout(*view.timeouts[i], tvb, pinfo, tree);
+  }
+}
+
+}  // namespace pvtap::dissector

@@ -1,0 +1,38 @@
+// CallView: what one call of the plugin for a bus shows, decided on the first pass.
+#pragma once
+
+#include <epan/packet.h>
+
+#include <cstdint>
+
+#include "plan/frame_record.h"
+#include "stream/bus_track.h"
+
+namespace pvtap::dissector {
+
+// Lives in wmem file scope; later passes show what the first pass noted.
+struct CallView {
+  std::uint64_t from = 0;            // stream position of the first byte of the call's pieces
+  std::uint64_t decided_to = 0;      // the bytes after it wait for more
+  std::uint64_t shown_to = 0;        // the pieces in [from, shown_to) are this call's to show
+  bool extends_pdu = false;          // a call later passes do not make (it shows nothing)
+  FrameRecord** timeouts = nullptr;  // the timeouts this call announces
+  std::uint32_t timeout_count = 0;
+  std::uint64_t record_from = 0;          // serial records: stream position of the record's bytes
+  const std::uint8_t* earlier = nullptr;  // serial records: the bytes in [from, record_from)
+};
+
+// The view the first pass noted for call `number` of `proto` in the packet; null if none.
+CallView* noted_view(packet_info* pinfo, int proto, guint32 number);
+
+// A new view for call `number`, kept for later passes.
+CallView& note_view(packet_info* pinfo, int proto, guint32 number);
+
+// First pass, once the call's pieces are shown: the timeouts it announces (none when a later
+// pass will not make the call).
+void note_timeouts(CallView& view, packet_info* pinfo, BusTrack& bus);
+
+// Shows the timeouts the view announces.
+void show_timeouts(const CallView& view, tvbuff_t* tvb, packet_info* pinfo, proto_tree* tree);
+
+}  // namespace pvtap::dissector
