@@ -43,6 +43,7 @@ FrameRecord record_from(pvtap::fuzz::FuzzInput& in) {
   r.count_found = in.byte();
   r.latency = static_cast<double>(in.u32() % 5000000) / 1e3;
   r.packet = in.u32();
+  r.announced_in = bit(more, 2) ? r.packet + 1 : 0;  // no input of its own: the corpus stays
   return r;
 }
 
@@ -106,5 +107,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   check_items(pvtap::dissector::describe_frame(plan, record, dctx), bytes.size());
   check_items(pvtap::dissector::describe_noise(pvtap::unknown_function_frame(bytes), dctx),
               bytes.size());
+  // A timeout announcement has no bytes of its own: every item is generated.
+  dctx.length = 0;
+  check_items(pvtap::dissector::describe_timeout(record, dctx), 0);
   return 0;
 }
