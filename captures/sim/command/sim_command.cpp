@@ -49,7 +49,7 @@ std::optional<SimCommand> parse_sim_command(int argc, char** argv, int& exit_cod
   app.add_option("--baud", c.baud, "bus speed")->check(CLI::Range(1200, 115200));
   app.add_option("--faults", faults,
                  "none, all, or kind=percent,... (corrupt missing slow "
-                 "noise error_reply count_mismatch duplicate corrupt_request)");
+                 "noise error_reply count_mismatch duplicate corrupt_request corrupt_data)");
   app.add_option("--pdu", cmd.outputs.pdu, "write a link type 252 capture");
   app.add_option("--gateway", cmd.outputs.gateway, "write an Ethernet/IPv4/TCP gateway capture");
   app.add_option("--chunked", cmd.outputs.chunked, "write a USER0 chunked serial capture");
