@@ -53,6 +53,9 @@ std::optional<SimCommand> parse_sim_command(int argc, char** argv, int& exit_cod
   app.add_option("--pdu", cmd.outputs.pdu, "write a link type 252 capture");
   app.add_option("--gateway", cmd.outputs.gateway, "write an Ethernet/IPv4/TCP gateway capture");
   app.add_option("--chunked", cmd.outputs.chunked, "write a USER0 chunked serial capture");
+  app.add_option("--read-delay", cmd.outputs.read_delay_ms,
+                 "--chunked: the sniffer reads each USB transfer up to this many ms late")
+      ->check(CLI::Range(0, 100));
   app.add_option("--truth", cmd.outputs.truth, "write the ground truth as JSON");
   app.add_option("--device", cmd.outputs.device, "play the bus onto a serial device or pty");
   try {
