@@ -77,10 +77,12 @@ Evidence end_evidence(const DecisionInput& in, std::size_t length) {
 // a silence the timestamps prove says the reading is wrong. Batched timestamps, though, date
 // the reads of a serial adapter or the segments of a gateway, not the bytes: a read that came
 // late (the sniffer was not scheduled) seems to follow a silence that was never on the bus.
-// There a good frame right after the reading outweighs them: structure first.
+// There a good frame right after the reading, or the end of the input right at its end,
+// outweighs them: structure first.
 Evidence silence_rules_out(const DecisionInput& in, const FrameCandidate& c) {
   if (!in.timeline->silence_inside(in.offset, in.offset + c.length - 1)) return Evidence::No;
   if (in.timeline->trusted()) return Evidence::Yes;
+  if (in.final && c.length == in.bytes.size()) return Evidence::No;
   bool incomplete = false;
   if (good_frame_at(in, c.length, incomplete)) return Evidence::No;
   return (incomplete && more_possible(in)) ? Evidence::Wait : Evidence::Yes;

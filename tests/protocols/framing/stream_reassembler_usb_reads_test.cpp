@@ -97,22 +97,26 @@ TEST(StreamReassemblerUsbReads, ALateReadOfTheReplysLastByteDoesNotCutTheReply) 
   EXPECT_FALSE(events[1].frame.check.ok);
 }
 
-// Where no good frame follows the reading (here the input ends after it), a silence that the
-// timestamps prove inside it still rules it out, batched or not: nothing else pins it.
-TEST(StreamReassemblerUsbReads, WithoutAGoodFrameAfterItASilenceInsideStillRulesTheReadingOut) {
+// Where only timing pins the reading's end (a long silence, then noise), a silence that the
+// timestamps prove inside it still rules it out, batched or not.
+TEST(StreamReassemblerUsbReads, WhereOnlyTimingPinsItsEndASilenceInsideStillRulesTheReadingOut) {
   auto stream = request_reply_request();
-  stream.resize(59);  // the request and the reply alone
+  stream.resize(59);  // the request and the reply
+  stream.insert(stream.end(), {0xFF, 0xFF, 0xFF});
   const auto events = reassembled(
-      stream, {{0, 8, 0.02623}, {8, 32, 0.05710}, {32, 56, 0.12122}, {56, 59, 0.12436}});
+      stream,
+      {{0, 8, 0.02623}, {8, 32, 0.05710}, {32, 56, 0.12122}, {56, 59, 0.12436}, {59, 62, 0.30000}});
   ASSERT_FALSE(events.empty());
   EXPECT_TRUE(std::none_of(events.begin(), events.end(), [](const test::CapturedEvent& e) {
     return e.is_frame && e.bytes.size() == 51;
   }));
-  // The same reads with no silence between them: then the end of input pins the reply.
+  // The same reads with no silence inside the reply: the silence after it pins its end.
   const auto whole = reassembled(
-      stream, {{0, 8, 0.02623}, {8, 32, 0.05710}, {32, 56, 0.08210}, {56, 59, 0.08524}});
-  ASSERT_EQ(whole.size(), 2u);
+      stream,
+      {{0, 8, 0.02623}, {8, 32, 0.05710}, {32, 56, 0.08210}, {56, 59, 0.08524}, {59, 62, 0.30000}});
+  ASSERT_EQ(whole.size(), 3u);
   EXPECT_EQ(whole[1].bytes, damaged_reply());
+  EXPECT_FALSE(whole[2].is_frame);
 }
 
 }  // namespace
