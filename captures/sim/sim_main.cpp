@@ -32,7 +32,9 @@ int main(int argc, char** argv) {
   ok = produce(out.gateway,
                [&] { return write_gateway_capture(timeline, out.gateway, cmd->config.seed); }) &&
        ok;
-  ok = produce(out.chunked, [&] { return write_chunked_capture(timeline, out.chunked); }) && ok;
+  const ChunkedReads reads{cmd->config.seed, out.read_delay_ms};
+  ok = produce(out.chunked, [&] { return write_chunked_capture(timeline, out.chunked, reads); }) &&
+       ok;
   ok = produce(out.truth, [&] { return write_ground_truth(timeline, cmd->config, out.truth); }) &&
        ok;
   ok = produce(out.device,

@@ -69,8 +69,15 @@ TEST(FaultPlan, ParsesKindsAndRejectsUnknownOnes) {
   EXPECT_EQ((*requests)[FaultKind::Corrupt], 0u);
   const auto all = parse_fault_plan("all", error);
   ASSERT_TRUE(all);
-  for (const unsigned percent : all->percent) EXPECT_EQ(percent, 4u);
+  for (unsigned k = 0; k < kFirstOptInKind; ++k) EXPECT_EQ(all->percent[k], 4u);
   EXPECT_EQ((*all)[FaultKind::CorruptRequest], 4u);
+  EXPECT_EQ((*all)[FaultKind::CorruptData], 0u) << "opt-in kinds stay out of \"all\"";
+  EXPECT_FALSE(all->drawn(FaultKind::CorruptData));
+  const auto data = parse_fault_plan("corrupt_data=9", error);
+  ASSERT_TRUE(data);
+  EXPECT_EQ((*data)[FaultKind::CorruptData], 9u);
+  EXPECT_TRUE(data->drawn(FaultKind::CorruptData));
+  EXPECT_TRUE(data->drawn(FaultKind::Missing)) << "the first kinds are always drawn";
   EXPECT_FALSE(parse_fault_plan("lightning=5", error));
   EXPECT_FALSE(parse_fault_plan("corrupt=101", error));
   EXPECT_FALSE(parse_fault_plan("corrupt=", error));
@@ -272,6 +279,39 @@ TEST(BusMaster, CorruptRepliesHitTheByteCountAndKeepTheirLatency) {
   }
   EXPECT_GT(damaged, 100u);
   EXPECT_GT(count_hit, 0u) << "the byte count is damaged too";
+}
+
+// A reply damaged in its data keeps the length its header gives, and the master's next request,
+// always a good one, follows within 8-15 ms (or the next round's, later): that request alone
+// pins its end.
+TEST(BusMaster, RepliesDamagedInTheirDataAreFollowedCloselyByAGoodRequest) {
+  std::size_t damaged = 0, close = 0;
+  for (std::uint64_t seed = 1; seed <= 8; ++seed) {
+    const BusTimeline t =
+        BusMaster(bus_with(seed, kMixed, "corrupt_data=15,corrupt_request=15")).run();
+    for (std::size_t i = 0; i < t.events.size(); ++i) {
+      const BusEvent& e = t.events[i];
+      if (e.fault != "corrupt_data" || e.kind != BusEvent::Kind::Frame) continue;
+      ++damaged;
+      EXPECT_EQ(e.role, Role::Response);
+      EXPECT_FALSE(e.check_ok);
+      EXPECT_GE(e.station, 1u);
+      EXPECT_LE(e.station, 3u);
+      if (e.dialect != Dialect::Ascii) {
+        EXPECT_EQ(e.bytes[2] + 5u, e.bytes.size());
+      }
+      EXPECT_FALSE(lists(t.timeouts, t.events[i - 1])) << "a damaged reply is no timeout";
+      if (i + 1 == t.events.size()) continue;
+      const BusEvent& next = t.events[i + 1];
+      EXPECT_EQ(next.kind, BusEvent::Kind::Frame);
+      EXPECT_EQ(next.role, Role::Request);
+      EXPECT_TRUE(next.check_ok) << "the request that pins it is good";
+      EXPECT_GE(next.start - e.end, 8'000);
+      close += next.start - e.end <= 15'000;
+    }
+  }
+  EXPECT_GT(damaged, 50u);
+  EXPECT_GT(close, damaged / 2);
 }
 
 // Both ends of every damaged frame pinned: it follows a frame, never noise (a reply not even

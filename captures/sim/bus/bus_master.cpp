@@ -41,6 +41,7 @@ std::optional<FaultKind> BusMaster::pick_fault(Dialect d) {
   if (closing_) return std::nullopt;
   for (unsigned k = 0; k < kFaultKinds; ++k) {
     const auto kind = static_cast<FaultKind>(k);
+    if (!config_.faults.drawn(kind)) continue;
     if (random_.percent(config_.faults[kind])) {
       // The ASCII dialect's only error path is silence.
       if (kind == FaultKind::ErrorReply && d == Dialect::Ascii) return FaultKind::Missing;
@@ -51,8 +52,12 @@ std::optional<FaultKind> BusMaster::pick_fault(Dialect d) {
 }
 
 std::optional<FaultKind> BusMaster::placed(std::optional<FaultKind> fault) const {
-  if (fault == FaultKind::CorruptRequest && !wire_.may_damage(Role::Request)) return std::nullopt;
-  if (fault == FaultKind::Corrupt && !wire_.may_damage(Role::Response)) return std::nullopt;
+  // A request that pins the end of a damaged reply must itself be good.
+  if (fault == FaultKind::CorruptRequest &&
+      (next_request_pins_ || !wire_.may_damage(Role::Request)))
+    return std::nullopt;
+  const bool damages_reply = fault == FaultKind::Corrupt || fault == FaultKind::CorruptData;
+  if (damages_reply && !wire_.may_damage(Role::Response)) return std::nullopt;
   return fault;
 }
 
@@ -81,6 +86,7 @@ Micros BusMaster::send_damaged_requests(const Inverter& inv, const PollBlock& bl
 
 Micros BusMaster::poll(Inverter& inv, const PollBlock& block, Micros at) {
   const std::optional<FaultKind> fault = placed(pick_fault(inv.dialect()));
+  next_request_pins_ = false;
   if (fault == FaultKind::CorruptRequest) return send_damaged_requests(inv, block, at);
   const Micros request_end =
       wire_.put(frame_event(read_request(inv.dialect(), inv.station(), block)), at);
@@ -100,6 +106,9 @@ Micros BusMaster::answer(Inverter& inv, const PollBlock& block, std::optional<Fa
   if (fault == FaultKind::Corrupt) {
     damage = damage_frame(rep.bytes, inv.dialect(), random_);
     mark_damaged(rep, *damage, FaultKind::Corrupt);
+  } else if (fault == FaultKind::CorruptData) {
+    damage = damage_reply_data(rep.bytes, inv.dialect(), random_);
+    mark_damaged(rep, *damage, FaultKind::CorruptData);
   }
   // A slow reply still comes inside the master's timeout: late, not lost.
   const auto slow_max =
@@ -116,7 +125,12 @@ Micros BusMaster::answer(Inverter& inv, const PollBlock& block, std::optional<Fa
     timeline_.timeouts.push_back(request);
     return std::max(end, timeout_after(request.request_end));
   }
-  // A damaged reply is pinned at its end by a silence no carrier can miss.
+  // A damaged reply is pinned at its end by a silence no carrier can miss, or (its length
+  // intact in its header) by the next request, sent soon after as a busy master does.
+  if (fault == FaultKind::CorruptData) {
+    next_request_pins_ = true;
+    return end + random_.between(kCloseRequestMs, kCloseRequestMs + 7) * 1000;
+  }
   if (damage) return end + random_.between(kPinningPauseMs, kPinningPauseMs + 60) * 1000;
   if (fault == FaultKind::Duplicate) {
     const Micros gap = random_.between(8, 15) * 1000;

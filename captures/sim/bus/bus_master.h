@@ -40,6 +40,9 @@ class BusMaster {
   static constexpr unsigned kDamagedRetryPercent = 30;
   static constexpr unsigned kMaxDamagedRun = 4;
   static constexpr std::int64_t kPinningPauseMs = 100;  // silence after a damaged reply
+  // Silence before the request that pins a reply damaged in its data only: less than a USB
+  // adapter's latency timer, so both can reach a capture in one chunk.
+  static constexpr std::int64_t kCloseRequestMs = 8;
 
   SimConfig config_;
   SimRandom random_;
@@ -47,6 +50,8 @@ class BusMaster {
   BusWire wire_;
   BusTimeline timeline_;  // the ground truth; its events stay on wire_ until the run ends
   bool closing_ = false;  // the last poll of a run: no faults
+  // The next request pins the end of the damaged reply before it, so it may not be damaged.
+  bool next_request_pins_ = false;
 };
 
 }  // namespace pvtap::sim

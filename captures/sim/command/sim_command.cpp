@@ -49,10 +49,13 @@ std::optional<SimCommand> parse_sim_command(int argc, char** argv, int& exit_cod
   app.add_option("--baud", c.baud, "bus speed")->check(CLI::Range(1200, 115200));
   app.add_option("--faults", faults,
                  "none, all, or kind=percent,... (corrupt missing slow "
-                 "noise error_reply count_mismatch duplicate corrupt_request)");
+                 "noise error_reply count_mismatch duplicate corrupt_request corrupt_data)");
   app.add_option("--pdu", cmd.outputs.pdu, "write a link type 252 capture");
   app.add_option("--gateway", cmd.outputs.gateway, "write an Ethernet/IPv4/TCP gateway capture");
   app.add_option("--chunked", cmd.outputs.chunked, "write a USER0 chunked serial capture");
+  app.add_option("--read-delay", cmd.outputs.read_delay_ms,
+                 "--chunked: the sniffer reads each USB transfer up to this many ms late")
+      ->check(CLI::Range(0, 100));
   app.add_option("--truth", cmd.outputs.truth, "write the ground truth as JSON");
   app.add_option("--device", cmd.outputs.device, "play the bus onto a serial device or pty");
   try {

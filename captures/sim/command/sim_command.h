@@ -11,6 +11,7 @@ namespace pvtap::sim {
 // SimOutputs: the files (and device) a run writes; empty strings are skipped.
 struct SimOutputs {
   std::string pdu, gateway, chunked, truth, device;
+  unsigned read_delay_ms = 0;  // --chunked: how late the sniffer may read a USB transfer
 };
 
 struct SimCommand {

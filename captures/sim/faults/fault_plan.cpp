@@ -1,13 +1,14 @@
 #include "faults/fault_plan.h"
 
+#include <algorithm>
 #include <charconv>
 
 namespace pvtap::sim {
 namespace {
 
 constexpr std::array<std::string_view, kFaultKinds> kNames{
-    "corrupt",     "missing",        "slow",      "noise",
-    "error_reply", "count_mismatch", "duplicate", "corrupt_request"};
+    "corrupt",   "missing",         "slow",        "noise", "error_reply", "count_mismatch",
+    "duplicate", "corrupt_request", "corrupt_data"};
 
 std::optional<FaultKind> kind_named(std::string_view name) {
   for (unsigned i = 0; i < kFaultKinds; ++i)
@@ -25,7 +26,8 @@ std::optional<FaultPlan> parse_fault_plan(std::string_view text, std::string& er
   FaultPlan plan;
   if (text == "none" || text.empty()) return plan;
   if (text == "all") {
-    plan.percent.fill(4);
+    // Opt-in kinds stay out, so that "all" keeps giving the bytes it always gave.
+    std::fill_n(plan.percent.begin(), kFirstOptInKind, 4u);
     return plan;
   }
   while (!text.empty()) {
@@ -40,7 +42,7 @@ std::optional<FaultPlan> parse_fault_plan(std::string_view text, std::string& er
     if (!kind || ec != std::errc{} || end != number.data() + number.size() || value > 100) {
       error = "bad fault '" + std::string(item) +
               "' (expected kind=percent; kinds: corrupt missing slow noise error_reply "
-              "count_mismatch duplicate corrupt_request)";
+              "count_mismatch duplicate corrupt_request corrupt_data)";
       return std::nullopt;
     }
     plan[*kind] = value;

@@ -17,8 +17,12 @@ enum class FaultKind : unsigned {
   CountMismatch,   // a reply with fewer registers than asked for
   Duplicate,       // the same reply twice
   CorruptRequest,  // one bit or byte of a request changed, any byte: the slave stays silent
+  CorruptData,     // one data byte of a reply changed, and the next request follows closely
 };
-inline constexpr std::size_t kFaultKinds = 8;
+inline constexpr std::size_t kFaultKinds = 9;
+// Kinds from here on were added after the sample library was written: they are drawn, and
+// named in the ground truth, only when a plan asks for them, so every seed keeps its bytes.
+inline constexpr unsigned kFirstOptInKind = 8;
 
 std::string_view to_string(FaultKind kind);
 
@@ -26,6 +30,10 @@ struct FaultPlan {
   std::array<unsigned, kFaultKinds> percent{};  // chance per poll
   unsigned& operator[](FaultKind k) { return percent[static_cast<unsigned>(k)]; }
   unsigned operator[](FaultKind k) const { return percent[static_cast<unsigned>(k)]; }
+  // Whether a poll draws for this kind at all (see kFirstOptInKind).
+  bool drawn(FaultKind k) const {
+    return static_cast<unsigned>(k) < kFirstOptInKind || (*this)[k] > 0;
+  }
 };
 
 // "none", "all" (every kind at 4 %) or "corrupt=5,corrupt_request=3,...". nullopt with `error` set

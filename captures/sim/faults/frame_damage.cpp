@@ -49,15 +49,34 @@ std::optional<DamageReading> reading_of(std::span<const std::uint8_t> original,
   return DamageReading::BadCheckFrame;
 }
 
-FrameDamage damage_frame(std::vector<std::uint8_t>& bytes, Dialect dialect, SimRandom& random) {
+namespace {
+
+// Damages one byte of bytes[first..last].
+FrameDamage damage_one_of(std::vector<std::uint8_t>& bytes, Dialect dialect, SimRandom& random,
+                          std::int64_t first, std::int64_t last) {
   const std::vector<std::uint8_t> original = bytes;
   for (;;) {
-    const auto at = static_cast<std::size_t>(random.between(0, std::ssize(bytes) - 1));
+    const auto at = static_cast<std::size_t>(random.between(first, last));
     const auto mask = random.percent(50) ? 1u << random.between(0, 7) : random.between(1, 255);
     bytes[at] = static_cast<std::uint8_t>(original[at] ^ mask);
     if (const auto reading = reading_of(original, bytes, dialect)) return {at, *reading};
     bytes[at] = original[at];
   }
+}
+
+}  // namespace
+
+FrameDamage damage_frame(std::vector<std::uint8_t>& bytes, Dialect dialect, SimRandom& random) {
+  return damage_one_of(bytes, dialect, random, 0, std::ssize(bytes) - 1);
+}
+
+FrameDamage damage_reply_data(std::vector<std::uint8_t>& bytes, Dialect dialect,
+                              SimRandom& random) {
+  // RTU: station, function, byte count, data, CRC(2). ASCII: ACK, station(2), 'R',
+  // address(4), data, checksum(4), EOT.
+  const std::int64_t size = std::ssize(bytes);
+  if (dialect == Dialect::Ascii) return damage_one_of(bytes, dialect, random, 8, size - 6);
+  return damage_one_of(bytes, dialect, random, 3, size - 3);
 }
 
 std::uint8_t wire_station(std::span<const std::uint8_t> bytes, Dialect dialect) {

@@ -38,6 +38,9 @@ std::optional<DamageReading> reading_of(std::span<const std::uint8_t> original,
 // XORs any one byte of `bytes` (every header field included) with one bit or with a random
 // nonzero byte, 50/50, drawing again until reading_of has one answer.
 FrameDamage damage_frame(std::vector<std::uint8_t>& bytes, Dialect dialect, SimRandom& random);
+// The same for one byte of a read reply's data only: station, function, byte count (ASCII:
+// address) and check stay as sent, so the frame's length is still written in its header.
+FrameDamage damage_reply_data(std::vector<std::uint8_t>& bytes, Dialect dialect, SimRandom& random);
 
 // Station and function of a damaged frame as its bytes now say (BadCheckFrame readings only:
 // an ASCII station is still two hex digits).

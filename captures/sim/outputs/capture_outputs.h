@@ -12,9 +12,16 @@ namespace pvtap::sim {
 // Link type 252: one exported-PDU record per frame or noise run, tagged with its direction.
 std::string write_pdu_capture(const BusTimeline& timeline, const std::string& path);
 
+// ChunkedReads: how late the capturing program reads what the adapter hands over.
+struct ChunkedReads {
+  std::uint64_t seed = 0;
+  unsigned max_delay_ms = 0;  // 0: every transfer read, and stamped, the moment it arrives
+};
+
 // USER0 (147): the bus bytes in chunks cut by a USB adapter's latency timer, as a serial
 // sniffer records them; no direction.
-std::string write_chunked_capture(const BusTimeline& timeline, const std::string& path);
+std::string write_chunked_capture(const BusTimeline& timeline, const std::string& path,
+                                  const ChunkedReads& reads);
 
 // Ethernet/IPv4/TCP: the master's connection to a serial-to-TCP gateway, the gateway's
 // stream cut into segments at random points.

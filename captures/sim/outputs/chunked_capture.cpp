@@ -3,6 +3,7 @@
 #include "outputs/bus_bytes.h"
 #include "outputs/capture_outputs.h"
 #include "pvtap/capture/pcap_writer.h"
+#include "sim_random.h"
 
 namespace pvtap::sim {
 namespace {
@@ -12,29 +13,66 @@ namespace {
 constexpr Micros kLatencyTimer = 16'000;
 constexpr std::size_t kPacketBytes = 62;
 
-}  // namespace
+// UsbTransfer: bytes the adapter handed over at once, and when.
+struct UsbTransfer {
+  Micros time = 0;
+  std::vector<std::uint8_t> bytes;
+};
 
-std::string write_chunked_capture(const BusTimeline& timeline, const std::string& path) {
-  PcapWriter file;
-  if (!file.open(path, DLT_USER0)) return file.error();
-  const std::vector<TimedByte> bytes = bus_bytes(timeline);
-  std::vector<std::uint8_t> chunk;
+std::vector<UsbTransfer> usb_transfers(const BusTimeline& timeline) {
+  std::vector<UsbTransfer> out;
+  UsbTransfer pending;
   Micros deadline = 0;
-  Micros last = 0;
-  for (const TimedByte& b : bytes) {
-    if (!chunk.empty() && b.time > deadline) {
-      file.write(deadline, chunk);
-      chunk.clear();
+  for (const TimedByte& b : bus_bytes(timeline)) {
+    if (!pending.bytes.empty() && b.time > deadline) {
+      pending.time = deadline;
+      out.push_back(std::move(pending));
+      pending = {};
     }
-    if (chunk.empty()) deadline = b.time + kLatencyTimer;
-    chunk.push_back(b.value);
-    last = b.time;
-    if (chunk.size() == kPacketBytes) {
-      file.write(last, chunk);
-      chunk.clear();
+    if (pending.bytes.empty()) deadline = b.time + kLatencyTimer;
+    pending.bytes.push_back(b.value);
+    if (pending.bytes.size() == kPacketBytes) {
+      pending.time = b.time;
+      out.push_back(std::move(pending));
+      pending = {};
     }
   }
-  if (!chunk.empty()) file.write(deadline, chunk);
+  if (!pending.bytes.empty()) {
+    pending.time = deadline;
+    out.push_back(std::move(pending));
+  }
+  return out;
+}
+
+// The capturing program gets to read each transfer 0..max_delay late, as the OS schedules it,
+// and a late read returns, as one record stamped when it returns, every transfer that had
+// arrived by then.
+std::vector<UsbTransfer> late_reads(std::vector<UsbTransfer> transfers, Micros max_delay,
+                                    SimRandom& random) {
+  std::vector<UsbTransfer> reads;
+  for (UsbTransfer& t : transfers) {
+    if (!reads.empty() && t.time <= reads.back().time) {
+      reads.back().bytes.insert(reads.back().bytes.end(), t.bytes.begin(), t.bytes.end());
+      continue;
+    }
+    t.time += random.between(0, max_delay);
+    reads.push_back(std::move(t));
+  }
+  return reads;
+}
+
+}  // namespace
+
+std::string write_chunked_capture(const BusTimeline& timeline, const std::string& path,
+                                  const ChunkedReads& reads) {
+  PcapWriter file;
+  if (!file.open(path, DLT_USER0)) return file.error();
+  std::vector<UsbTransfer> records = usb_transfers(timeline);
+  if (reads.max_delay_ms > 0) {
+    SimRandom random(reads.seed ^ 0x5E1A7EDull);
+    records = late_reads(std::move(records), Micros{reads.max_delay_ms} * 1000, random);
+  }
+  for (const UsbTransfer& r : records) file.write(r.time, r.bytes);
   return file.close() ? std::string{} : file.error();
 }
 

@@ -25,30 +25,50 @@ struct PlannedSegment {
 };
 
 // The master writes each request in one piece; it reaches the bus half a millisecond later.
+constexpr Micros kRequestLead = 500;
+// The master's ACK of a gateway segment.
+constexpr Micros kAckDelay = 150;
+
 void plan_requests(const BusTimeline& timeline, std::vector<PlannedSegment>& out) {
   for (const BusEvent& e : timeline.events) {
     if (e.role != Role::Request) continue;
-    out.push_back({e.start - 500, true, tcp_flag::kAck | tcp_flag::kPsh, e.bytes});
+    out.push_back({e.start - kRequestLead, true, tcp_flag::kAck | tcp_flag::kPsh, e.bytes});
     out.push_back({e.start - 300, false, tcp_flag::kAck, {}});
   }
+}
+
+// When the master sends each request, in time order.
+std::vector<Micros> request_times(const BusTimeline& timeline) {
+  std::vector<Micros> out;
+  for (const BusEvent& e : timeline.events)
+    if (e.role == Role::Request) out.push_back(e.start - kRequestLead);
+  return out;
 }
 
 // The gateway sends what the bus gave it whenever its packing timer, restarted at random
 // lengths, runs out: frames end up split over segments and merged into one.
 void plan_replies(const BusTimeline& timeline, SimRandom& random,
                   std::vector<PlannedSegment>& out) {
+  const std::vector<Micros> polls = request_times(timeline);
+  auto next_poll = polls.begin();
   std::vector<std::uint8_t> pending;
   Micros deadline = 0;
   auto flush = [&] {
     out.push_back({deadline, false, tcp_flag::kAck | tcp_flag::kPsh, pending});
-    out.push_back({deadline + 150, true, tcp_flag::kAck, {}});
+    out.push_back({deadline + kAckDelay, true, tcp_flag::kAck, {}});
     pending.clear();
   };
   for (const TimedByte& b : bus_bytes(timeline)) {
     if (b.side != Role::Response) continue;
     if (!pending.empty() && b.time > deadline) flush();
-    // At most 15 ms, so that the master has the whole reply before it polls again.
-    if (pending.empty()) deadline = b.time + random.between(1'000, 15'000);
+    if (pending.empty()) {
+      // At most 15 ms, and never past the next request: the master has the whole reply
+      // before it polls again, however soon it does.
+      deadline = b.time + random.between(1'000, 15'000);
+      while (next_poll != polls.end() && *next_poll <= b.time) ++next_poll;
+      if (next_poll != polls.end())
+        deadline = std::max(b.time, std::min(deadline, *next_poll - 2 * kAckDelay));
+    }
     pending.push_back(b.value);
   }
   if (!pending.empty()) flush();

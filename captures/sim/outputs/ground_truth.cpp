@@ -93,9 +93,11 @@ void write_config(std::ostream& o, const SimConfig& c) {
     o << (i ? "," : "") << "\"" << to_string(c.dialects[i]) << "\"";
   o << "],\"inverters\":" << c.inverters << ",\"first_station\":" << int{c.first_station}
     << ",\"baud\":" << c.baud << ",\"timeout_s\":" << number(c.timeout_s) << ",\"faults\":{";
-  for (unsigned k = 0; k < kFaultKinds; ++k)
-    o << (k ? "," : "") << "\"" << to_string(static_cast<FaultKind>(k))
-      << "\":" << c.faults.percent[k];
+  for (unsigned k = 0; k < kFaultKinds; ++k) {
+    const auto kind = static_cast<FaultKind>(k);
+    if (!c.faults.drawn(kind)) continue;
+    o << (k ? "," : "") << "\"" << to_string(kind) << "\":" << c.faults.percent[k];
+  }
   o << "}";
 }
 

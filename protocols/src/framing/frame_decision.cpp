@@ -73,12 +73,27 @@ Evidence end_evidence(const DecisionInput& in, std::size_t length) {
   return (incomplete && more_possible(in)) ? Evidence::Wait : Evidence::No;
 }
 
+// Whether a silence inside the reading rules it out. RTU frames are sent without pauses, so
+// a silence the timestamps prove says the reading is wrong. Batched timestamps, though, date
+// the reads of a serial adapter or the segments of a gateway, not the bytes: a read that came
+// late (the sniffer was not scheduled) seems to follow a silence that was never on the bus.
+// There a good frame right after the reading, or the end of the input right at its end,
+// outweighs them: structure first.
+Evidence silence_rules_out(const DecisionInput& in, const FrameCandidate& c) {
+  if (!in.timeline->silence_inside(in.offset, in.offset + c.length - 1)) return Evidence::No;
+  if (in.timeline->trusted()) return Evidence::Yes;
+  if (in.final && c.length == in.bytes.size()) return Evidence::No;
+  bool incomplete = false;
+  if (good_frame_at(in, c.length, incomplete)) return Evidence::No;
+  return (incomplete && more_possible(in)) ? Evidence::Wait : Evidence::Yes;
+}
+
 Evidence bad_frame_evidence(const DecisionInput& in, const FrameCandidate& c, bool pinned) {
   // ENQ/ACK ... EOT delimit an ASCII frame by themselves.
   if (c.dialect == Dialect::Ascii) return Evidence::Yes;
   if (!pinned) return Evidence::No;
-  // RTU frames are sent without pauses: a t3.5 silence inside says this reading is wrong.
-  if (in.timeline->silence_inside(in.offset, in.offset + c.length - 1)) return Evidence::No;
+  const Evidence silence = silence_rules_out(in, c);
+  if (silence != Evidence::No) return silence == Evidence::Wait ? Evidence::Wait : Evidence::No;
   const Evidence end = end_evidence(in, c.length);
   if (end != Evidence::Yes) return end;
   return good_frame_inside(in, c.length) ? Evidence::No : Evidence::Yes;

@@ -35,12 +35,13 @@ struct Decision {
 // with a bad check is taken only when both its ends are pinned down: its start right after a
 // frame, after a proven silence (t3.5, or a batching carrier's boundary gap) or at the start
 // of input; its end by a good frame right after it, a proven silence or the end of input. Nor
-// may a good frame or a proven silence lie inside it. At a pinned start, implausible fields
-// (a count of 0, a station out of range, ...) do not rule a reading out; inside noise they
-// do. When no reading fits a pinned start, the bytes up to the next pinned end are read as a
-// frame whose function code or byte count was damaged, if one byte set back makes its CRC
-// match. Otherwise the first byte is noise: a reading that begins inside noise would turn
-// noise into made-up frames.
+// may a good frame or a proven silence lie inside it (with batched timestamps, which date
+// reads rather than bytes, a silence inside only when neither a good frame nor the end of
+// input follows it). At a pinned start, implausible fields (a count of 0, a station out of
+// range, ...) do not rule a reading out; inside noise they do. When no reading fits a pinned
+// start, the bytes up to the next pinned end are read as a frame whose function code or byte
+// count was damaged, if one byte set back makes its CRC match. Otherwise the first byte is
+// noise: a reading that begins inside noise would turn noise into made-up frames.
 Decision decide_at(const DecisionInput& in);
 
 }  // namespace pvtap::detail
