@@ -2,10 +2,9 @@
 
 #include <epan/packet.h>
 
-#include <algorithm>
 
 #include "pvtap/capture/exported_pdu_tags.h"
-#include "pvtap/framing/framing_probe.h"
+#include "registration/record_layer.h"
 #include "stream/conversation_state.h"
 #include "stream/stream_dissection.h"
 
@@ -24,16 +23,6 @@ RoleHint hint_of(const packet_info* pinfo) {
     default:
       return RoleHint::Unknown;
   }
-}
-
-// The layer a record shows as: the protocol of the frame it starts with (its pieces still go
-// to the protocols of their own dialects).
-InverterProtocol& protocol_of_record(tvbuff_t* tvb, packet_info* pinfo, RoleHint hint) {
-  const guint n = std::min<guint>(tvb_captured_length(tvb), kMaxFrameLength);
-  const auto* bytes = static_cast<const guint8*>(tvb_memdup(pinfo->pool, tvb, 0, n));
-  const ProbeResult probe = probe_frame({bytes, n}, hint);
-  if (probe.status == ProbeResult::Status::Complete) return protocol_of(probe.dialect);
-  return rtu_protocol();
 }
 
 Direction direction_of(RoleHint hint) {

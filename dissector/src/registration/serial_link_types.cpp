@@ -4,9 +4,7 @@
 #include <epan/prefs.h>
 #include <wiretap/wtap.h>
 
-#include <algorithm>
-
-#include "pvtap/framing/framing_probe.h"
+#include "registration/record_layer.h"
 #include "stream/conversation_state.h"
 #include "stream/record_dissection.h"
 #include "wireshark_api/preference_types.h"
@@ -18,17 +16,7 @@ int g_proto_serial = -1;
 dissector_handle_t g_serial_handle = nullptr;
 // Serial sniffers (SerialPCAP, modbus-sniffer, WiresharkSerialAdapter) write USER0-15; a user
 // who maps them to another protocol turns this off.
-PreferenceBool g_claim_user_link_types = true;
-
-// The layer a record shows as: the protocol of the frame it starts with (its pieces still go
-// to the protocols of their own dialects).
-InverterProtocol& protocol_of_record(tvbuff_t* tvb, packet_info* pinfo) {
-  const guint n = std::min<guint>(tvb_captured_length(tvb), kMaxFrameLength);
-  const auto* bytes = static_cast<const guint8*>(tvb_memdup(pinfo->pool, tvb, 0, n));
-  const ProbeResult probe = probe_frame({bytes, n}, RoleHint::Unknown);
-  if (probe.status == ProbeResult::Status::Complete) return protocol_of(probe.dialect);
-  return rtu_protocol();
-}
+PreferenceBool g_claim_serial_payloads = true;
 
 // As pvtap audit: records of more than one byte are chunks read from an adapter, whose
 // timestamps are batched; one byte per record is a tap that stamps each character. The first
@@ -40,7 +28,8 @@ Carrier carrier_of(tvbuff_t* tvb) {
 int dissect_serial(tvbuff_t* tvb, packet_info* pinfo, proto_tree* tree, void*) {
   // All records of a capture are one bus, whatever layer shows them.
   ConversationState& state = conversation_state(pinfo, rtu_protocol(), carrier_of(tvb));
-  return dissect_serial_record(tvb, pinfo, tree, protocol_of_record(tvb, pinfo), *state.bus);
+  return dissect_serial_record(tvb, pinfo, tree, protocol_of_record(tvb, pinfo, RoleHint::Unknown),
+                               *state.bus);
 }
 
 // RTAC serial records carry bus bytes too (the RTAC dissector looks its payload up under 0):
@@ -52,9 +41,10 @@ void claim_rtac_payloads() {
   }
 }
 
-void claim_user_link_types() {
+// USER0-15 (as the preference says) and RTAC payloads.
+void claim_serial_payloads() {
   claim_rtac_payloads();
-  const bool on = g_claim_user_link_types;
+  const bool on = g_claim_serial_payloads;
   for (int encap = WTAP_ENCAP_USER0; encap <= WTAP_ENCAP_USER15; ++encap) {
     if (on) {
       dissector_change_uint("wtap_encap", static_cast<guint32>(encap), g_serial_handle);
@@ -69,20 +59,20 @@ void claim_user_link_types() {
 void register_serial_link_types() {
   g_proto_serial = proto_register_protocol("pvtap serial records", "pvtap serial", "pvtap_serial");
   g_serial_handle = register_dissector("pvtap_serial", dissect_serial, g_proto_serial);
-  module_t* module = prefs_register_protocol(g_proto_serial, claim_user_link_types);
+  module_t* module = prefs_register_protocol(g_proto_serial, claim_serial_payloads);
   // The DLT_USER table sets its own handle for USER0-15 whenever its preferences are applied,
   // which may come after ours: the claim is made again before each file is dissected.
-  register_init_routine(claim_user_link_types);
+  register_init_routine(claim_serial_payloads);
   prefs_register_bool_preference(
       module, "user_link_types", "Dissect USER0-USER15 as serial bus records",
       "Link types USER0 to USER15 (DLT 147-162), which serial sniffers write: each record is "
       "bytes read from the bus, reassembled into frames across records. Turn off to leave them "
       "to the user DLT table (Preferences > Protocols > DLT_USER)",
-      &g_claim_user_link_types);
+      &g_claim_serial_payloads);
 }
 
 void claim_serial_link_types() {
-  claim_user_link_types();
+  claim_serial_payloads();
   dissector_add_for_decode_as("rtacser.data", g_serial_handle);
 }
 
