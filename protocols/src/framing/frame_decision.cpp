@@ -62,15 +62,20 @@ bool good_frame_inside(const DecisionInput& in, std::size_t length) {
   return false;
 }
 
+// Whether a good frame starts right after `length` bytes: Wait while one may still arrive.
+Evidence good_frame_after(const DecisionInput& in, std::size_t length) {
+  bool incomplete = false;
+  if (good_frame_at(in, length, incomplete)) return Evidence::Yes;
+  return (incomplete && more_possible(in)) ? Evidence::Wait : Evidence::No;
+}
+
 Evidence end_evidence(const DecisionInput& in, std::size_t length) {
   if (in.timeline->silence_before(in.offset + length)) return Evidence::Yes;
   if (in.timeline->segment_ends_at(in.offset + length)) return Evidence::Yes;
   if (length == in.bytes.size()) {
     return (in.final || in.silence_after) ? Evidence::Yes : Evidence::Wait;
   }
-  bool incomplete = false;
-  if (good_frame_at(in, length, incomplete)) return Evidence::Yes;
-  return (incomplete && more_possible(in)) ? Evidence::Wait : Evidence::No;
+  return good_frame_after(in, length);
 }
 
 // Whether a silence inside the reading rules it out. RTU frames are sent without pauses, so
@@ -83,9 +88,15 @@ Evidence silence_rules_out(const DecisionInput& in, const FrameCandidate& c) {
   if (!in.timeline->silence_inside(in.offset, in.offset + c.length - 1)) return Evidence::No;
   if (in.timeline->trusted()) return Evidence::Yes;
   if (in.final && c.length == in.bytes.size()) return Evidence::No;
-  bool incomplete = false;
-  if (good_frame_at(in, c.length, incomplete)) return Evidence::No;
-  return (incomplete && more_possible(in)) ? Evidence::Wait : Evidence::Yes;
+  switch (good_frame_after(in, c.length)) {
+    case Evidence::Yes:
+      return Evidence::No;
+    case Evidence::Wait:
+      return Evidence::Wait;
+    case Evidence::No:
+      break;
+  }
+  return Evidence::Yes;
 }
 
 Evidence bad_frame_evidence(const DecisionInput& in, const FrameCandidate& c, bool pinned) {
