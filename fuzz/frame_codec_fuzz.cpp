@@ -16,7 +16,7 @@ using pvtap::Dialect;
 using pvtap::Role;
 using pvtap::RoleHint;
 
-constexpr Dialect kDialects[] = {Dialect::Ascii, Dialect::Hybrid, Dialect::Gsl};
+constexpr Dialect kDialects[] = {Dialect::Ascii, Dialect::Hybrid, Dialect::Gsl, Dialect::Modbus};
 constexpr RoleHint kHints[] = {RoleHint::Unknown, RoleHint::Request, RoleHint::Response};
 
 // A frame that parses lays out inside its bytes and, re-encoded, parses back to itself.

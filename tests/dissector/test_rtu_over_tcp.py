@@ -20,7 +20,8 @@ RESTORE = bytes.fromhex("06 1F 10 24 00 7B 91 57")
 RESTORE_CONFIRM = bytes.fromhex("06 1F 08 31 00 00 67 10 24 00 7B BD F1")
 ERROR_REPLY_BAD = bytes.fromhex("06 FF 08 31 00 00 67 10 00 00 FF F8 C3")
 NOISE = bytes.fromhex("00 13 37")
-READ_COILS = with_crc(bytes.fromhex("01 01 00 13 00 25"))  # Modbus 0x01: in no dialect
+# Modbus user-defined 0x41: no length rule, so it is found only between pinned ends.
+USER_FUNCTION = with_crc(bytes.fromhex("01 41 00 13 00 25"))
 
 
 def gsl_flow(pcap):
@@ -55,10 +56,10 @@ def gsl_flow(pcap):
     flow.request(rtu_read_request(1, 0x03, 1056, 1)); mark("req_dup")
     flow.reply(gsl_read_reply(1, [4999])); mark("rep_dup_1")
     flow.reply(gsl_read_reply(1, [4999])); mark("rep_dup_2")
-    flow.request(READ_COILS); mark("read_coils")
+    flow.request(USER_FUNCTION); mark("user_function")
     # Undecided bytes at a segment's end wait for that direction's next segment.
-    flow.request(rtu_read_request(1, 0x03, 1056, 1)); mark("after_coils")
-    flow.reply(gsl_read_reply(1, [4998])); mark("rep_after_coils")
+    flow.request(rtu_read_request(1, 0x03, 1056, 1)); mark("after_user_function")
+    flow.reply(gsl_read_reply(1, [4998])); mark("rep_after_user_function")
     # Past station 3's reply timeout: the first packet after it announces the timeout.
     flow.request(rtu_read_request(1, 0x03, 1056, 1), after=1.5); mark("late_req")
     flow.reply(gsl_read_reply(1, [4997])); mark("late_rep")
@@ -212,8 +213,9 @@ class RtuOverTcp(PluginTestCase, unittest.TestCase):
     def test_frame_of_an_unknown_function_code(self):
         g = self.gsl
         self.assertEqual(self.packets_matching("invrtu.unknown_function_frame"),
-                         [g["after_coils"]])
-        self.assertEqual(self.cell(g["after_coils"], "invrtu.unknown_function"), ["0x01"])
+                         [g["after_user_function"]])
+        self.assertEqual(self.cell(g["after_user_function"], "invrtu.unknown_function"),
+                         ["0x41"])
 
     def test_exception_reply(self):
         g = self.gsl

@@ -2,7 +2,9 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "cli/map_file.h"
@@ -13,18 +15,41 @@
 namespace pvtap::analyzer {
 namespace {
 
-DialectSet dialects_named(const std::string& name) {
-  if (name == "ascii") return DialectSet::only(Dialect::Ascii);
-  if (name == "hybrid") return DialectSet::only(Dialect::Hybrid);
-  if (name == "gsl") return DialectSet::only(Dialect::Gsl);
-  return DialectSet::all();
+std::optional<Dialect> dialect_named(std::string_view name) {
+  for (Dialect d : {Dialect::Ascii, Dialect::Hybrid, Dialect::Gsl, Dialect::Modbus}) {
+    if (name == to_string(d)) return d;
+  }
+  return std::nullopt;
+}
+
+// "auto", or a comma-separated list of dialect names ("gsl,modbus").
+std::optional<DialectSet> dialects_named(std::string_view names) {
+  if (names == "auto") return DialectSet::all();
+  DialectSet set = DialectSet::none();
+  while (!names.empty()) {
+    const std::size_t comma = names.find(',');
+    const auto d = dialect_named(names.substr(0, comma));
+    if (!d) return std::nullopt;
+    set = set.with(*d);
+    names = comma == std::string_view::npos ? std::string_view{} : names.substr(comma + 1);
+  }
+  if (set == DialectSet::none()) return std::nullopt;
+  return set;
 }
 
 }  // namespace
 
 void add_protocol_options(CLI::App& audit, CommonOptions& o, BaudRange baud_range) {
-  audit.add_option("--dialect", o.dialect, "dialect(s) to recognize: auto|ascii|hybrid|gsl")
-      ->check(CLI::IsMember({"auto", "ascii", "hybrid", "gsl"}).description(""))
+  audit
+      .add_option("--dialect", o.dialect,
+                  "dialect(s) to recognize: auto, or a comma-separated list of ascii, hybrid, "
+                  "gsl, modbus (auto is all four; modbus is every other Modbus RTU device)")
+      ->check(CLI::Validator(
+          [](std::string& value) {
+            return dialects_named(value) ? std::string{}
+                                         : "expected auto or a list of ascii,hybrid,gsl,modbus";
+          },
+          "", "dialect list"))
       ->type_name("NAME")
       ->default_str("auto");
   const std::string baud_help = "bus baud rate (" + std::to_string(baud_range.min) + " to " +
@@ -138,7 +163,7 @@ bool load_maps(const CommonOptions& o, RegisterDecoder& decoder) {
 }
 
 void apply_choices(CommonOptions& o) {
-  o.dialects = dialects_named(o.dialect);
+  o.dialects = dialects_named(o.dialect).value_or(DialectSet::all());
   o.gsl_ids = o.gsl_id_reading == "hex" ? GslIdReading::Hex : GslIdReading::Decimal;
   o.format = o.format_name == "jsonl" ? OutputFormat::Jsonl
              : o.format_name == "csv" ? OutputFormat::Csv

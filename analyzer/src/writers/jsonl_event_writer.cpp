@@ -27,7 +27,7 @@ std::string_view direction_key(Direction d) {
 class JsonlEventWriter : public EventWriter {
  public:
   explicit JsonlEventWriter(OutputStream& out) : out_(out) {
-    for (const Dialect d : {Dialect::Ascii, Dialect::Hybrid, Dialect::Gsl}) {
+    for (const Dialect d : {Dialect::Ascii, Dialect::Hybrid, Dialect::Gsl, Dialect::Modbus}) {
       for (const Role r : {Role::Request, Role::Response}) {
         std::string& head = frame_heads_[head_index(d, r)];
         head = ",\"dialect\":\"";
@@ -166,7 +166,7 @@ class JsonlEventWriter : public EventWriter {
 
   OutputStream& out_;
   // ,"dialect":"gsl","role":"response","station": for each dialect and role, written once.
-  std::array<std::string, 6> frame_heads_;
+  std::array<std::string, kDialectCount * 2> frame_heads_;
   ValueJsonCache values_;
   std::vector<std::string> issues_;
   std::string bus_name_;

@@ -27,6 +27,7 @@ Frame read_reply(Dialect d, std::uint8_t station, const PollBlock& block, const 
       f.device = device;
       break;
     case Dialect::Gsl:
+    case Dialect::Modbus:
       f.byte_count = data_bytes;
       break;
   }

@@ -36,6 +36,8 @@ std::span<const PollBlock> poll_blocks(Dialect dialect) {
       return kHybridBlocks;
     case Dialect::Gsl:
       return kGslBlocks;
+    case Dialect::Modbus:
+      break;  // plain Modbus devices poll their own blocks
   }
   return {};
 }

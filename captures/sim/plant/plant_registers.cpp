@@ -177,6 +177,8 @@ void fill_registers(const PlantModel& plant, RegisterImage& image, Dialect diale
       return fill_hybrid(plant, image);
     case Dialect::Gsl:
       return fill_gsl(plant, image);
+    case Dialect::Modbus:
+      return;  // plain Modbus devices fill their own registers
   }
 }
 

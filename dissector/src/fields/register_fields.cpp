@@ -23,7 +23,7 @@ struct DialectFields {
   std::unique_ptr<RegisterField[]> fields;
 };
 
-std::array<DialectFields, 3> g_fields;
+std::array<DialectFields, kDialectCount> g_fields;
 
 // Common field names of invascii that a map key must not shadow.
 const std::set<std::string_view> kReservedAsciiKeys = {
@@ -37,6 +37,8 @@ std::string field_prefix(Dialect d, std::string_view key) {
       return "invrtu.hybrid.";
     case Dialect::Gsl:
       return "invrtu.gsl.";
+    case Dialect::Modbus:
+      return "invrtu.modbus.";
     case Dialect::Ascii:
       break;
   }

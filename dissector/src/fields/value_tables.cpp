@@ -19,7 +19,7 @@ const value_string* persist(const std::vector<std::pair<std::uint32_t, std::stri
 }
 
 std::string function_text(Dialect d, std::uint8_t f) {
-  if (d == Dialect::Gsl && fc::is_gsl_exception(f)) {
+  if (modbus_family(d) && fc::is_gsl_exception(f)) {
     const auto base = static_cast<std::uint8_t>(f & ~fc::kExceptionFlag);
     return "exception (" + std::string(fc::function_name(d, base)) + ")";
   }
@@ -33,6 +33,7 @@ const value_string* dialect_names() {
       {static_cast<guint32>(Dialect::Ascii), "ASCII"},
       {static_cast<guint32>(Dialect::Hybrid), "Hybrid V2.2"},
       {static_cast<guint32>(Dialect::Gsl), "GSL (Modbus RTU)"},
+      {static_cast<guint32>(Dialect::Modbus), "Modbus RTU"},
       {0, nullptr},
   };
   return names;
@@ -63,9 +64,13 @@ const value_string* function_names(DialectSet dialects) {
 const value_string* exception_names() {
   static const value_string* names = [] {
     std::vector<std::pair<std::uint32_t, std::string>> entries;
-    for (const std::uint8_t code :
-         {std::uint8_t{0x01}, std::uint8_t{0x02}, std::uint8_t{0x03}, std::uint8_t{0x06}}) {
-      entries.emplace_back(code, std::string(fc::exception_name(code)));
+    // The seed's texts for the codes GSL uses, Modbus's for the others.
+    for (const unsigned code : {0x01u, 0x02u, 0x03u, 0x04u, 0x05u, 0x06u, 0x08u, 0x0Au, 0x0Bu}) {
+      const bool gsl = code == 0x01 || code == 0x02 || code == 0x03 || code == 0x06;
+      entries.emplace_back(
+          code,
+          std::string(gsl ? fc::exception_name(static_cast<std::uint8_t>(code))
+                          : fc::exception_name(Dialect::Modbus, static_cast<std::uint8_t>(code))));
     }
     return persist(entries);
   }();

@@ -10,7 +10,7 @@ InverterProtocol g_rtu{
     .check_name = "CRC",
     .check_key = "crc",
     .check_word = "CRC",
-    .dialects = DialectSet::none().with(Dialect::Hybrid).with(Dialect::Gsl),
+    .dialects = DialectSet::none().with(Dialect::Hybrid).with(Dialect::Gsl).with(Dialect::Modbus),
 };
 
 InverterProtocol g_ascii{

@@ -33,6 +33,7 @@ void register_protocols() {
   register_protocol(ascii_protocol());
   register_register_fields(rtu_protocol().proto, Dialect::Hybrid);
   register_register_fields(rtu_protocol().proto, Dialect::Gsl);
+  register_register_fields(rtu_protocol().proto, Dialect::Modbus);
   register_register_fields(ascii_protocol().proto, Dialect::Ascii);
   register_record_dissector();
   register_serial_link_types();

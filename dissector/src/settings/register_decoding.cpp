@@ -14,8 +14,8 @@ std::optional<RegisterDecoder> g_decoder;
 void configure_register_decoder(DecoderOptions options) {
   RegisterDecoder decoder(options);
   // Field ids are keyed by the entries of the effective maps, so decode with exactly those.
-  for (Dialect d : {Dialect::Ascii, Dialect::Hybrid, Dialect::Gsl})
-    decoder.use_map(effective_map(d));
+  for (Dialect d : {Dialect::Ascii, Dialect::Hybrid, Dialect::Gsl, Dialect::Modbus})
+    decoder.use_map(d, effective_map(d));
   g_decoder = decoder;
 }
 

@@ -18,7 +18,7 @@ namespace fs = std::filesystem;
 
 constexpr const char* kUserMapFolder = "pvtap";
 
-std::array<RegisterMap, 3> g_maps;
+std::array<RegisterMap, kDialectCount> g_maps;
 
 RegisterMap& slot_of(Dialect d) {
   return g_maps[static_cast<std::size_t>(d)];
@@ -89,7 +89,7 @@ void load_user_map(const fs::path& file) {
 }  // namespace
 
 void load_register_maps() {
-  for (Dialect d : {Dialect::Ascii, Dialect::Hybrid, Dialect::Gsl}) {
+  for (Dialect d : {Dialect::Ascii, Dialect::Hybrid, Dialect::Gsl, Dialect::Modbus}) {
     slot_of(d) = builtin_register_map(d);
   }
   try {

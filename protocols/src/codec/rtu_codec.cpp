@@ -1,5 +1,6 @@
 #include "codec/rtu_codec.h"
 
+#include "codec/modbus_codec.h"
 #include "pvtap/codec/checksums.h"
 #include "pvtap/codec/function_codes.h"
 
@@ -140,7 +141,7 @@ void encode_hybrid_reply_body(const Frame& f, std::vector<std::uint8_t>& body) {
 
 bool encode_body(const Frame& f, std::vector<std::uint8_t>& out) {
   const bool request = f.role == Role::Request;
-  if (fc::is_gsl_exception(f.function) && f.dialect == Dialect::Gsl) {
+  if (fc::is_gsl_exception(f.function) && modbus_family(f.dialect)) {
     if (request || !f.exception_code) return false;
     out.push_back(*f.exception_code);
     return true;
@@ -170,17 +171,26 @@ bool encode_body(const Frame& f, std::vector<std::uint8_t>& out) {
 }  // namespace
 
 ParseOutcome parse_rtu(std::span<const std::uint8_t> b, Dialect dialect, Role role) {
-  if (b.size() < 5) return fail("RTU frame shorter than 5 bytes");
+  if (b.size() < 4) return fail("RTU frame shorter than 4 bytes");
   Frame f;
   f.dialect = dialect;
   f.role = role;
   f.station = b[0];
   f.function = b[1];
-  if (fc::rtu_dialect_of(f.function) != dialect) return fail("function code of another dialect");
+  if (!fc::dialect_has_function(dialect, f.function)) {
+    return fail("function code of another dialect");
+  }
   if (dialect == Dialect::Hybrid) {
     return role == Role::Request ? parse_hybrid_request(b, f) : parse_hybrid_reply(b, f);
   }
-  return role == Role::Request ? parse_gsl_request(b, f) : parse_gsl_reply(b, f);
+  if (fc::is_gsl_function(f.function)) {
+    return role == Role::Request ? parse_gsl_request(b, f) : parse_gsl_reply(b, f);
+  }
+  if (fc::is_gsl_exception(f.function)) {
+    if (role == Role::Request) return fail("an exception is never a request");
+    return parse_gsl_reply(b, f);
+  }
+  return role == Role::Request ? parse_modbus_request(b, f) : parse_modbus_reply(b, f);
 }
 
 FrameCheck verify_rtu_check(std::span<const std::uint8_t> b) {
@@ -193,11 +203,13 @@ FrameCheck verify_rtu_check(std::span<const std::uint8_t> b) {
 }
 
 bool encode_rtu(const Frame& f, std::vector<std::uint8_t>& out) {
-  if (fc::rtu_dialect_of(f.function) != f.dialect) return false;
+  if (!fc::dialect_has_function(f.dialect, f.function)) return false;
   const std::size_t begin = out.size();
   out.push_back(f.station);
   out.push_back(f.function);
-  if (!encode_body(f, out)) {
+  const bool plain_modbus = f.dialect != Dialect::Hybrid && !fc::is_gsl_function(f.function) &&
+                            !fc::is_gsl_exception(f.function);
+  if (!(plain_modbus ? encode_modbus_body(f, out) : encode_body(f, out))) {
     out.resize(begin);
     return false;
   }

@@ -25,7 +25,7 @@ void add_request(std::span<const std::uint8_t> b, CandidateList& out) {
   for (std::size_t i = 8; i < n; ++i) {
     if (i + 1 == kAsciiRequestLength ? b[i] != kEot : !is_hex(b[i])) return;
   }
-  out.add({kAsciiRequestLength, Dialect::Ascii, Role::Request});
+  out.add({kAsciiRequestLength, Dialect::Ascii, Role::Request, false});
 }
 
 // A reply's length is known only at its EOT, which cannot occur inside hex digits.
@@ -35,7 +35,7 @@ void add_reply(std::span<const std::uint8_t> b, CandidateList& out) {
     if (b[i] == kEot) {
       const std::size_t length = i + 1;
       if (length >= kAsciiReplyOverhead && (length - kAsciiReplyOverhead) % 4 == 0) {
-        out.add({length, Dialect::Ascii, Role::Response});
+        out.add({length, Dialect::Ascii, Role::Response, false});
       }
       return;
     }

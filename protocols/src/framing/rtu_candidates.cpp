@@ -1,5 +1,7 @@
 #include "framing/rtu_candidates.h"
 
+#include "framing/candidate_reader.h"
+
 #include "pvtap/codec/function_codes.h"
 
 namespace pvtap::detail {
@@ -8,23 +10,7 @@ namespace {
 constexpr std::size_t kFixedLength = 8;
 constexpr unsigned kMaxReadCount = 125;  // a reply must fit its data in one byte count
 
-// Collects readings; a reading whose length needs a byte not yet seen records that need.
-// `strict` rules out readings with implausible fields; the length rules hold either way.
-struct Reader {
-  std::span<const std::uint8_t> b;
-  Dialect dialect;
-  bool strict;
-  CandidateList& out;
-
-  bool has(std::size_t i) {
-    if (i < b.size()) return true;
-    const std::size_t need = i + 1 - b.size();
-    if (out.need_header == 0 || need < out.need_header) out.need_header = need;
-    return false;
-  }
-  unsigned word(std::size_t at) const { return (unsigned{b[at]} << 8) | b[at + 1]; }
-  void add(std::size_t length, Role role) { out.add({length, dialect, role}); }
-};
+using Reader = CandidateReader;
 
 bool is_hybrid_read(std::uint8_t f) {
   return f == fc::kHybridDeviceInfo || f == fc::kHybridRunningData || f == fc::kHybridSettings ||
@@ -68,6 +54,10 @@ void gsl_request(Reader& r, std::uint8_t f) {
   r.add(kFixedLength, Role::Request);
 }
 
+bool is_write(std::uint8_t f) {
+  return f == fc::kGslWriteSingle || f == fc::kGslWriteMultiple;
+}
+
 // Exception codes defined by Modbus (the seed uses 1, 2, 3 and 6).
 constexpr std::uint8_t kMaxExceptionCode = 0x0B;
 
@@ -96,25 +86,43 @@ void gsl_response(Reader& r, std::uint8_t f) {
 void add_rtu_candidates(std::span<const std::uint8_t> b, RoleHint hint, DialectSet dialects,
                         Plausibility plausibility, CandidateList& out) {
   const bool strict = plausibility == Plausibility::Require;
+  // A plain Modbus write may be broadcast to station 0; no other frame names it.
+  const bool broadcast_allowed = dialects.contains(Dialect::Modbus);
   if (b.size() < 2) {
-    if (strict && !b.empty() && b[0] == 0) return;
+    if (strict && !b.empty() && b[0] == 0 && !broadcast_allowed) return;
     out.need_header = 2 - b.size();
     return;
   }
   const std::uint8_t f = b[1];
-  const auto dialect = fc::rtu_dialect_of(f);
-  if (!dialect || !dialects.contains(*dialect) || (strict && b[0] == 0)) return;
-  Reader r{b, *dialect, strict, out};
   const bool requests = hint != RoleHint::Response;
   const bool responses = hint != RoleHint::Request;
-  if (*dialect == Dialect::Hybrid) {
+  if (dialects.contains(Dialect::Hybrid) && fc::is_hybrid_function(f) && !(strict && b[0] == 0)) {
+    Reader r{b, Dialect::Hybrid, strict, out};
     if (requests) hybrid_request(r, f);
     if (responses) hybrid_response(r, f);
+  }
+  if (strict && b[0] > fc::kLastModbusStation) return;
+  // The codes GSL shares with Modbus are read once, as GSL when GSL is asked for: which of
+  // the two a station speaks is the session's decision (station_dialects.h).
+  const bool gsl_code = fc::is_gsl_function(f);
+  if (gsl_code && dialects.modbus_family()) {
+    const Dialect d = dialects.contains(Dialect::Gsl) ? Dialect::Gsl : Dialect::Modbus;
+    Reader r{b, d, strict, out};
+    const bool broadcast = b[0] == fc::kModbusBroadcast;
+    if (requests && (!strict || !broadcast || (broadcast_allowed && is_write(f)))) {
+      gsl_request(r, f);
+    }
+    if (responses && !(strict && broadcast)) gsl_response(r, f);
     return;
   }
-  if (strict && b[0] > 247) return;
-  if (requests) gsl_request(r, f);
-  if (responses) gsl_response(r, f);
+  if (!dialects.contains(Dialect::Modbus) || !fc::is_modbus_function(f)) return;
+  // The other public codes are read with their plausibility rules even where a frame's start
+  // is pinned: with some fifty more codes (exceptions included), a run of noise between two
+  // frames would otherwise often pass for a damaged frame.
+  if (b[0] > fc::kLastModbusStation) return;
+  Reader r{b, Dialect::Modbus, true, out};
+  if (requests) add_modbus_request(r, f);
+  if (responses && b[0] != fc::kModbusBroadcast) add_modbus_response(r, f);
 }
 
 }  // namespace pvtap::detail

@@ -26,12 +26,29 @@ std::optional<CountComparison> compare_hybrid(const FrameSummary& request,
   return std::nullopt;
 }
 
-std::optional<CountComparison> compare_gsl(const FrameSummary& request, const FrameSummary& reply) {
-  const bool read =
-      request.function == fc::kGslReadHolding || request.function == fc::kGslReadInput;
-  if (!read || !request.count || !reply.byte_count) return std::nullopt;
-  return CountComparison{2u * unsigned{*request.count}, unsigned{*reply.byte_count},
-                         CountUnit::Bytes};
+// GSL and plain Modbus: the reads whose reply carries a byte count the request fixes.
+std::optional<CountComparison> compare_modbus(const FrameSummary& request,
+                                              const FrameSummary& reply) {
+  if (!request.count || !reply.byte_count) return std::nullopt;
+  const unsigned qty = *request.count;
+  const unsigned found = *reply.byte_count;
+  switch (request.function) {
+    case fc::kGslReadHolding:
+    case fc::kGslReadInput:
+    case fc::kReadWriteMultiple:
+      return CountComparison{2u * qty, found, CountUnit::Bytes};
+    case fc::kReadCoils:
+    case fc::kReadDiscreteInputs:
+      return CountComparison{(qty + 7u) / 8u, found, CountUnit::Bytes};
+    default:
+      return std::nullopt;
+  }
+}
+
+// The functions whose normal reply repeats the request unchanged.
+bool is_echoed(std::uint8_t f) {
+  return f == fc::kGslWriteSingle || f == fc::kWriteSingleCoil || f == fc::kDiagnostics ||
+         f == fc::kMaskWriteRegister || f == fc::kWriteFileRecord;
 }
 
 std::optional<CountComparison> compare_ascii(const FrameSummary& request,
@@ -46,14 +63,18 @@ ReplyKind reply_kind(const FrameSummary& reply) {
   if (reply.dialect == Dialect::Hybrid && reply.function == fc::kHybridError) {
     return ReplyKind::HybridError;
   }
-  if (reply.dialect == Dialect::Gsl && fc::is_gsl_exception(reply.function)) {
+  if (modbus_family(reply.dialect) && fc::is_gsl_exception(reply.function)) {
     return ReplyKind::GslException;
   }
   return ReplyKind::Normal;
 }
 
+bool same_dialect(Dialect a, Dialect b) {
+  return a == b || (modbus_family(a) && modbus_family(b));
+}
+
 bool answers(const FrameSummary& request, const FrameSummary& reply) {
-  if (request.dialect != reply.dialect) return false;
+  if (!same_dialect(request.dialect, reply.dialect)) return false;
   switch (reply_kind(reply)) {
     case ReplyKind::HybridError:
       return true;
@@ -69,12 +90,15 @@ bool answers(const FrameSummary& request, const FrameSummary& reply) {
 
 bool echoes_write(const FrameSummary& request, const FrameSummary& frame, bool frame_check_ok) {
   const auto is_write = [](const FrameSummary& f) {
-    return f.dialect == Dialect::Gsl && f.function == fc::kGslWriteSingle;
+    return modbus_family(f.dialect) && is_echoed(f.function);
   };
-  if (!is_write(request) || !is_write(frame) || request.station != frame.station) return false;
+  if (!is_write(request) || !is_write(frame) || request.station != frame.station ||
+      request.function != frame.function) {
+    return false;
+  }
   if (!frame_check_ok) return true;
   return frame.start == request.start && frame.first_word == request.first_word &&
-         frame.word_count == request.word_count;
+         frame.word_count == request.word_count && frame.byte_count == request.byte_count;
 }
 
 std::optional<CountComparison> compare_reply_count(const FrameSummary& request,
@@ -84,7 +108,8 @@ std::optional<CountComparison> compare_reply_count(const FrameSummary& request,
     case Dialect::Hybrid:
       return compare_hybrid(request, reply);
     case Dialect::Gsl:
-      return compare_gsl(request, reply);
+    case Dialect::Modbus:
+      return compare_modbus(request, reply);
     case Dialect::Ascii:
       return compare_ascii(request, reply);
   }

@@ -13,6 +13,24 @@ bool is_broadcast_request(const FrameSummary& f) {
   return f.dialect == Dialect::Hybrid && f.station == fc::kHybridBroadcast;
 }
 
+// A Modbus write to address 0 goes to every station and is never answered. Only writes may
+// be broadcast: a read to address 0 is a request whose address was damaged.
+bool is_unanswered_broadcast(const FrameSummary& f) {
+  if (!modbus_family(f.dialect) || f.station != fc::kModbusBroadcast) return false;
+  switch (f.function) {
+    case fc::kWriteSingleCoil:
+    case fc::kGslWriteSingle:
+    case fc::kDiagnostics:  // force listen only mode is broadcast too
+    case fc::kWriteMultipleCoils:
+    case fc::kGslWriteMultiple:
+    case fc::kWriteFileRecord:
+    case fc::kMaskWriteRegister:
+      return true;
+    default:
+      return false;
+  }
+}
+
 }  // namespace
 
 TransactionMatcher::TransactionMatcher(MatcherConfig config) : config_(config) {}
@@ -72,6 +90,7 @@ std::size_t TransactionMatcher::pending_count() const {
 }
 
 void TransactionMatcher::on_request(const ObservedFrame& in) {
+  if (is_unanswered_broadcast(in.frame)) return;
   const bool broadcast = is_broadcast_request(in.frame);
   Slot& slot = slots_[broadcast ? RequestSlots::kBroadcast : in.frame.station];
   if (slot.state == SlotState::Pending) {

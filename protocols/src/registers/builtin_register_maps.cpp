@@ -29,6 +29,8 @@ std::string_view embedded_text(Dialect d) {
       return as_text(embedded::map_hybrid, embedded::map_hybrid_size);
     case Dialect::Gsl:
       return as_text(embedded::map_gsl, embedded::map_gsl_size);
+    case Dialect::Modbus:
+      return {};  // plain Modbus devices bring their own map (--map STATION=FILE)
   }
   return {};
 }
@@ -46,9 +48,9 @@ RegisterMapResult load_builtin_register_map(Dialect d) {
 
 const RegisterMap& builtin_register_map(Dialect d) {
   // A function-local static is initialized once, even when several threads ask at once.
-  static const std::array<RegisterMap, 3> maps{loaded_or_empty(Dialect::Ascii),
-                                               loaded_or_empty(Dialect::Hybrid),
-                                               loaded_or_empty(Dialect::Gsl)};
+  static const std::array<RegisterMap, kDialectCount> maps{
+      loaded_or_empty(Dialect::Ascii), loaded_or_empty(Dialect::Hybrid),
+      loaded_or_empty(Dialect::Gsl), RegisterMap{}};
   return maps[static_cast<std::size_t>(d)];
 }
 

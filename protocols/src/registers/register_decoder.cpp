@@ -137,7 +137,7 @@ std::span<const std::uint16_t> first_word(const Frame& frame) {
 
 RegisterDecoder::RegisterDecoder(DecoderOptions options)
     : maps_{builtin_register_map(Dialect::Ascii), builtin_register_map(Dialect::Hybrid),
-            builtin_register_map(Dialect::Gsl)},
+            builtin_register_map(Dialect::Gsl), builtin_register_map(Dialect::Modbus)},
       options_(options) {}
 
 void RegisterDecoder::use_map(const RegisterMap& map) {
@@ -190,6 +190,7 @@ DecodeReport RegisterDecoder::decode(const Frame& frame, const Frame* request,
     case Dialect::Hybrid:
       return decode_hybrid(frame, request, out);
     case Dialect::Gsl:
+    case Dialect::Modbus:
       return decode_gsl(frame, request, out);
   }
   return nothing(ValueOrigin::ReadReply);
@@ -227,31 +228,35 @@ DecodeReport RegisterDecoder::decode_hybrid(const Frame& frame, const Frame* req
   return report;
 }
 
+// GSL and plain Modbus: register reads and writes; other functions carry no register values.
 DecodeReport RegisterDecoder::decode_gsl(const Frame& frame, const Frame* request,
                                          std::vector<DecodedValue>& out) const {
   if (frame.role == Role::Request) {
     if (!frame.start || frame.words.empty()) return nothing(ValueOrigin::WriteRequest);
     if (frame.function == fc::kGslWriteSingle) {
-      return place(Dialect::Gsl, *frame.start, first_word(frame), ValueOrigin::WriteRequest, out);
+      return place(frame.dialect, *frame.start, first_word(frame), ValueOrigin::WriteRequest, out);
     }
-    if (frame.function == fc::kGslWriteMultiple) {
-      return place(Dialect::Gsl, *frame.start, frame.words.span(), ValueOrigin::WriteRequest, out);
+    if (frame.function == fc::kGslWriteMultiple ||
+        (frame.function == fc::kReadWriteMultiple && frame.write_start)) {
+      const std::uint16_t at =
+          frame.function == fc::kReadWriteMultiple ? *frame.write_start : *frame.start;
+      return place(frame.dialect, at, frame.words.span(), ValueOrigin::WriteRequest, out);
     }
     return nothing(ValueOrigin::WriteRequest);
   }
   if (frame.function == fc::kGslWriteSingle && frame.start && !frame.words.empty()) {
-    return place(Dialect::Gsl, *frame.start, first_word(frame), ValueOrigin::WriteReply, out);
+    return place(frame.dialect, *frame.start, first_word(frame), ValueOrigin::WriteReply, out);
   }
-  if (frame.function != fc::kGslReadHolding && frame.function != fc::kGslReadInput) {
-    return nothing(ValueOrigin::ReadReply);
-  }
+  const bool read = frame.function == fc::kGslReadHolding || frame.function == fc::kGslReadInput ||
+                    frame.function == fc::kReadWriteMultiple;
+  if (!read) return nothing(ValueOrigin::ReadReply);
   if (!is_request_for(request, frame)) {
     DecodeReport report = nothing(ValueOrigin::ReadReply, DecodeStatus::StartUnknown);
     report.request_unusable = request != nullptr;
     return report;
   }
   DecodeReport report =
-      place(Dialect::Gsl, *request->start, frame.words.span(), ValueOrigin::ReadReply, out);
+      place(frame.dialect, *request->start, frame.words.span(), ValueOrigin::ReadReply, out);
   note_request_fit(report, frame, request);
   return report;
 }

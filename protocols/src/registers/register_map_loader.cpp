@@ -13,7 +13,7 @@ using detail::column_of;
 using detail::line_of;
 
 std::optional<Dialect> dialect_from_string(std::string_view text) {
-  for (Dialect d : {Dialect::Ascii, Dialect::Hybrid, Dialect::Gsl}) {
+  for (Dialect d : {Dialect::Ascii, Dialect::Hybrid, Dialect::Gsl, Dialect::Modbus}) {
     if (to_string(d) == text) return d;
   }
   return std::nullopt;

@@ -11,6 +11,7 @@
 #include "session/bus_tally.h"
 #include "session/reply_values.h"
 #include "session/session_times.h"
+#include "session/station_dialects.h"
 
 namespace pvtap {
 struct BusSession::Impl {
@@ -32,7 +33,12 @@ struct BusSession::Impl {
   };
 
   Impl(BusSessionOptions o, const RegisterDecoder& d, BusSessionSink& s)
-      : options(o), sink(s), matcher(o.matcher), times(options), replies(d, options) {}
+      : options(o),
+        sink(s),
+        matcher(o.matcher),
+        times(options),
+        replies(d, options),
+        station_dialects(o.reassembler.dialects, d) {}
 
   DirectionStream& stream(Direction d) {
     auto& slot = streams[index_of(d)];
@@ -57,6 +63,7 @@ struct BusSession::Impl {
   detail::SessionTimes times;
   detail::ReplyValues replies;
   detail::BusTally tally;
+  detail::StationDialects station_dialects;
   Frame frame;  // the frame being handled; SessionFrame::frame points here
   std::uint64_t next_id = 0;
   std::uint64_t loss_boundary_id = 0;  // requests before this id were waiting during a loss
@@ -129,6 +136,10 @@ void BusSession::Impl::on_frame(Direction direction, const FrameEvent& e) {
   // enough to pair it and count it.
   if (parsed || !e.check.ok) {
     frame = parsed ? parsed.value() : frame_header(e.bytes, e.dialect, e.role);
+    const auto label = station_dialects.label(frame, e.check.ok);
+    frame.dialect = label.dialect;
+    out.dialect = label.dialect;
+    out.dialect_changed_from = label.changed_from;
     out.frame = &frame;
     handle_parsed(out, e);
   }

@@ -54,6 +54,7 @@ void BusTally::add_frame(const SessionFrame& f) {
   if (f.duplicate) ++counts_.duplicates;
   if (f.count_mismatch) ++counts_.count_mismatches;
   if (f.role_corrected) ++counts_.role_corrections;
+  if (f.dialect_changed_from) ++counts_.dialect_changes;
   count_exception(f);
 }
 

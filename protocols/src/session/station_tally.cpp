@@ -37,6 +37,7 @@ void StationTally::count_frame(StationSummary& s, const SessionFrame& f) {
   if (f.unsolicited) ++s.unsolicited;
   if (f.duplicate) ++s.duplicates;
   if (f.count_mismatch) ++s.count_mismatches;
+  if (f.dialect_changed_from) ++s.dialect_changes;
   if (exception_code(f)) ++s.exceptions;
 }
 

@@ -39,7 +39,7 @@ TEST(extcapOptions, OffersTheUsualRatesAndAllDialects) {
     EXPECT_TRUE(offers(baud, rate)) << rate;
   }
   const ExtcapOption& dialect = extcap_options().at(3);
-  for (const char* name : {"auto", "ascii", "hybrid", "gsl"}) {
+  for (const char* name : {"auto", "ascii", "hybrid", "gsl", "modbus"}) {
     EXPECT_TRUE(offers(dialect, name)) << name;
   }
 }
@@ -49,13 +49,13 @@ TEST(extcapOptions, ValuesOutsideTheChoicesAreProblems) {
   settings.baud = "1234";
   settings.parity = "mark";
   settings.stop_bits = "1.5";
-  settings.dialect = "modbus";
+  settings.dialect = "profibus";
   const std::vector<std::string> problems = settings_problems(settings);
   ASSERT_EQ(problems.size(), 4u);
   EXPECT_EQ(problems[0], "--baud 1234: not one of 2400, 4800, 9600, 19200, 38400, 57600, 115200");
   EXPECT_EQ(problems[1], "--parity mark: not one of none, even, odd");
   EXPECT_EQ(problems[2], "--stop-bits 1.5: not one of 1, 2");
-  EXPECT_EQ(problems[3], "--dialect modbus: not one of auto, ascii, hybrid, gsl");
+  EXPECT_EQ(problems[3], "--dialect profibus: not one of auto, ascii, hybrid, gsl, modbus");
 }
 
 TEST(extcapOptions, ACaptureSniffsThePortWithTheSettingsIntoTheFifo) {

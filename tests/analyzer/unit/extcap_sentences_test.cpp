@@ -59,7 +59,8 @@ TEST(extcapSentences, ConfigAnswerOffersFourSelectorsWithTheirDefaults) {
   EXPECT_NE(config.find("value {arg=1}{value=none}{display=None}{default=true}\n"),
             std::string::npos);
   EXPECT_NE(config.find("value {arg=2}{value=2}{display=2}\n"), std::string::npos);
-  EXPECT_NE(config.find("value {arg=3}{value=gsl}{display=GSL (Modbus RTU)}\n"), std::string::npos);
+  EXPECT_NE(config.find("value {arg=3}{value=gsl}{display=GSL (KSTAR Modbus RTU)}\n"),
+            std::string::npos);
 }
 
 TEST(extcapSentences, ConfigAnswerMarksExactlyOneDefaultPerSelector) {

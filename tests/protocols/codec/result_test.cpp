@@ -30,7 +30,7 @@ TEST(Result, AFrameThatDoesNotParseSaysWhy) {
   const ParseOutcome short_frame =
       parse_frame(test::hex_bytes("01 03 00"), Dialect::Gsl, Role::Request);
   EXPECT_FALSE(short_frame);
-  EXPECT_EQ(short_frame.error_text(), "RTU frame shorter than 5 bytes");
+  EXPECT_EQ(short_frame.error_text(), "RTU frame shorter than 4 bytes");
   const ParseOutcome good =
       parse_frame(test::hex_bytes("01 03 00 00 00 0A C5 CD"), Dialect::Gsl, Role::Request);
   ASSERT_TRUE(good);

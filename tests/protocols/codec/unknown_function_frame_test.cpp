@@ -18,25 +18,27 @@ std::vector<std::uint8_t> with_crc(std::vector<std::uint8_t> body) {
   return body;
 }
 
-TEST(UnknownFunctionFrame, ReadCoilsFrameIsRecognized) {
-  const auto found = unknown_function_frame(with_crc(hex_bytes("11 01 00 13 00 25")));
+TEST(UnknownFunctionFrame, UserDefinedFunctionFrameIsRecognized) {
+  const auto found = unknown_function_frame(with_crc(hex_bytes("11 41 00 13 00 25")));
   ASSERT_TRUE(found.has_value());
   EXPECT_EQ(found->station, 0x11);
-  EXPECT_EQ(found->function, 0x01);
+  EXPECT_EQ(found->function, 0x41);
 }
 
 TEST(UnknownFunctionFrame, KnownFunctionCodesAreNotUnknown) {
   EXPECT_FALSE(unknown_function_frame(hex_bytes("01 03 00 00 00 0A C5 CD")));
   EXPECT_FALSE(unknown_function_frame(with_crc(hex_bytes("06 12 10 00 00 24"))));
+  // Read coils has a length rule of its own since the modbus dialect.
+  EXPECT_FALSE(unknown_function_frame(with_crc(hex_bytes("11 01 00 13 00 25"))));
 }
 
 TEST(UnknownFunctionFrame, BadCrcOrImpossibleStationIsNoise) {
-  auto frame = with_crc(hex_bytes("11 01 00 13 00 25"));
+  auto frame = with_crc(hex_bytes("11 41 00 13 00 25"));
   frame.back() ^= 0x01;
   EXPECT_FALSE(unknown_function_frame(frame));
-  EXPECT_FALSE(unknown_function_frame(with_crc(hex_bytes("00 01 00 13 00 25"))));
-  EXPECT_FALSE(unknown_function_frame(with_crc(hex_bytes("F8 01 00 13 00 25"))));
-  EXPECT_FALSE(unknown_function_frame(hex_bytes("11 01 00")));
+  EXPECT_FALSE(unknown_function_frame(with_crc(hex_bytes("00 41 00 13 00 25"))));
+  EXPECT_FALSE(unknown_function_frame(with_crc(hex_bytes("F8 41 00 13 00 25"))));
+  EXPECT_FALSE(unknown_function_frame(hex_bytes("11 41 00")));
 }
 
 }  // namespace

@@ -234,9 +234,9 @@ TEST(RegisterMap, SyntaxErrorNamesFileAndLine) {
 TEST(RegisterMap, MissingOrUnknownDialectIsReported) {
   EXPECT_NE(errors_of("title = \"x\"\n").find("test.toml:1:1: the map must name its dialect"),
             std::string::npos);
-  const std::string text = errors_of("\ndialect = \"modbus\"\n");
+  const std::string text = errors_of("\ndialect = \"profibus\"\n");
   EXPECT_NE(text.find("test.toml:2:"), std::string::npos) << text;
-  EXPECT_NE(text.find("unknown dialect 'modbus'"), std::string::npos) << text;
+  EXPECT_NE(text.find("unknown dialect 'profibus'"), std::string::npos) << text;
 }
 
 TEST(RegisterMap, UnknownKindIsReportedAtItsLine) {

@@ -1,13 +1,23 @@
 // Wire dialects, frame roles and direction hints shared by every part of the core.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string_view>
 
 namespace pvtap {
 
-// Dialect: one of the three wire dialects of PROTOCOLS.md.
-enum class Dialect : std::uint8_t { Ascii = 0, Hybrid = 1, Gsl = 2 };
+// Dialect: one of the wire dialects of PROTOCOLS.md. GSL and Modbus share every rule of the
+// wire (GSL is Modbus RTU with KSTAR's registers); they differ in the map that names a
+// station's registers (station_dialects.h says which a station is).
+enum class Dialect : std::uint8_t { Ascii = 0, Hybrid = 1, Gsl = 2, Modbus = 3 };
+
+inline constexpr std::size_t kDialectCount = 4;
+
+// Whether `d` is framed by the Modbus application protocol's rules (GSL or plain Modbus).
+constexpr bool modbus_family(Dialect d) {
+  return d == Dialect::Gsl || d == Dialect::Modbus;
+}
 
 // Role: who sent a frame. A master sends requests, an inverter sends responses.
 enum class Role : std::uint8_t { Request = 0, Response = 1 };
@@ -19,11 +29,16 @@ enum class RoleHint : std::uint8_t { Unknown = 0, Request = 1, Response = 2 };
 class DialectSet {
  public:
   constexpr DialectSet() = default;
-  static constexpr DialectSet all() { return DialectSet(0b111); }
+  static constexpr DialectSet all() { return DialectSet(0b1111); }
   static constexpr DialectSet only(Dialect d) { return DialectSet(bit(d)); }
   static constexpr DialectSet none() { return DialectSet(0); }
   constexpr bool contains(Dialect d) const { return (bits_ & bit(d)) != 0; }
-  constexpr bool rtu() const { return contains(Dialect::Hybrid) || contains(Dialect::Gsl); }
+  constexpr bool rtu() const {
+    return contains(Dialect::Hybrid) || contains(Dialect::Gsl) || contains(Dialect::Modbus);
+  }
+  constexpr bool modbus_family() const {
+    return contains(Dialect::Gsl) || contains(Dialect::Modbus);
+  }
   constexpr DialectSet with(Dialect d) const {
     return DialectSet(static_cast<std::uint8_t>(bits_ | bit(d)));
   }
@@ -34,7 +49,7 @@ class DialectSet {
   static constexpr std::uint8_t bit(Dialect d) {
     return static_cast<std::uint8_t>(1u << static_cast<unsigned>(d));
   }
-  std::uint8_t bits_ = 0b111;
+  std::uint8_t bits_ = 0b1111;
 };
 
 constexpr std::string_view to_string(Dialect d) {
@@ -45,6 +60,8 @@ constexpr std::string_view to_string(Dialect d) {
       return "hybrid";
     case Dialect::Gsl:
       return "gsl";
+    case Dialect::Modbus:
+      return "modbus";
   }
   return "?";
 }

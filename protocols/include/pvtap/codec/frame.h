@@ -1,4 +1,4 @@
-// Typed frames of all three dialects, independent of their wire encoding.
+// Typed frames of all dialects, independent of their wire encoding.
 #pragma once
 
 #include <algorithm>
@@ -63,6 +63,52 @@ class WordList {
   std::size_t size_ = 0;
 };
 
+// ByteList: data bytes of one frame that are not registers (coil and input bits, file
+// records, device identification objects), stored inline like WordList.
+class ByteList {
+ public:
+  static constexpr std::size_t kCapacity = 256;  // a Modbus serial ADU is at most 256 bytes
+
+  ByteList() = default;
+  ByteList(std::initializer_list<std::uint8_t> bytes) {
+    for (auto b : bytes) push_back(b);
+  }
+  ByteList(const ByteList& o) : size_(o.size_) {
+    std::copy_n(o.bytes_.data(), size_, bytes_.data());
+  }
+  ByteList& operator=(const ByteList& o) {
+    if (this != &o) {
+      size_ = o.size_;
+      std::copy_n(o.bytes_.data(), size_, bytes_.data());
+    }
+    return *this;
+  }
+  bool push_back(std::uint8_t b) {
+    if (size_ == kCapacity) return false;
+    bytes_[size_++] = b;
+    return true;
+  }
+  bool assign(std::span<const std::uint8_t> bytes) {
+    if (bytes.size() > kCapacity) return false;
+    size_ = bytes.size();
+    std::copy_n(bytes.data(), size_, bytes_.data());
+    return true;
+  }
+  std::size_t size() const { return size_; }
+  bool empty() const { return size_ == 0; }
+  std::uint8_t operator[](std::size_t i) const { return bytes_[i]; }
+  const std::uint8_t* begin() const { return bytes_.data(); }
+  const std::uint8_t* end() const { return bytes_.data() + size_; }
+  std::span<const std::uint8_t> span() const { return {bytes_.data(), size_}; }
+  bool operator==(const ByteList& o) const {
+    return size_ == o.size_ && std::equal(begin(), end(), o.begin());
+  }
+
+ private:
+  std::array<std::uint8_t, kCapacity> bytes_;  // left unfilled, as WordList's words
+  std::size_t size_ = 0;
+};
+
 // FrameHeader: the fields a frame and its summary for the matcher share.
 struct FrameHeader {
   Dialect dialect = Dialect::Gsl;
@@ -92,11 +138,34 @@ struct FrameHeader {
 //   GSL 0x10 reply         start, count
 //   GSL exception          function = fc|0x80, exception_code
 //
+// Plain Modbus frames (section 6) use the GSL forms for 0x03 0x04 0x06 0x10 and exceptions,
+// and these:
+//   0x01 0x02 request      start, count
+//   0x01 0x02 reply        byte_count, data = the bits, bit 0 of byte 0 = start
+//   0x05 request/echo      start = coil, words = {value}
+//   0x07 reply             data = {status}                  (request: no fields)
+//   0x08 request/echo      sub_function, words (or data when the data is an odd length)
+//   0x0B reply             words = {status, event count}    (request: no fields)
+//   0x0C 0x11 reply        byte_count, data                 (request: no fields)
+//   0x0F request           start, count, byte_count, data
+//   0x0F reply             start, count
+//   0x14 0x15 both         byte_count, data = the sub-requests or records
+//   0x16 request/echo      start = register, words = {and mask, or mask}
+//   0x17 request           start, count (read), write_start, write_count, byte_count, words
+//   0x17 reply             byte_count, words
+//   0x18 request           start = FIFO pointer
+//   0x18 reply             byte_count = FIFO byte count (2 bytes on the wire), count, words
+//   0x2B request/reply     data = MEI type and what follows it
+//
 // A Hybrid 0x18/0x1F/0xFF reply whose byte count is not 8 keeps device + words instead.
 struct Frame : FrameHeader {
   std::optional<DeviceNumber> device;
   std::optional<std::uint8_t> exception_code;
+  std::optional<std::uint16_t> sub_function;
+  std::optional<std::uint16_t> write_start;
+  std::optional<std::uint16_t> write_count;
   WordList words;
+  ByteList data;
 
   bool operator==(const Frame&) const = default;
 };

@@ -1,4 +1,4 @@
-// Function codes of the three dialects as they appear on the wire.
+// Function codes of the dialects as they appear on the wire.
 #pragma once
 
 #include <cstdint>
@@ -19,16 +19,39 @@ inline constexpr std::uint8_t kHybridWriteParameter = 0x18;
 inline constexpr std::uint8_t kHybridRestoreFactory = 0x1F;
 inline constexpr std::uint8_t kHybridError = 0xFF;  // reply only
 
+// The public Modbus function codes (PROTOCOLS.md section 6). GSL uses 0x03 0x04 0x06 0x10.
+inline constexpr std::uint8_t kReadCoils = 0x01;
+inline constexpr std::uint8_t kReadDiscreteInputs = 0x02;
 inline constexpr std::uint8_t kGslReadHolding = 0x03;
 inline constexpr std::uint8_t kGslReadInput = 0x04;
+inline constexpr std::uint8_t kWriteSingleCoil = 0x05;
 inline constexpr std::uint8_t kGslWriteSingle = 0x06;
+inline constexpr std::uint8_t kReadExceptionStatus = 0x07;
+inline constexpr std::uint8_t kDiagnostics = 0x08;
+inline constexpr std::uint8_t kCommEventCounter = 0x0B;
+inline constexpr std::uint8_t kCommEventLog = 0x0C;
+inline constexpr std::uint8_t kWriteMultipleCoils = 0x0F;
 inline constexpr std::uint8_t kGslWriteMultiple = 0x10;
+inline constexpr std::uint8_t kReportServerId = 0x11;
+inline constexpr std::uint8_t kReadFileRecord = 0x14;
+inline constexpr std::uint8_t kWriteFileRecord = 0x15;
+inline constexpr std::uint8_t kMaskWriteRegister = 0x16;
+inline constexpr std::uint8_t kReadWriteMultiple = 0x17;
+inline constexpr std::uint8_t kReadFifoQueue = 0x18;
+inline constexpr std::uint8_t kEncapsulatedInterface = 0x2B;
+inline constexpr std::uint8_t kMeiDeviceIdentification = 0x0E;
 inline constexpr std::uint8_t kExceptionFlag = 0x80;
 
 inline constexpr std::uint8_t kHybridBroadcast = 0xFF;
+inline constexpr std::uint8_t kModbusBroadcast = 0x00;
+inline constexpr std::uint8_t kLastModbusStation = 247;
 
-// Which RTU dialect owns a function code (exceptions included); nullopt if neither.
-constexpr std::optional<Dialect> rtu_dialect_of(std::uint8_t f) {
+// An exception reply of the Modbus family: fc|0x80 (Hybrid's 0xFF error reply is not one).
+constexpr bool is_gsl_exception(std::uint8_t f) {
+  return (f & kExceptionFlag) != 0 && f != kHybridError;
+}
+
+constexpr bool is_hybrid_function(std::uint8_t f) {
   switch (f) {
     case kHybridDeviceInfo:
     case kHybridRunningData:
@@ -37,29 +60,110 @@ constexpr std::optional<Dialect> rtu_dialect_of(std::uint8_t f) {
     case kHybridWriteParameter:
     case kHybridRestoreFactory:
     case kHybridError:
-      return Dialect::Hybrid;
+      return true;
+    default:
+      return false;
+  }
+}
+
+// The function codes of the GSL seed, and exceptions to them.
+constexpr bool is_gsl_function(std::uint8_t f) {
+  switch (f & ~kExceptionFlag) {
     case kGslReadHolding:
     case kGslReadInput:
     case kGslWriteSingle:
     case kGslWriteMultiple:
-    case kGslReadHolding | kExceptionFlag:
-    case kGslReadInput | kExceptionFlag:
-    case kGslWriteSingle | kExceptionFlag:
-    case kGslWriteMultiple | kExceptionFlag:
-      return Dialect::Gsl;
+      return f != kHybridError;
     default:
-      return std::nullopt;
+      return false;
   }
 }
 
-constexpr bool is_gsl_exception(std::uint8_t f) {
-  return (f & kExceptionFlag) != 0 && f != kHybridError;
+// The public function codes with a length rule (section 6's table), without exceptions.
+constexpr bool is_public_modbus_function(std::uint8_t f) {
+  switch (f) {
+    case kReadCoils:
+    case kReadDiscreteInputs:
+    case kGslReadHolding:
+    case kGslReadInput:
+    case kWriteSingleCoil:
+    case kGslWriteSingle:
+    case kReadExceptionStatus:
+    case kDiagnostics:
+    case kCommEventCounter:
+    case kCommEventLog:
+    case kWriteMultipleCoils:
+    case kGslWriteMultiple:
+    case kReportServerId:
+    case kReadFileRecord:
+    case kWriteFileRecord:
+    case kMaskWriteRegister:
+    case kReadWriteMultiple:
+    case kReadFifoQueue:
+    case kEncapsulatedInterface:
+      return true;
+    default:
+      return false;
+  }
+}
+
+// The user-defined codes of the Modbus specification (no public length rule).
+constexpr bool is_user_defined_function(std::uint8_t f) {
+  return (f >= 0x41 && f <= 0x48) || (f >= 0x64 && f <= 0x6E);
+}
+
+// A function code the Modbus family frames by a length rule: the public codes, and the
+// exception to a public or user-defined code (a device answers those it lacks with 01).
+// Exceptions to other codes are not read: half of all byte values would then start a 5-byte
+// frame, and noise would turn into damaged frames.
+constexpr bool is_modbus_function(std::uint8_t f) {
+  if (is_public_modbus_function(f)) return true;
+  if (!is_gsl_exception(f)) return false;
+  const auto base = static_cast<std::uint8_t>(f & ~kExceptionFlag);
+  return is_public_modbus_function(base) || is_user_defined_function(base);
+}
+
+// Whether frames of dialect `d` may carry function code `f`.
+constexpr bool dialect_has_function(Dialect d, std::uint8_t f) {
+  switch (d) {
+    case Dialect::Ascii:
+      return f == kAsciiRead;
+    case Dialect::Hybrid:
+      return is_hybrid_function(f);
+    case Dialect::Gsl:
+      return is_gsl_function(f);
+    case Dialect::Modbus:
+      return is_modbus_function(f);
+  }
+  return false;
+}
+
+// Whether any RTU dialect of `dialects` frames function code `f` by a length rule.
+constexpr bool rtu_function_known(std::uint8_t f, DialectSet dialects = DialectSet::all()) {
+  return (dialects.contains(Dialect::Hybrid) && is_hybrid_function(f)) ||
+         (dialects.contains(Dialect::Gsl) && is_gsl_function(f)) ||
+         (dialects.contains(Dialect::Modbus) && is_modbus_function(f));
+}
+
+// The RTU dialect a function code names when nothing else is known: Hybrid for its codes
+// (0x11 0x16 0x17 0x18 included: the station's history decides those, station_dialects.h),
+// GSL for the seed's codes, plain Modbus for the other public codes; nullopt if none.
+constexpr std::optional<Dialect> rtu_dialect_of(std::uint8_t f) {
+  if (is_hybrid_function(f)) return Dialect::Hybrid;
+  if (is_gsl_function(f)) return Dialect::Gsl;
+  if (is_modbus_function(f)) return Dialect::Modbus;
+  return std::nullopt;
 }
 
 // A short human name for a function code of a dialect ("read running data").
 std::string_view function_name(Dialect d, std::uint8_t f);
 
-// The text of a GSL exception code ("address (ID) out of range").
+// The text of a Modbus exception code ("illegal data address"); GSL's own reading of the
+// codes its seed uses where `d` is GSL.
 std::string_view exception_name(std::uint8_t code);
+std::string_view exception_name(Dialect d, std::uint8_t code);
+
+// The name of a diagnostics (0x08) sub-function ("return query data"), or "" if unknown.
+std::string_view diagnostics_name(std::uint16_t sub_function);
 
 }  // namespace pvtap::fc

@@ -17,11 +17,14 @@ struct FrameCandidate {
   std::size_t length;  // total bytes, check included
   Dialect dialect;
   Role role;
+  // No field besides the function code can be judged (a 4-byte Modbus request, say): the
+  // reading is a frame only with a good check, never a damaged frame at a pinned position.
+  bool needs_good_check;
 };
 
 // CandidateList: the readings of the bytes at one position (at most a handful).
 struct CandidateList {
-  static constexpr std::size_t kMax = 4;
+  static constexpr std::size_t kMax = 8;
   FrameCandidate items[kMax];
   std::size_t size = 0;
   // The smallest number of bytes needed to know the length of every reading; 0 when known.

@@ -173,6 +173,8 @@ class RegisterDecoder {
   explicit RegisterDecoder(DecoderOptions options = {});
 
   void use_map(const RegisterMap& map);  // replaces the map of map.dialect()
+  // Replaces the map of `d` (an empty map has no dialect of its own).
+  void use_map(Dialect d, const RegisterMap& map) { maps_[static_cast<std::size_t>(d)] = map; }
   const RegisterMap& map(Dialect d) const { return maps_[static_cast<std::size_t>(d)]; }
   const DecoderOptions& options() const { return options_; }
 
@@ -199,7 +201,7 @@ class RegisterDecoder {
   DecodeReport place(Dialect d, std::uint16_t start, std::span<const std::uint16_t> words,
                      ValueOrigin origin, std::vector<DecodedValue>& out) const;
 
-  std::array<RegisterMap, 3> maps_;
+  std::array<RegisterMap, kDialectCount> maps_;
   DecoderOptions options_;
 };
 

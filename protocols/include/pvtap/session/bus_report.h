@@ -58,7 +58,7 @@ struct LatestValue {
 // StationSummary: everything counted for one station address.
 struct StationSummary {
   std::uint8_t station = 0;
-  std::array<RoleCounts, 3> by_dialect{};  // indexed by Dialect
+  std::array<RoleCounts, kDialectCount> by_dialect{};  // indexed by Dialect
   std::uint64_t requests = 0;
   std::uint64_t responses = 0;
   std::uint64_t bad_checks = 0;
@@ -68,6 +68,7 @@ struct StationSummary {
   std::uint64_t unsolicited = 0;
   std::uint64_t duplicates = 0;
   std::uint64_t count_mismatches = 0;
+  std::uint64_t dialect_changes = 0;
   DistributionSummary latency;
   double last_report_time = 0;  // when the newest value below arrived
   // The newest value of every register the station reported (read replies and write echoes
@@ -104,7 +105,7 @@ struct BusCounters {
   ReassemblerTotals bytes;  // every direction added up
   std::uint64_t requests = 0;
   std::uint64_t responses = 0;
-  std::array<RoleCounts, 3> by_dialect{};
+  std::array<RoleCounts, kDialectCount> by_dialect{};
   std::uint64_t malformed_frames = 0;  // found by structure but not parseable
   // Requests with a good check that got no reply: the slave did not answer.
   std::uint64_t timeouts = 0;
@@ -121,6 +122,7 @@ struct BusCounters {
   std::uint64_t duplicates = 0;
   std::uint64_t count_mismatches = 0;
   std::uint64_t role_corrections = 0;
+  std::uint64_t dialect_changes = 0;  // a station's frames said it changed dialect
   std::uint64_t exceptions = 0;
   GapTally gaps;
 

@@ -43,8 +43,10 @@ struct SessionFrame {
   Direction direction = Direction::Unknown;
   double start_time = 0;
   double end_time = 0;
-  Dialect dialect = Dialect::Gsl;
-  Role role = Role::Request;  // as corrected by the matcher (GSL 0x06 echoes)
+  Dialect dialect = Dialect::Gsl;  // GSL or plain Modbus as its station speaks (station_dialects.h)
+  // The dialect its station spoke until this frame, when this frame says it changed.
+  std::optional<Dialect> dialect_changed_from;
+  Role role = Role::Request;  // as corrected by the matcher (echoed writes)
   FrameCheck check;
   const Frame* frame = nullptr;  // null when the bytes do not parse (see parse_error)
   // The station it is counted under (station_rule.h); nullopt for a damaged frame paired with

@@ -1,0 +1,33 @@
+// Collects the RTU readings at one position for the candidate rules of each dialect (private).
+#pragma once
+
+#include <span>
+
+#include "pvtap/framing/framing_probe.h"
+
+namespace pvtap::detail {
+
+// A reading whose length needs a byte not yet seen records that need. `strict` rules out
+// readings with implausible fields; the length rules hold either way.
+struct CandidateReader {
+  std::span<const std::uint8_t> b;
+  Dialect dialect;
+  bool strict;
+  CandidateList& out;
+
+  bool has(std::size_t i) {
+    if (i < b.size()) return true;
+    const std::size_t need = i + 1 - b.size();
+    if (out.need_header == 0 || need < out.need_header) out.need_header = need;
+    return false;
+  }
+  unsigned word(std::size_t at) const { return (unsigned{b[at]} << 8) | b[at + 1]; }
+  void add(std::size_t length, Role role) { out.add({length, dialect, role, false}); }
+  void add_unjudged(std::size_t length, Role role) { out.add({length, dialect, role, true}); }
+};
+
+// The readings of the public Modbus codes GSL does not use (modbus_candidates.cpp).
+void add_modbus_request(CandidateReader& r, std::uint8_t f);
+void add_modbus_response(CandidateReader& r, std::uint8_t f);
+
+}  // namespace pvtap::detail
