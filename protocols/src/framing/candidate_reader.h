@@ -22,7 +22,21 @@ struct CandidateReader {
     return false;
   }
   unsigned word(std::size_t at) const { return (unsigned{b[at]} << 8) | b[at + 1]; }
-  void add(std::size_t length, Role role) { out.add({length, dialect, role, false}); }
+  // Set by reject_implausible for the reading being made; cleared by every add.
+  bool implausible = false;
+
+  // Whether to drop a reading whose fields break the specification's ranges: always when
+  // hunting; at a pinned position it stays, as a frame only with a good check (a request with
+  // an out-of-range quantity is a finding on a frame, not noise).
+  bool reject_implausible() {
+    if (strict) return true;
+    implausible = true;
+    return false;
+  }
+  void add(std::size_t length, Role role) {
+    out.add({length, dialect, role, implausible});
+    implausible = false;
+  }
   void add_unjudged(std::size_t length, Role role) { out.add({length, dialect, role, true}); }
 };
 

@@ -102,7 +102,10 @@ Evidence silence_rules_out(const DecisionInput& in, const FrameCandidate& c) {
 Evidence bad_frame_evidence(const DecisionInput& in, const FrameCandidate& c, bool pinned) {
   // ENQ/ACK ... EOT delimit an ASCII frame by themselves.
   if (c.dialect == Dialect::Ascii) return Evidence::Yes;
-  if (!pinned || c.needs_good_check) return Evidence::No;
+  if (!pinned) return Evidence::No;
+  if (c.needs_good_check && !verify_check(in.bytes.first(c.length), c.dialect).ok) {
+    return Evidence::No;
+  }
   const Evidence silence = silence_rules_out(in, c);
   if (silence != Evidence::No) return silence == Evidence::Wait ? Evidence::Wait : Evidence::No;
   const Evidence end = end_evidence(in, c.length);

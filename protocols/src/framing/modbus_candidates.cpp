@@ -27,9 +27,10 @@ bool is_exception_code(std::uint8_t c) {
 
 // Diagnostics: the sub-functions the serial line defines (0x00-0x04, 0x0A-0x12, 0x14).
 void diagnostics(CandidateReader& r, Role role) {
-  if (r.strict && r.has(3)) {
+  if (r.has(3)) {
     const unsigned sub = r.word(2);
-    if (!(in_range(sub, 0, 4) || in_range(sub, 0x0A, 0x12) || sub == 0x14)) return;
+    const bool known = in_range(sub, 0, 4) || in_range(sub, 0x0A, 0x12) || sub == 0x14;
+    if (!known && r.reject_implausible()) return;
   }
   r.add(kFixed, role);
 }
@@ -37,24 +38,26 @@ void diagnostics(CandidateReader& r, Role role) {
 // addr fc n data[n] crc; `min_n` is the smallest byte count the function allows.
 void counted(CandidateReader& r, Role role, unsigned min_n) {
   if (!r.has(2)) return;
-  if (r.strict && r.b[2] < min_n) return;
+  if (r.b[2] < min_n && r.reject_implausible()) return;
   r.add(kCounted + r.b[2], role);
 }
 
 void fixed_with_quantity(CandidateReader& r, Role role, unsigned max) {
-  if (r.strict && r.has(5) && !in_range(r.word(4), 1, max)) return;
+  if (r.has(5) && !in_range(r.word(4), 1, max) && r.reject_implausible()) return;
   r.add(kFixed, role);
 }
 
 void write_single_coil(CandidateReader& r, Role role) {
-  if (r.strict && r.has(5) && r.word(4) != 0xFF00 && r.word(4) != 0x0000) return;
+  if (r.has(5) && r.word(4) != 0xFF00 && r.word(4) != 0x0000 && r.reject_implausible()) return;
   r.add(kFixed, role);
 }
 
 void write_multiple_coils_request(CandidateReader& r) {
   if (!r.has(6)) return;
   const unsigned qty = r.word(4);
-  if (r.strict && (!in_range(qty, 1, kMaxWrittenBits) || r.b[6] != (qty + 7) / 8)) return;
+  if ((!in_range(qty, 1, kMaxWrittenBits) || r.b[6] != (qty + 7) / 8) && r.reject_implausible()) {
+    return;
+  }
   r.add(9 + std::size_t{r.b[6]}, Role::Request);
 }
 
@@ -62,8 +65,9 @@ void read_write_request(CandidateReader& r) {
   if (!r.has(10)) return;
   const unsigned read_qty = r.word(4);
   const unsigned write_qty = r.word(8);
-  if (r.strict && (!in_range(read_qty, 1, kMaxReadRegisters) ||
-                   !in_range(write_qty, 1, kMaxWrittenRegisters) || r.b[10] != 2 * write_qty)) {
+  if ((!in_range(read_qty, 1, kMaxReadRegisters) || !in_range(write_qty, 1, kMaxWrittenRegisters) ||
+       r.b[10] != 2 * write_qty) &&
+      r.reject_implausible()) {
     return;
   }
   r.add(13 + std::size_t{r.b[10]}, Role::Request);
@@ -72,7 +76,7 @@ void read_write_request(CandidateReader& r) {
 void device_identification_request(CandidateReader& r) {
   if (!r.has(3)) return;
   if (r.b[2] != fc::kMeiDeviceIdentification) return;  // other MEI types have no length rule
-  if (r.strict && !in_range(r.b[3], 1, 4)) return;
+  if (!in_range(r.b[3], 1, 4) && r.reject_implausible()) return;
   r.add(7, Role::Request);
 }
 
@@ -80,7 +84,9 @@ void device_identification_request(CandidateReader& r) {
 void device_identification_reply(CandidateReader& r) {
   if (!r.has(2) || r.b[2] != fc::kMeiDeviceIdentification) return;
   if (!r.has(7)) return;
-  if (r.strict && (!in_range(r.b[3], 1, 4) || (r.b[5] != 0 && r.b[5] != 0xFF))) return;
+  if ((!in_range(r.b[3], 1, 4) || (r.b[5] != 0 && r.b[5] != 0xFF)) && r.reject_implausible()) {
+    return;
+  }
   std::size_t at = 8;
   for (unsigned object = 0; object < r.b[7]; ++object) {
     if (!r.has(at + 1)) return;
@@ -93,7 +99,7 @@ void device_identification_reply(CandidateReader& r) {
 void fifo_reply(CandidateReader& r) {
   if (!r.has(3)) return;
   const unsigned n = r.word(2);
-  if (r.strict && (n < 2 || n > kMaxFifoBytes || n % 2 != 0)) return;
+  if ((n < 2 || n > kMaxFifoBytes || n % 2 != 0) && r.reject_implausible()) return;
   r.add(6 + std::size_t{n}, Role::Response);
 }
 
@@ -134,7 +140,7 @@ void add_modbus_request(CandidateReader& r, std::uint8_t f) {
 
 void add_modbus_response(CandidateReader& r, std::uint8_t f) {
   if (fc::is_gsl_exception(f)) {
-    if (r.strict && r.has(2) && !is_exception_code(r.b[2])) return;
+    if (r.has(2) && !is_exception_code(r.b[2]) && r.reject_implausible()) return;
     return r.add(5, Role::Response);
   }
   switch (f) {

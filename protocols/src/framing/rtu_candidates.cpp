@@ -116,11 +116,12 @@ void add_rtu_candidates(std::span<const std::uint8_t> b, RoleHint hint, DialectS
     return;
   }
   if (!dialects.contains(Dialect::Modbus) || !fc::is_modbus_function(f)) return;
-  // The other public codes are read with their plausibility rules even where a frame's start
-  // is pinned: with some fifty more codes (exceptions included), a run of noise between two
-  // frames would otherwise often pass for a damaged frame.
+  // With some fifty more codes (exceptions included), a run of noise between two frames
+  // would often pass for a damaged frame: a reading of these codes whose fields break the
+  // specification's ranges, or cannot be judged, is a frame only with a good check
+  // (CandidateReader::reject_implausible), and one from an impossible station never.
   if (b[0] > fc::kLastModbusStation) return;
-  Reader r{b, Dialect::Modbus, true, out};
+  Reader r{b, Dialect::Modbus, strict, out};
   if (requests) add_modbus_request(r, f);
   if (responses && b[0] != fc::kModbusBroadcast) add_modbus_response(r, f);
 }

@@ -144,13 +144,38 @@ void RegisterDecoder::use_map(const RegisterMap& map) {
   maps_[static_cast<std::size_t>(map.dialect())] = map;
 }
 
-std::size_t RegisterDecoder::decode_block(Dialect d, std::uint16_t wire_start,
-                                          std::span<const std::uint16_t> words, ValueOrigin origin,
-                                          std::vector<DecodedValue>& out) const {
-  const Block block{d, map(d), options_, wire_start, words, origin, address_step(d)};
+void RegisterDecoder::use_station_map(std::uint8_t station, const RegisterMap& map) {
+  std::uint8_t& index = station_map_of_[station];
+  if (index != 0) {
+    station_maps_[index - 1u] = map;
+    return;
+  }
+  station_maps_.push_back(map);
+  index = static_cast<std::uint8_t>(station_maps_.size());
+}
+
+const RegisterMap* RegisterDecoder::station_map(std::uint8_t station) const {
+  const std::uint8_t index = station_map_of_[station];
+  return index == 0 ? nullptr : &station_maps_[index - 1u];
+}
+
+namespace {
+
+std::size_t decode_with(const RegisterMap& map, Dialect d, const DecoderOptions& options,
+                        std::uint16_t wire_start, std::span<const std::uint16_t> words,
+                        ValueOrigin origin, std::vector<DecodedValue>& out) {
+  const Block block{d, map, options, wire_start, words, origin, address_step(d)};
   const std::size_t before = out.size();
   for (std::size_t i = 0; i < words.size();) i += append_value(block, i, out);
   return out.size() - before;
+}
+
+}  // namespace
+
+std::size_t RegisterDecoder::decode_block(Dialect d, std::uint16_t wire_start,
+                                          std::span<const std::uint16_t> words, ValueOrigin origin,
+                                          std::vector<DecodedValue>& out) const {
+  return decode_with(map(d), d, options_, wire_start, words, origin, out);
 }
 
 DecodedValue RegisterDecoder::decode_device_number(const DeviceNumber& device) const {
@@ -173,12 +198,18 @@ DecodedValue RegisterDecoder::decode_device_number(const DeviceNumber& device) c
 DecodeReport RegisterDecoder::place(Dialect d, std::uint16_t start,
                                     std::span<const std::uint16_t> words, ValueOrigin origin,
                                     std::vector<DecodedValue>& out) const {
+  return place(map(d), d, start, words, origin, out);
+}
+
+DecodeReport RegisterDecoder::place(const RegisterMap& m, Dialect d, std::uint16_t start,
+                                    std::span<const std::uint16_t> words, ValueOrigin origin,
+                                    std::vector<DecodedValue>& out) const {
   DecodeReport report;
   report.status = DecodeStatus::Decoded;
   report.origin = origin;
   report.start = start;
   report.first = out.size();
-  report.count = decode_block(d, start, words, origin, out);
+  report.count = decode_with(m, d, options_, start, words, origin, out);
   return report;
 }
 
@@ -231,21 +262,24 @@ DecodeReport RegisterDecoder::decode_hybrid(const Frame& frame, const Frame* req
 // GSL and plain Modbus: register reads and writes; other functions carry no register values.
 DecodeReport RegisterDecoder::decode_gsl(const Frame& frame, const Frame* request,
                                          std::vector<DecodedValue>& out) const {
+  const RegisterMap* own = station_map(frame.station);
+  const RegisterMap& m = own != nullptr ? *own : map(frame.dialect);
+  const Dialect d = own != nullptr ? own->dialect() : frame.dialect;
   if (frame.role == Role::Request) {
     if (!frame.start || frame.words.empty()) return nothing(ValueOrigin::WriteRequest);
     if (frame.function == fc::kGslWriteSingle) {
-      return place(frame.dialect, *frame.start, first_word(frame), ValueOrigin::WriteRequest, out);
+      return place(m, d, *frame.start, first_word(frame), ValueOrigin::WriteRequest, out);
     }
     if (frame.function == fc::kGslWriteMultiple ||
         (frame.function == fc::kReadWriteMultiple && frame.write_start)) {
       const std::uint16_t at =
           frame.function == fc::kReadWriteMultiple ? *frame.write_start : *frame.start;
-      return place(frame.dialect, at, frame.words.span(), ValueOrigin::WriteRequest, out);
+      return place(m, d, at, frame.words.span(), ValueOrigin::WriteRequest, out);
     }
     return nothing(ValueOrigin::WriteRequest);
   }
   if (frame.function == fc::kGslWriteSingle && frame.start && !frame.words.empty()) {
-    return place(frame.dialect, *frame.start, first_word(frame), ValueOrigin::WriteReply, out);
+    return place(m, d, *frame.start, first_word(frame), ValueOrigin::WriteReply, out);
   }
   const bool read = frame.function == fc::kGslReadHolding || frame.function == fc::kGslReadInput ||
                     frame.function == fc::kReadWriteMultiple;
@@ -256,7 +290,7 @@ DecodeReport RegisterDecoder::decode_gsl(const Frame& frame, const Frame* reques
     return report;
   }
   DecodeReport report =
-      place(frame.dialect, *request->start, frame.words.span(), ValueOrigin::ReadReply, out);
+      place(m, d, *request->start, frame.words.span(), ValueOrigin::ReadReply, out);
   note_request_fit(report, frame, request);
   return report;
 }

@@ -158,6 +158,7 @@ void BusSession::Impl::handle_parsed(SessionFrame& out, const FrameEvent& e) {
   take_findings(out, frame, match);
   out.station = frame_station(e.check.ok, frame.station, match);
   if (match.role == Role::Request) {
+    if (e.check.ok) out.quantity_problem = pvtap::quantity_problem(frame);
     replies.remember_request(out, frame);
   } else {
     summary.role = match.role;

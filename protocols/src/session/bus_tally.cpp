@@ -55,6 +55,7 @@ void BusTally::add_frame(const SessionFrame& f) {
   if (f.count_mismatch) ++counts_.count_mismatches;
   if (f.role_corrected) ++counts_.role_corrections;
   if (f.dialect_changed_from) ++counts_.dialect_changes;
+  if (f.quantity_problem) ++counts_.quantity_problems;
   count_exception(f);
 }
 

@@ -33,7 +33,12 @@ bool addresses_registers(std::uint8_t f) {
 
 StationDialects::StationDialects(DialectSet enabled, const RegisterDecoder& decoder)
     : choose_(enabled.contains(Dialect::Gsl) && enabled.contains(Dialect::Modbus)),
-      gsl_wire_addresses_(wire_addresses(decoder.map(Dialect::Gsl), decoder.options())) {}
+      gsl_wire_addresses_(wire_addresses(decoder.map(Dialect::Gsl), decoder.options())) {
+  for (std::size_t s = 0; s < kStations; ++s) {
+    const RegisterMap* own = decoder.station_map(static_cast<std::uint8_t>(s));
+    if (own != nullptr && modbus_family(own->dialect())) forced_[s] = own->dialect();
+  }
+}
 
 bool StationDialects::addresses_gsl_map(std::uint16_t start, std::uint16_t count) const {
   const unsigned end = unsigned{start} + std::max<unsigned>(count, 1);
@@ -54,7 +59,7 @@ std::optional<Dialect> StationDialects::evidence(const Frame& f) const {
 // when its registers say it. A station's first frame claims weakly: a later claim replaces it
 // without a change being reported (a logger probing a GSL inverter with 0x2B first).
 StationDialects::Claim StationDialects::claim_of(const Frame& frame, Dialect label) const {
-  if (!modbus_family(label)) return {label, false};
+  if (!modbus_family(label) || forced_[frame.station]) return {label, false};
   if (const auto own = evidence(frame)) return {*own, false};
   return {label, true};
 }
@@ -71,7 +76,9 @@ void StationDialects::note_claim(std::uint8_t s, Label& out, Claim claim) {
 StationDialects::Label StationDialects::label(const Frame& frame, bool check_ok) {
   Label out{frame.dialect, std::nullopt};
   const std::uint8_t s = frame.station;
-  if (choose_ && modbus_family(frame.dialect)) {
+  if (modbus_family(frame.dialect) && forced_[s]) {
+    out.dialect = *forced_[s];
+  } else if (choose_ && modbus_family(frame.dialect)) {
     const std::optional<Dialect> own = evidence(frame);
     if (own && check_ok) {
       decided_[s] = *own;

@@ -19,7 +19,8 @@ namespace pvtap::detail {
 // and plain Modbus when such a request addresses none. That decides the station; until then
 // a request is labelled by its own registers, a reply by the last request to its station,
 // and a frame with nothing to go by is GSL, the earlier of the two in --dialect's order.
-// Functions GSL does not use are plain Modbus on a station not decided as GSL.
+// Functions GSL does not use are plain Modbus on a station not decided as GSL. A station given
+// a map of its own (--map STATION=FILE) speaks that map's dialect.
 // A station decided one way whose requests later say the other is a dialect change: the
 // frames follow their evidence and the change is reported, never silently followed.
 class StationDialects {
@@ -47,6 +48,7 @@ class StationDialects {
   std::vector<std::uint16_t> gsl_wire_addresses_;  // sorted
   static constexpr std::size_t kStations = 256;
   std::array<std::optional<Dialect>, kStations> decided_{};
+  std::array<std::optional<Dialect>, kStations> forced_{};  // by a map given for the station
   std::array<std::optional<Dialect>, kStations> last_request_{};
   std::array<std::optional<Claim>, kStations> station_{};  // what each station speaks
 };

@@ -1,5 +1,6 @@
 #include "session/station_tally.h"
 
+#include "pvtap/codec/device_identification.h"
 #include "pvtap/session/event_tally.h"
 #include "pvtap/session/station_rule.h"
 
@@ -7,6 +8,23 @@ namespace pvtap::detail {
 namespace {
 
 constexpr std::uint8_t kBroadcastAddress = 0xFF;
+
+// Copies only what changed: a logger asks the same question again and again.
+void keep(std::string& kept, std::string_view said) {
+  if (!said.empty() && kept != said) kept.assign(said);
+}
+
+// A good reply in which the station names itself.
+void note_device_name(StationSummary& s, const SessionFrame& f) {
+  if (!f.check.ok || f.frame == nullptr || f.role != Role::Response) return;
+  if (const auto id = read_device_identification(*f.frame)) {
+    keep(s.device.vendor, id->vendor());
+    keep(s.device.product, id->product());
+    keep(s.device.revision, id->revision());
+  } else if (modbus_family(f.dialect)) {
+    if (const auto server = read_server_id(*f.frame)) keep(s.device.server_id, server->text);
+  }
+}
 
 }  // namespace
 
@@ -38,6 +56,7 @@ void StationTally::count_frame(StationSummary& s, const SessionFrame& f) {
   if (f.duplicate) ++s.duplicates;
   if (f.count_mismatch) ++s.count_mismatches;
   if (f.dialect_changed_from) ++s.dialect_changes;
+  note_device_name(s, f);
   if (exception_code(f)) ++s.exceptions;
 }
 

@@ -176,6 +176,10 @@ class RegisterDecoder {
   // Replaces the map of `d` (an empty map has no dialect of its own).
   void use_map(Dialect d, const RegisterMap& map) { maps_[static_cast<std::size_t>(d)] = map; }
   const RegisterMap& map(Dialect d) const { return maps_[static_cast<std::size_t>(d)]; }
+  // Decodes the GSL and plain Modbus frames of `station` with `map` (a meter's own map on a
+  // bus of inverters), whatever the dialect; its values are addressed in map.dialect().
+  void use_station_map(std::uint8_t station, const RegisterMap& map);
+  const RegisterMap* station_map(std::uint8_t station) const;
   const DecoderOptions& options() const { return options_; }
 
   // Appends the register values a frame carries. `request` is the matching request of a
@@ -200,8 +204,13 @@ class RegisterDecoder {
                           std::vector<DecodedValue>& out) const;
   DecodeReport place(Dialect d, std::uint16_t start, std::span<const std::uint16_t> words,
                      ValueOrigin origin, std::vector<DecodedValue>& out) const;
+  DecodeReport place(const RegisterMap& map, Dialect d, std::uint16_t start,
+                     std::span<const std::uint16_t> words, ValueOrigin origin,
+                     std::vector<DecodedValue>& out) const;
 
   std::array<RegisterMap, kDialectCount> maps_;
+  std::vector<RegisterMap> station_maps_;
+  std::array<std::uint8_t, 256> station_map_of_{};  // index + 1 into station_maps_; 0: none
   DecoderOptions options_;
 };
 

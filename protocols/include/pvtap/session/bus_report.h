@@ -55,6 +55,20 @@ struct LatestValue {
   DecodedValue value;
 };
 
+// DeviceName: what a device said of itself (device identification objects 0-2, or the text of
+// its report server ID reply); empty strings where it said nothing.
+struct DeviceName {
+  std::string vendor;
+  std::string product;
+  std::string revision;
+  std::string server_id;  // from 0x11, when no identification named it
+  bool empty() const {
+    return vendor.empty() && product.empty() && revision.empty() && server_id.empty();
+  }
+  // "Vendor Product revision" or the server ID text.
+  std::string text() const;
+};
+
 // StationSummary: everything counted for one station address.
 struct StationSummary {
   std::uint8_t station = 0;
@@ -69,6 +83,7 @@ struct StationSummary {
   std::uint64_t duplicates = 0;
   std::uint64_t count_mismatches = 0;
   std::uint64_t dialect_changes = 0;
+  DeviceName device;  // the newest identification the station gave
   DistributionSummary latency;
   double last_report_time = 0;  // when the newest value below arrived
   // The newest value of every register the station reported (read replies and write echoes
@@ -122,7 +137,8 @@ struct BusCounters {
   std::uint64_t duplicates = 0;
   std::uint64_t count_mismatches = 0;
   std::uint64_t role_corrections = 0;
-  std::uint64_t dialect_changes = 0;  // a station's frames said it changed dialect
+  std::uint64_t dialect_changes = 0;    // a station's frames said it changed dialect
+  std::uint64_t quantity_problems = 0;  // good requests asking for a quantity out of range
   std::uint64_t exceptions = 0;
   GapTally gaps;
 

@@ -12,6 +12,7 @@
 #include "pvtap/codec/frame_codec.h"
 #include "pvtap/framing/stream_reassembler.h"
 #include "pvtap/matching/match_events.h"
+#include "pvtap/matching/request_rules.h"
 #include "pvtap/matching/transaction_matcher.h"
 #include "pvtap/registers/register_decoder.h"
 #include "pvtap/session/bus_report.h"
@@ -65,6 +66,8 @@ struct SessionFrame {
   std::optional<std::uint64_t> duplicate_of;  // the request a duplicate answered before
   bool role_corrected = false;
   std::optional<ByteCountMismatch> count_mismatch;
+  // A request with a good check asking for a quantity its function does not allow.
+  std::optional<QuantityProblem> quantity_problem;
   // The request whose start address places this reply's words (its own, or the one it
   // duplicates), when that request's check was good. Values are decoded only from a frame
   // with a good check, and never placed by a request with a bad one.

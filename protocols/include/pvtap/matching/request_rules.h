@@ -1,0 +1,24 @@
+// What the specification allows a request to ask: the quantity ranges of the Modbus reads and
+// writes.
+#pragma once
+
+#include <optional>
+
+#include "pvtap/codec/frame.h"
+
+namespace pvtap {
+
+// QuantityProblem: a request quantity outside the range its function allows.
+struct QuantityProblem {
+  unsigned found = 0;
+  unsigned min = 1;
+  unsigned max = 0;
+  bool write_part = false;  // 0x17: the quantity written, not the one read
+};
+
+// The quantity rule a GSL or plain Modbus request breaks, if any (section 6 of PROTOCOLS.md):
+//   0x01 0x02  1-2000     0x03 0x04  1-125     0x0F  1-1968
+//   0x10       1-123      0x17       read 1-125, write 1-121
+std::optional<QuantityProblem> quantity_problem(const Frame& request);
+
+}  // namespace pvtap

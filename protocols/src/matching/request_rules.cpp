@@ -1,0 +1,46 @@
+#include "pvtap/matching/request_rules.h"
+
+#include "pvtap/codec/function_codes.h"
+
+namespace pvtap {
+namespace {
+
+std::optional<unsigned> max_quantity(std::uint8_t f) {
+  switch (f) {
+    case fc::kReadCoils:
+    case fc::kReadDiscreteInputs:
+      return 2000;
+    case fc::kGslReadHolding:
+    case fc::kGslReadInput:
+    case fc::kReadWriteMultiple:
+      return 125;
+    case fc::kWriteMultipleCoils:
+      return 1968;
+    case fc::kGslWriteMultiple:
+      return 123;
+    default:
+      return std::nullopt;
+  }
+}
+
+std::optional<QuantityProblem> outside(unsigned found, unsigned max, bool write_part) {
+  if (found >= 1 && found <= max) return std::nullopt;
+  return QuantityProblem{found, 1, max, write_part};
+}
+
+}  // namespace
+
+std::optional<QuantityProblem> quantity_problem(const Frame& request) {
+  if (!modbus_family(request.dialect) || request.role != Role::Request || !request.count) {
+    return std::nullopt;
+  }
+  const auto max = max_quantity(request.function);
+  if (!max) return std::nullopt;
+  if (auto read = outside(*request.count, *max, false)) return read;
+  if (request.function == fc::kReadWriteMultiple && request.write_count) {
+    return outside(*request.write_count, 121, true);
+  }
+  return std::nullopt;
+}
+
+}  // namespace pvtap
