@@ -80,7 +80,9 @@ std::string bus_title(const BusFindings& bus) {
 void station_row(std::string& o, const AuditReport& r, const BusFindings& bus,
                  const StationSummary& s) {
   o += "<tr>";
-  cell(o, station_key(r, bus, s.station));
+  std::string station = station_key(r, bus, s.station);
+  if (!s.device.empty()) station += " (" + s.device.text() + ")";
+  cell(o, station);
   count_cell(o, s.requests);
   count_cell(o, s.responses);
   count_cell(o, s.bad_checks);
@@ -171,7 +173,7 @@ void exception_list(std::string& o, const BusReport& b, bool first) {
     } else {
       line = std::string(to_string(e.dialect)) + " exception ";
       append_hex_byte(line, e.code);
-      line += " (" + std::string(fc::exception_name(e.code)) + ")";
+      line += " (" + std::string(fc::exception_name(e.dialect, e.code)) + ")";
     }
     line += ": " + std::to_string(e.count);
     cell(o, line, "li");

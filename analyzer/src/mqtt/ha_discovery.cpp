@@ -3,10 +3,10 @@
 
 #include <array>
 
+#include "formatting/json_text.h"
+#include "formatting/number_text.h"
 #include "mqtt/bus_health.h"
 #include "mqtt/mqtt_payloads.h"
-#include "formatting/number_text.h"
-#include "formatting/json_text.h"
 
 namespace pvtap::analyzer {
 namespace {
@@ -79,11 +79,14 @@ void append_station_device(std::string& out, const DiscoveryScope& scope, const 
   name += " station " + std::to_string(s.address);
   if (!scope.bus.empty()) name += " on " + std::string(scope.bus);
   append_json_string(out, name);
-  const std::string model = identity_text(s, "model_name");
+  std::string model = identity_text(s, "model_name");
+  if (model.empty()) model = s.device.product;
   const std::string device = identity_text(s, "device_number");
   const std::string serial = identity_text(s, "serial_number");
-  const std::string maker = identity_text(s, "manufacturer_name");
-  const std::string firmware = identity_text(s, "firmware_version");
+  std::string maker = identity_text(s, "manufacturer_name");
+  if (maker.empty()) maker = s.device.vendor;
+  std::string firmware = identity_text(s, "firmware_version");
+  if (firmware.empty()) firmware = s.device.revision;
   if (!model.empty() || !device.empty())
     append_member(out, "model", model.empty() ? device : model);
   if (!serial.empty() || !device.empty()) {

@@ -5,6 +5,7 @@
 
 #include "mqtt/mqtt_payloads.h"
 #include "mqtt/mqtt_topics.h"
+#include "pvtap/codec/device_identification.h"
 
 namespace pvtap::analyzer {
 namespace {
@@ -15,6 +16,20 @@ constexpr std::string_view kIdentityKeys[] = {"model_name", "manufacturer_name",
 // A reply with a good check and values (an error reply may carry the Hybrid device number).
 bool is_good_reply(const SessionFrame& f) {
   return f.frame != nullptr && f.role == Role::Response && f.values_trusted && !f.values.empty();
+}
+
+// A device identification reply names the device on its Home Assistant card.
+void note_identification(StationState& s, const SessionFrame& f) {
+  const auto id = read_device_identification(*f.frame);
+  if (!id) return;
+  const std::pair<std::string*, std::string_view> parts[] = {{&s.device.vendor, id->vendor()},
+                                                             {&s.device.product, id->product()},
+                                                             {&s.device.revision, id->revision()}};
+  for (const auto& [kept, said] : parts) {
+    if (said.empty() || *kept == said) continue;
+    kept->assign(said);
+    s.identity_changed = true;
+  }
 }
 
 void touch_block(StationState& s, const SessionFrame& f) {
@@ -69,6 +84,14 @@ bool StationState::answering(double now) const {
 }
 
 void StationTable::record(const SessionFrame& f) {
+  const bool identification = f.frame != nullptr && f.role == Role::Response && f.check.ok &&
+                              f.station && modbus_family(f.dialect);
+  if (identification) {
+    StationState& s = stations_[*f.station];
+    s.address = *f.station;
+    s.dialect = f.dialect;
+    note_identification(s, f);
+  }
   if (!is_good_reply(f) || !f.station) return;
   StationState& s = stations_[*f.station];
   s.address = *f.station;

@@ -10,6 +10,7 @@
 #include <string>
 #include <utility>
 
+#include "pvtap/session/bus_report.h"
 #include "pvtap/session/bus_session.h"
 
 namespace pvtap::analyzer {
@@ -50,6 +51,7 @@ struct StationState {
   bool replied_since_state = false;  // a reply since the state topic was last sent
   std::optional<bool> online;        // as last published
   bool identity_changed = false;     // model, serial or maker changed: rediscover the device
+  DeviceName device;                 // what a Modbus device said of itself (device identification)
   // The shortest period of its blocks: the station should answer at least this often.
   std::optional<double> period() const;
   // Answered within three poll periods, and within the last second (a station with no known

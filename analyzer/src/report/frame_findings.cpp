@@ -25,6 +25,16 @@ void add_count_mismatch(const ByteCountMismatch& m, std::vector<std::string>& ou
   out.push_back(std::move(text));
 }
 
+void add_quantity_problem(const QuantityProblem& q, std::vector<std::string>& out) {
+  std::string text = q.write_part ? "write quantity " : "quantity ";
+  append_uint(text, q.found);
+  text += " outside the specification's ";
+  append_uint(text, q.min);
+  text += '-';
+  append_uint(text, q.max);
+  out.push_back(std::move(text));
+}
+
 void add_exception(const SessionFrame& f, std::vector<std::string>& out) {
   if (f.reply_kind == ReplyKind::HybridError) {
     out.emplace_back("error reply");
@@ -34,7 +44,7 @@ void add_exception(const SessionFrame& f, std::vector<std::string>& out) {
   std::string text = "exception ";
   append_hex_byte(text, *f.frame->exception_code);
   text += ": ";
-  text += fc::exception_name(*f.frame->exception_code);
+  text += fc::exception_name(f.dialect, *f.frame->exception_code);
   out.push_back(std::move(text));
 }
 
@@ -116,6 +126,15 @@ void collect_issues(const SessionFrame& f, std::vector<std::string>& out) {
   }
   if (f.duplicate) out.emplace_back("duplicate reply");
   if (f.count_mismatch) add_count_mismatch(*f.count_mismatch, out);
+  if (f.quantity_problem) add_quantity_problem(*f.quantity_problem, out);
+  if (f.dialect_changed_from) {
+    std::string text = "station changed dialect: ";
+    text += to_string(*f.dialect_changed_from);
+    text += " before, ";
+    text += to_string(f.dialect);
+    text += " now";
+    out.push_back(std::move(text));
+  }
   add_exception(f, out);
   add_decode_notes(f, out);
   add_value_warnings(f, out);

@@ -34,6 +34,22 @@ void distribution(std::string& o, const DistributionSummary& d) {
   o += '}';
 }
 
+void device_object(std::string& o, const DeviceName& d) {
+  append_json_key(o, "device");
+  o += "{\"name\":";
+  append_json_string(o, d.text());
+  const std::pair<const char*, const std::string*> parts[] = {{"vendor", &d.vendor},
+                                                              {"product", &d.product},
+                                                              {"revision", &d.revision},
+                                                              {"server_id", &d.server_id}};
+  for (const auto& [key, value] : parts) {
+    if (value->empty()) continue;
+    append_json_key(o, key);
+    append_json_string(o, *value);
+  }
+  o += '}';
+}
+
 void station_object(std::string& o, const StationSummary& s) {
   o += "{\"requests\":";
   append_uint(o, s.requests);
@@ -44,6 +60,9 @@ void station_object(std::string& o, const StationSummary& s) {
   append_json_count(o, "exceptions", s.exceptions);
   append_json_count(o, "unsolicited", s.unsolicited);
   append_json_count(o, "duplicates", s.duplicates);
+  // Only stations that named themselves, or changed dialect, carry these keys.
+  if (!s.device.empty()) device_object(o, s.device);
+  if (s.dialect_changes > 0) append_json_count(o, "dialect_changes", s.dialect_changes);
   append_json_key(o, "latency_ms");
   distribution(o, s.latency);
   append_json_key(o, "values");
@@ -188,6 +207,10 @@ void details(std::string& o, const AuditReport& report, const BusReport& t) {
   append_json_count(o, "late_replies", t.late_replies);
   append_json_count(o, "duplicates", t.duplicates);
   append_json_count(o, "byte_count_mismatches", t.count_mismatches);
+  // Findings of plain Modbus traffic: only where there are some, so that a report of
+  // inverters alone keeps its shape.
+  if (t.quantity_problems > 0) append_json_count(o, "quantity_problems", t.quantity_problems);
+  if (t.dialect_changes > 0) append_json_count(o, "dialect_changes", t.dialect_changes);
   append_json_count(o, "unanswered_at_end", t.unanswered_at_end);
   append_json_count(o, "unanswered_after_loss", t.unanswered_after_loss);
   append_json_key(o, "exception_codes");

@@ -117,6 +117,20 @@ void unknown_station_line(const BusReport& b, std::string& o) {
                    u(unknown.damaged_frames), claimed.c_str(), u(b.bytes.noise_bytes));
 }
 
+// What stations said of themselves and findings about a station as a whole, below the table
+// (a table of inverters alone stays as it always was).
+void station_notes(const BusReport& b, std::string& o) {
+  for (const StationSummary& s : b.stations) {
+    if (!s.device.empty()) {
+      o += report_line("  station %u is %s", s.station, s.device.text().c_str());
+    }
+    if (s.dialect_changes > 0) {
+      o += report_line("  station %u changed dialect %llu time(s): see the frames marked so",
+                       s.station, u(s.dialect_changes));
+    }
+  }
+}
+
 void station_table(const AuditReport& r, const BusReport& b, std::string& o) {
   // Noise alone (a file of other bytes) makes no table: the findings count it.
   if (b.stations.empty() && b.unknown_station.damaged_frames == 0) return;
@@ -136,6 +150,7 @@ void station_table(const AuditReport& r, const BusReport& b, std::string& o) {
                      u(s.requests), u(s.responses), u(s.bad_checks), u(s.timeouts), u(s.exceptions),
                      u(s.unsolicited), u(s.duplicates), latency.c_str());
   }
+  station_notes(b, o);
   unknown_station_line(b, o);
   (void)r;
 }
@@ -177,6 +192,10 @@ void findings(const AuditReport& r, const BusReport& b, std::string& o) {
       "unsolicited replies: %llu (%llu late for a timed-out request); duplicate replies: "
       "%llu; byte count mismatches: %llu",
       u(b.unsolicited), u(b.late_replies), u(b.duplicates), u(b.count_mismatches));
+  if (b.quantity_problems > 0) {
+    o += report_line("requests asking a quantity out of the specification's range: %llu",
+                     u(b.quantity_problems));
+  }
   o += report_line("exceptions and error replies: %llu", u(b.exceptions));
   for (const ExceptionTally& e : b.exception_codes) {
     if (e.dialect == Dialect::Hybrid) {
@@ -184,7 +203,7 @@ void findings(const AuditReport& r, const BusReport& b, std::string& o) {
     } else {
       o +=
           report_line("  %s exception 0x%02X (%s): %llu", std::string(to_string(e.dialect)).c_str(),
-                      e.code, std::string(fc::exception_name(e.code)).c_str(), u(e.count));
+                      e.code, std::string(fc::exception_name(e.dialect, e.code)).c_str(), u(e.count));
     }
   }
   o += report_line("noise: %llu bytes in %llu runs", u(b.bytes.noise_bytes), u(b.bytes.noise_runs));

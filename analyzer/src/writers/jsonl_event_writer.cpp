@@ -6,6 +6,7 @@
 
 #include "formatting/json_text.h"
 #include "formatting/number_text.h"
+#include "report/frame_contents.h"
 #include "report/frame_findings.h"
 #include "writers/event_writers.h"
 #include "writers/value_json_cache.h"
@@ -64,7 +65,9 @@ class JsonlEventWriter : public EventWriter {
       if (i > 0) o += ',';
       values_.append(o, f.values[i], f.dialect);
     }
-    o += "],\"issues\":[";
+    o += ']';
+    append_contents_json(o, f);
+    o += ",\"issues\":[";
     collect_issues(f, issues_);
     for (std::size_t i = 0; i < issues_.size(); ++i) {
       if (i > 0) o += ',';

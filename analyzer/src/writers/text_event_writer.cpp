@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "formatting/number_text.h"
+#include "report/frame_contents.h"
 #include "report/frame_findings.h"
 #include "writers/event_writers.h"
 
@@ -43,6 +44,7 @@ class TextEventWriter : public EventWriter {
       o += " ms";
     }
     append_values(o, f);
+    append_contents_text(o, f);
     collect_issues(f, issues_);
     for (const std::string& issue : issues_) {
       o += "  [";

@@ -26,6 +26,7 @@ void ReplyValues::take(SessionFrame& out, const Frame& frame, const FrameMatch& 
   const bool sound = request != nullptr && request->check_ok;
   if (sound) out.placed_by = request->id;
   const Frame* sound_request = sound ? &request->frame : nullptr;
+  out.placing_request = sound_request;
   out.values_trusted = out.check.ok;
   if (!out.values_trusted) return;
   if (out.role == Role::Response && out.reply_kind == ReplyKind::Normal) {

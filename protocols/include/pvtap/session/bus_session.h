@@ -72,7 +72,8 @@ struct SessionFrame {
   // duplicates), when that request's check was good. Values are decoded only from a frame
   // with a good check, and never placed by a request with a bad one.
   std::optional<std::uint64_t> placed_by;
-  bool values_trusted = false;  // a good check: its values may be decoded
+  const Frame* placing_request = nullptr;  // that request's frame (coil_bits places by it)
+  bool values_trusted = false;             // a good check: its values may be decoded
   DecodeReport decode;
   std::span<const DecodedValue> values;  // empty unless options.decode_values
 };
