@@ -1,14 +1,15 @@
 #include "session/station_dialects.h"
 
 #include <algorithm>
+#include <iterator>
 
 #include "pvtap/codec/function_codes.h"
 
 namespace pvtap::detail {
 namespace {
 
-// The wire addresses of every register of a map, sorted and unique.
-std::vector<std::uint16_t> wire_addresses(const RegisterMap& map, const DecoderOptions& options) {
+// The wire addresses of every register of a map, as sorted runs of consecutive addresses.
+std::vector<StationDialects::Run> wire_runs(const RegisterMap& map, const DecoderOptions& options) {
   std::vector<std::uint16_t> out;
   for (const RegisterDef& def : map.registers()) {
     const unsigned span = unsigned{def.words} * def.repeat;
@@ -21,7 +22,15 @@ std::vector<std::uint16_t> wire_addresses(const RegisterMap& map, const DecoderO
   }
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());
-  return out;
+  std::vector<StationDialects::Run> runs;
+  for (const std::uint16_t a : out) {
+    if (!runs.empty() && unsigned{runs.back().last} + 1 == a) {
+      runs.back().last = a;
+    } else {
+      runs.push_back({a, a});
+    }
+  }
+  return runs;
 }
 
 bool addresses_registers(std::uint8_t f) {
@@ -33,17 +42,22 @@ bool addresses_registers(std::uint8_t f) {
 
 StationDialects::StationDialects(DialectSet enabled, const RegisterDecoder& decoder)
     : choose_(enabled.contains(Dialect::Gsl) && enabled.contains(Dialect::Modbus)),
-      gsl_wire_addresses_(wire_addresses(decoder.map(Dialect::Gsl), decoder.options())) {
+      gsl_runs_(wire_runs(decoder.map(Dialect::Gsl), decoder.options())) {
   for (std::size_t s = 0; s < kStations; ++s) {
     const RegisterMap* own = decoder.station_map(static_cast<std::uint8_t>(s));
     if (own != nullptr && modbus_family(own->dialect())) forced_[s] = own->dialect();
   }
 }
 
+// Every register asked for is one the GSL map has. Overlapping it is not enough: a meter
+// reading 1024..1039 is not a KSTAR inverter because 1030..1033 are its alarm words.
 bool StationDialects::addresses_gsl_map(std::uint16_t start, std::uint16_t count) const {
-  const unsigned end = unsigned{start} + std::max<unsigned>(count, 1);
-  const auto it = std::lower_bound(gsl_wire_addresses_.begin(), gsl_wire_addresses_.end(), start);
-  return it != gsl_wire_addresses_.end() && *it < end;
+  const unsigned last = unsigned{start} + std::max<unsigned>(count, 1) - 1;
+  const auto after = std::upper_bound(gsl_runs_.begin(), gsl_runs_.end(), start,
+                                      [](std::uint16_t a, const Run& r) { return a < r.first; });
+  if (after == gsl_runs_.begin()) return false;
+  const Run& run = *std::prev(after);
+  return start >= run.first && last <= run.last;
 }
 
 // What a frame says of its station by itself: only a request naming registers says anything.
