@@ -160,9 +160,9 @@ TEST_F(ModbusBus, ABroadcastWriteIsNeverATimeout) {
 }
 
 TEST_F(ModbusBus, AMeterBesideAGslInverterIsPlainModbus) {
-  exchange(0x01, "03 04 1A 00 02", "03 04 08 FC 08 FD");    // GSL 1050..1051
-  exchange(0x0A, "04 00 00 00 02", "04 04 43 66 19 9A");    // meter voltage, float32
-  exchange(0x01, "03 04 1A 00 01", "83 02");                // GSL exception
+  exchange(0x01, "03 04 1A 00 02", "03 04 08 FC 08 FD");  // GSL 1050..1051
+  exchange(0x0A, "04 00 00 00 02", "04 04 43 66 19 9A");  // meter voltage, float32
+  exchange(0x01, "03 04 1A 00 01", "83 02");              // GSL exception
   exchange(0x0A, "2B 0E 01 00",
            "2B 0E 01 01 00 00 02 00 07 45 41 53 54 52 4F 4E 01 06 53 44 4D 36 33 30");
   const BusReport report = finish();
@@ -199,6 +199,18 @@ TEST_F(ModbusBus, AStationWhoseRequestsChangeDialectIsAFinding) {
   EXPECT_EQ(report.dialect_changes, 1u);
   ASSERT_EQ(report.stations.size(), 1u);
   EXPECT_EQ(report.stations[0].dialect_changes, 1u);
+}
+
+// A real Fronius TS 65A-3 meter is read at 1024..1039, across GSL's alarm words 1030..1033.
+TEST_F(ModbusBus, ARequestThatOnlyOverlapsGslRegistersIsPlainModbus) {
+  exchange(0x01, "03 01 02 00 02", "03 04 00 01 00 02");
+  std::string sixteen_words = "03 20";
+  for (int i = 0; i < 32; ++i) sixteen_words += " 00";
+  exchange(0x01, "03 04 00 00 10", sixteen_words);
+  const BusReport report = finish();
+  ASSERT_EQ(recorder_.frames.size(), 4u);
+  for (const Seen& s : recorder_.frames) EXPECT_EQ(s.dialect, Dialect::Modbus);
+  EXPECT_EQ(report.dialect_changes, 0u);
 }
 
 TEST_F(ModbusBus, WithoutTheModbusDialectACoilReadIsNoise) {
