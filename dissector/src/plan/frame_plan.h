@@ -7,6 +7,7 @@
 
 #include "pvtap/codec/frame_codec.h"
 #include "pvtap/codec/frame_layout.h"
+#include "plan/modbus_plan.h"
 #include "pvtap/registers/register_decoder.h"
 
 namespace pvtap::dissector {
@@ -48,6 +49,8 @@ struct FramePlan {
   DecodeStatus decode_status = DecodeStatus::NoRegisterData;
   bool start_assumed = false;
   const char* decode_note = nullptr;
+  ModbusPlan modbus;                    // the fields of the plain Modbus functions
+  const char* station_name = nullptr;  // what the station said of itself, when known
   const char* summary = nullptr;  // this frame's part of the Info column
 };
 
