@@ -5,9 +5,9 @@
 #include <cstdint>
 #include <type_traits>
 
+#include "plan/modbus_plan.h"
 #include "pvtap/codec/frame_codec.h"
 #include "pvtap/codec/frame_layout.h"
-#include "plan/modbus_plan.h"
 #include "pvtap/registers/register_decoder.h"
 
 namespace pvtap::dissector {
@@ -49,9 +49,9 @@ struct FramePlan {
   DecodeStatus decode_status = DecodeStatus::NoRegisterData;
   bool start_assumed = false;
   const char* decode_note = nullptr;
-  ModbusPlan modbus;                    // the fields of the plain Modbus functions
+  ModbusPlan modbus;                   // the fields of the plain Modbus functions
   const char* station_name = nullptr;  // what the station said of itself, when known
-  const char* summary = nullptr;  // this frame's part of the Info column
+  const char* summary = nullptr;       // this frame's part of the Info column
 };
 
 static_assert(std::is_trivially_destructible_v<FramePlan>);

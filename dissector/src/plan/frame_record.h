@@ -47,7 +47,7 @@ struct FrameRecord {
   std::uint16_t quantity_max = 0;
   bool dialect_changed = false;  // its station spoke `previous_dialect` until this frame
   Dialect previous_dialect = Dialect::Gsl;
-  const char* station_name = nullptr;  // what the station said of itself, as known at this frame
+  const char* station_name = nullptr;   // what the station said of itself, as known at this frame
   FrameRecord* request = nullptr;       // replies: the request answered (or answered before)
   FrameRecord* response = nullptr;      // requests: the first reply
   FrameRecord* late_for = nullptr;      // unsolicited replies: a request that timed out

@@ -24,7 +24,8 @@ std::size_t data_offset(const Frame& f, const FrameLayout& l) {
 std::string hex(unsigned value, int digits) {
   static constexpr char kDigits[] = "0123456789ABCDEF";
   std::string out = "0x";
-  for (int shift = (digits - 1) * 4; shift >= 0; shift -= 4) out += kDigits[(value >> shift) & 0xFu];
+  for (int shift = (digits - 1) * 4; shift >= 0; shift -= 4)
+    out += kDigits[(value >> shift) & 0xFu];
   return out;
 }
 
@@ -37,8 +38,8 @@ struct Collector {
   std::string detail;
 
   void uint(ModbusField field, FieldSpan s, std::uint32_t value, std::string_view text = {}) {
-    fields.push_back({field, PlannedKind::Uint, s, value,
-                      text.empty() ? nullptr : arena.copy(text)});
+    fields.push_back(
+        {field, PlannedKind::Uint, s, value, text.empty() ? nullptr : arena.copy(text)});
   }
   void bytes(ModbusField field, FieldSpan s) {
     if (s.present()) fields.push_back({field, PlannedKind::Bytes, s, 0, nullptr});
@@ -52,8 +53,8 @@ struct Collector {
 void plan_diagnostics(Collector& c) {
   const std::uint16_t sub = *c.f.sub_function;
   const std::string_view name = fc::diagnostics_name(sub);
-  const std::string shown = (name.empty() ? "unknown sub-function" : std::string(name)) + " (" +
-                            hex(sub, 4) + ")";
+  const std::string shown =
+      (name.empty() ? "unknown sub-function" : std::string(name)) + " (" + hex(sub, 4) + ")";
   c.uint(ModbusField::SubFunction, span(kHeader, 2), sub, shown);
   for (std::size_t i = 0; i < c.f.words.size(); ++i) {
     c.uint(ModbusField::DiagnosticsData, span(kHeader + 2 + 2 * i, 2), c.f.words[i]);
@@ -110,15 +111,15 @@ std::string device_text(const DeviceIdentification& id) {
   return out;
 }
 
-void plan_objects(const DeviceIdentification& id, std::size_t d, const Frame& f,
-                  const Arena& arena, ModbusPlan& m) {
+void plan_objects(const DeviceIdentification& id, std::size_t d, const Frame& f, const Arena& arena,
+                  ModbusPlan& m) {
   m.objects = arena.make_array<PlannedObject>(id.object_count);
   m.object_count = id.object_count;
   for (std::size_t i = 0; i < id.object_count; ++i) {
     const DeviceObject& o = id.objects[i];
-    const std::size_t at = d + static_cast<std::size_t>(
-                                   reinterpret_cast<const std::uint8_t*>(o.value.data()) -
-                                   f.data.begin());
+    const std::size_t at =
+        d + static_cast<std::size_t>(reinterpret_cast<const std::uint8_t*>(o.value.data()) -
+                                     f.data.begin());
     m.objects[i] = {o.id, arena.copy(device_object_name(o.id)), arena.copy(o.value),
                     span(at - 2, o.value.size() + 2)};
   }
@@ -155,10 +156,9 @@ void plan_server_id(Collector& c) {
   c.bytes(ModbusField::ServerData, c.data_span());
   const auto id = read_server_id(c.f);
   if (!id || id->text.empty()) return;
-  const auto at = static_cast<std::size_t>(
-      reinterpret_cast<const std::uint8_t*>(id->text.data()) - c.f.data.begin());
-  c.string(ModbusField::ServerId, span(data_offset(c.f, c.layout) + at, id->text.size()),
-           id->text);
+  const auto at = static_cast<std::size_t>(reinterpret_cast<const std::uint8_t*>(id->text.data()) -
+                                           c.f.data.begin());
+  c.string(ModbusField::ServerId, span(data_offset(c.f, c.layout) + at, id->text.size()), id->text);
   c.detail = std::string(id->text);
 }
 
@@ -193,8 +193,7 @@ void plan_bits(const CoilBits& bits, Collector& c, bool with_items, ModbusPlan& 
   m.bit_count = bits.count;
   for (std::size_t i = 0; i < bits.count; ++i) {
     const auto address = static_cast<std::uint16_t>(bits.start.value_or(0) + i);
-    m.bits[i] = {address, bits.on(i),
-                 single ? m.bits_span : span(first + i / 8, 1)};
+    m.bits[i] = {address, bits.on(i), single ? m.bits_span : span(first + i / 8, 1)};
   }
 }
 

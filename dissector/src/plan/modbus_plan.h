@@ -12,10 +12,10 @@ namespace pvtap::dissector {
 // ModbusField: a field of the plain Modbus functions, or one that names what the bus learned
 // of a Modbus station. Its index is the field's slot in the plugin's registration.
 enum class ModbusField : std::uint8_t {
-  SubFunction,      // 0x08
-  DiagnosticsData,  // 0x08 words
-  DiagnosticsBytes, // 0x08 data of odd length
-  WriteStart,       // 0x17
+  SubFunction,       // 0x08
+  DiagnosticsData,   // 0x08 words
+  DiagnosticsBytes,  // 0x08 data of odd length
+  WriteStart,        // 0x17
   WriteCount,
   AndMask,  // 0x16
   OrMask,
@@ -48,8 +48,6 @@ enum class ModbusField : std::uint8_t {
   PreviousDialect,  // the dialect a station spoke before this frame
   QuantityMin,      // the range a request's quantity breaks
   QuantityMax,
-  MapValue,  // a value of a station's own map entry, which has no field of its own
-  MapKey,
   Count_,
 };
 
@@ -87,7 +85,7 @@ struct ModbusPlan {
   std::size_t field_count = 0;
   PlannedBit* bits = nullptr;
   std::size_t bit_count = 0;
-  bool inputs = false;  // the bits are discrete inputs
+  bool inputs = false;       // the bits are discrete inputs
   bool bits_placed = false;  // their addresses are known (from the frame or its request)
   FieldSpan bits_span;
   PlannedObject* objects = nullptr;

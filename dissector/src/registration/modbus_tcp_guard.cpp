@@ -3,7 +3,8 @@
 namespace pvtap::dissector {
 namespace {
 
-constexpr std::size_t kMbapHeader = 6;  // transaction id, protocol id, length; the unit id counts in length
+constexpr std::size_t kMbapHeader =
+    6;  // transaction id, protocol id, length; the unit id counts in length
 constexpr std::size_t kSmallestLength = 2;  // unit id and function code
 constexpr std::size_t kLargestLength = 254;
 

@@ -68,8 +68,8 @@ void add_bits(Builder& b, const ModbusPlan& m) {
       TreeItem item = modbus_item(address, bit.span, kField);
       item.uint = bit.address;
       item.form = LabelForm::Whole;
-      item.text = b.text(std::string(what) + " " + std::to_string(bit.address) + ": " +
-                         on_off(bit.on));
+      item.text =
+          b.text(std::string(what) + " " + std::to_string(bit.address) + ": " + on_off(bit.on));
       item.subtree = Subtree::Coil;
       b.add(item);
       depth = kField + 1;
@@ -137,8 +137,8 @@ void add_quantity_problem(Builder& b, const FrameRecord& r) {
 
 void add_dialect_change(Builder& b, const FramePlan& plan, const FrameRecord& r) {
   if (!r.dialect_changed) return;
-  const std::uint32_t item =
-      add_generated(b, ModbusField::PreviousDialect, static_cast<std::uint32_t>(r.previous_dialect));
+  const std::uint32_t item = add_generated(b, ModbusField::PreviousDialect,
+                                           static_cast<std::uint32_t>(r.previous_dialect));
   b.expert_on(item, TreeExpert::DialectChanged,
               "Station " + std::to_string(plan.station) + " spoke " +
                   dialect_text(r.previous_dialect) + " until this frame, now " +

@@ -93,6 +93,21 @@ void add_error_body(Builder& b, const FramePlan& plan) {
                       static_cast<unsigned>(plan.start), static_cast<unsigned>(plan.count)));
 }
 
+// The function field names codes by the dialect that first has them (0x11 0x17 0x18 are
+// Hybrid's); a plain Modbus frame names its own.
+void add_function(Builder& b, const FramePlan& plan) {
+  const auto item = b.uint(TreeField::Function, plan.layout.function, plan.function);
+  if (!item || plan.dialect != Dialect::Modbus) return;
+  const bool exception = fc::is_gsl_exception(plan.function);
+  const auto base =
+      static_cast<std::uint8_t>(exception ? plan.function & ~fc::kExceptionFlag : plan.function);
+  std::string name(fc::function_name(plan.dialect, base));
+  if (exception) name = "exception (" + name + ")";
+  TreeItem& function = b.item(*item);
+  function.form = LabelForm::Value;
+  function.text = b.text(name + printed(" (0x%02x)", static_cast<unsigned>(plan.function)));
+}
+
 // Header fields in wire order: a counted reply's byte count and device number come before
 // the register it echoes; a GSL 0x10 request's byte count comes after its count.
 void add_header(Builder& b, const FramePlan& plan) {
@@ -104,7 +119,7 @@ void add_header(Builder& b, const FramePlan& plan) {
     item.text = b.text(std::to_string(plan.station) + " (" + plan.station_name + ")");
   }
   add_station_name(b, plan);
-  b.uint(TreeField::Function, l.function, plan.function);
+  add_function(b, plan);
   const bool counted_reply = l.byte_count.present() && l.byte_count.offset == 2;
   if (counted_reply) {
     b.uint(TreeField::ByteCount, l.byte_count, plan.byte_count);

@@ -126,7 +126,7 @@ struct TreeItem {
   const RegisterDef* def = nullptr;  // RegisterValue and RegisterFlag
   std::uint8_t bit = 0;              // RegisterFlag
   ModbusField modbus = ModbusField::SubFunction;  // Modbus
-  std::int32_t target = -1;          // Expert: index of the item it is raised on (-1: none)
+  std::int32_t target = -1;  // Expert: index of the item it is raised on (-1: none)
 };
 
 // TreeDescription: the items of one frame or noise run, in an Arena.
