@@ -6,10 +6,10 @@
 #include "pvtap/codec/function_codes.h"
 
 namespace pvtap::dissector {
-namespace {
 
 // Registration data lives as long as Wireshark, so the tables are never freed.
-const value_string* persist(const std::vector<std::pair<std::uint32_t, std::string>>& entries) {
+const value_string* persist_value_strings(
+    const std::vector<std::pair<std::uint32_t, std::string>>& entries) {
   auto* table = g_new0(value_string, entries.size() + 1);
   for (std::size_t i = 0; i < entries.size(); ++i) {
     table[i].value = entries[i].first;
@@ -17,6 +17,8 @@ const value_string* persist(const std::vector<std::pair<std::uint32_t, std::stri
   }
   return table;
 }
+
+namespace {
 
 std::string function_text(Dialect d, std::uint8_t f) {
   if (modbus_family(d) && fc::is_gsl_exception(f)) {
@@ -58,7 +60,7 @@ const value_string* function_names(DialectSet dialects) {
     const auto rtu = fc::rtu_dialect_of(code);
     if (rtu && dialects.contains(*rtu)) entries.emplace_back(f, function_text(*rtu, code));
   }
-  return persist(entries);
+  return persist_value_strings(entries);
 }
 
 const value_string* exception_names() {
@@ -72,7 +74,7 @@ const value_string* exception_names() {
           std::string(gsl ? fc::exception_name(static_cast<std::uint8_t>(code))
                           : fc::exception_name(Dialect::Modbus, static_cast<std::uint8_t>(code))));
     }
-    return persist(entries);
+    return persist_value_strings(entries);
   }();
   return names;
 }
@@ -81,7 +83,7 @@ const value_string* register_value_names(const RegisterDef& def) {
   if (def.values.empty()) return nullptr;
   std::vector<std::pair<std::uint32_t, std::string>> entries;
   for (const EnumText& e : def.values) entries.emplace_back(e.value, std::string(e.text));
-  return persist(entries);
+  return persist_value_strings(entries);
 }
 
 }  // namespace pvtap::dissector

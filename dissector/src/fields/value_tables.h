@@ -1,12 +1,21 @@
 // Value strings for fields whose values have names, built once from the core's tables.
 #pragma once
 
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
 #include "wireshark_api/value_string.h"
 
 #include "pvtap/codec/dialect.h"
 #include "pvtap/registers/register_map.h"
 
 namespace pvtap::dissector {
+
+// A value_string table of `entries` that lives as long as Wireshark.
+const value_string* persist_value_strings(
+    const std::vector<std::pair<std::uint32_t, std::string>>& entries);
 
 const value_string* dialect_names();
 const value_string* role_names();

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "plan/modbus_analysis.h"
 #include "pvtap/codec/function_codes.h"
 #include "pvtap/matching/frame_summary.h"
 #include "pvtap/registers/register_format.h"
@@ -34,6 +35,7 @@ void plan_header(const Frame& f, std::size_t length, const AnalysisContext& ctx,
   plan.station = f.station;
   plan.function = f.function;
   plan.layout = frame_layout(f, length);
+  correct_modbus_layout(f, plan.layout);
   if (f.start) {
     plan.start = *f.start;
     const GslIdReading ids = ctx.decoder->options().gsl_ids;
@@ -110,9 +112,13 @@ std::string summary_text(const FramePlan& plan, const char* check_word) {
   text += ' ';
   text += exception ? std::string_view("exception") : to_string(plan.role);
   text += ", station " + std::to_string(plan.station);
+  if (plan.station_name != nullptr) text += " (" + std::string(plan.station_name) + ")";
   if (exception) {
     text += ": ";
-    text += fc::exception_name(plan.exception_code);
+    text += fc::exception_name(plan.dialect, plan.exception_code);
+  } else if (plan.modbus.detail != nullptr) {
+    text += ": ";
+    text += plan.modbus.detail;
   }
   if (plan.check_verified && !plan.check.ok) {
     text += " [bad ";
@@ -133,6 +139,7 @@ void plan_unparsed_header(std::size_t length, const FrameRecord& r, FramePlan& p
 void analyze(std::span<const std::uint8_t> bytes, const AnalysisContext& ctx, FramePlan& plan) {
   const FrameRecord& r = *ctx.record;
   plan.dialect = r.dialect;
+  plan.station_name = r.station_name;
   plan.role = r.role;
   plan.check = verify_check(bytes, r.dialect);
   plan.check_verified = ctx.verify_check;
@@ -145,13 +152,16 @@ void analyze(std::span<const std::uint8_t> bytes, const AnalysisContext& ctx, Fr
   }
   Frame& f = parsed.value();
   plan_header(f, bytes.size(), ctx, plan);
+  // Values only from a good check, placed only by a request with one (as pvtap audit).
+  const std::optional<Frame> request =
+      r.values_trusted ? placing_request(r) : std::optional<Frame>();
   if (ctx.with_values) {
     plan_device(f, ctx, plan);
-    // Values only from a good check, placed only by a request with one (as pvtap audit).
-    if (r.values_trusted) {
-      const std::optional<Frame> request = placing_request(r);
-      plan_values(f, request ? &*request : nullptr, ctx, plan);
-    }
+    if (r.values_trusted) plan_values(f, request ? &*request : nullptr, ctx, plan);
+  }
+  // The Info column names coils and devices, so this runs without a tree too.
+  if (r.values_trusted) {
+    plan_modbus(f, request ? &*request : nullptr, ctx.with_values, ctx.arena, plan);
   }
   plan.summary = ctx.arena.copy(summary_text(plan, ctx.check_word));
 }

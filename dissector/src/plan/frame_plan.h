@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <type_traits>
 
+#include "plan/modbus_plan.h"
 #include "pvtap/codec/frame_codec.h"
 #include "pvtap/codec/frame_layout.h"
 #include "pvtap/registers/register_decoder.h"
@@ -48,7 +49,9 @@ struct FramePlan {
   DecodeStatus decode_status = DecodeStatus::NoRegisterData;
   bool start_assumed = false;
   const char* decode_note = nullptr;
-  const char* summary = nullptr;  // this frame's part of the Info column
+  ModbusPlan modbus;                   // the fields of the plain Modbus functions
+  const char* station_name = nullptr;  // what the station said of itself, when known
+  const char* summary = nullptr;       // this frame's part of the Info column
 };
 
 static_assert(std::is_trivially_destructible_v<FramePlan>);

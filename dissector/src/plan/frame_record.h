@@ -40,6 +40,14 @@ struct FrameRecord {
   CountUnit count_unit = CountUnit::Bytes;
   std::uint16_t count_expected = 0;
   std::uint16_t count_found = 0;
+  bool quantity_problem = false;  // requests: a quantity out of the specification's range
+  bool quantity_write_part = false;
+  std::uint16_t quantity_found = 0;
+  std::uint16_t quantity_min = 0;
+  std::uint16_t quantity_max = 0;
+  bool dialect_changed = false;  // its station spoke `previous_dialect` until this frame
+  Dialect previous_dialect = Dialect::Gsl;
+  const char* station_name = nullptr;   // what the station said of itself, as known at this frame
   FrameRecord* request = nullptr;       // replies: the request answered (or answered before)
   FrameRecord* response = nullptr;      // requests: the first reply
   FrameRecord* late_for = nullptr;      // unsolicited replies: a request that timed out

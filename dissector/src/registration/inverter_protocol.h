@@ -4,6 +4,9 @@
 #include <epan/expert.h>
 #include <epan/packet.h>
 
+#include <array>
+
+#include "plan/modbus_plan.h"
 #include "pvtap/codec/dialect.h"
 #include "wireshark_api/preference_types.h"
 
@@ -36,6 +39,12 @@ struct CommonFields {
   int timeout_in = -1;          // on a request: the packet that announced its timeout
   int response_time = -1;
   int expected_count = -1;
+  // The Modbus fields (invrtu only), by ModbusField.
+  std::array<int, kModbusFieldCount> modbus = [] {
+    std::array<int, kModbusFieldCount> ids{};
+    ids.fill(-1);
+    return ids;
+  }();
 };
 
 // ExpertFields: the expert infos a protocol raises.
@@ -55,6 +64,8 @@ struct ExpertFields {
   expert_field start_assumed = EI_INIT;
   expert_field value_note = EI_INIT;
   expert_field value_suspicious = EI_INIT;
+  expert_field quantity_problem = EI_INIT;
+  expert_field dialect_changed = EI_INIT;
 };
 
 // Subtrees: the ett ids of a protocol's subtrees.
@@ -62,6 +73,9 @@ struct Subtrees {
   int frame = -1;
   int device = -1;
   int noise = -1;
+  int coils = -1;
+  int coil = -1;
+  int device_object = -1;
 };
 
 // ProtocolSettings: preference values; Wireshark writes them through pointers.

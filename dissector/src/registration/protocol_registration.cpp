@@ -3,6 +3,7 @@
 #include <epan/packet.h>
 
 #include "fields/common_fields.h"
+#include "fields/modbus_fields.h"
 #include "fields/register_fields.h"
 #include "registration/inverter_protocol.h"
 #include "registration/record_dissector.h"
@@ -19,6 +20,7 @@ namespace {
 void register_protocol(InverterProtocol& p) {
   p.proto = proto_register_protocol(p.name, p.short_name, p.filter_name);
   register_common_items(p);
+  if (p.dialects.contains(Dialect::Modbus)) register_modbus_items(p);
   register_preferences(p);
   register_response_time_stats(p);
   register_transport_dissectors(p);

@@ -9,6 +9,7 @@
 #include <epan/dissectors/packet-tcp.h>
 
 #include "pvtap/framing/framing_probe.h"
+#include "registration/modbus_tcp_guard.h"
 #include "stream/conversation_state.h"
 #include "stream/stream_dissection.h"
 #include "wireshark_api/heuristic_verdict.h"
@@ -43,11 +44,16 @@ int dissect_bound(InverterProtocol& p, tvbuff_t* tvb, packet_info* pinfo, proto_
 
 // The role of a frame with a good check at the very start of the payload, if there is one:
 // the heuristic claims nothing less, so that other traffic is left alone.
-std::optional<Role> leading_frame_role(tvbuff_t* tvb, packet_info* pinfo, DialectSet dialects) {
+// Over TCP, Modbus/TCP is left to Wireshark's mbtcp, however its first bytes read.
+std::optional<Role> leading_frame_role(tvbuff_t* tvb, packet_info* pinfo, DialectSet dialects,
+                                       bool tcp) {
   const guint available = tvb_captured_length(tvb);
   if (available < 4) return std::nullopt;
   const guint n = std::min<guint>(available, kMaxFrameLength);
   const auto* bytes = static_cast<const guint8*>(tvb_memdup(pinfo->pool, tvb, 0, n));
+  if (tcp && looks_like_modbus_tcp({bytes, n}, available, pinfo->srcport, pinfo->destport)) {
+    return std::nullopt;
+  }
   const ProbeResult probe = probe_frame({bytes, n}, RoleHint::Unknown, dialects);
   if (probe.status != ProbeResult::Status::Complete || !probe.check.ok) return std::nullopt;
   return probe.role;
@@ -55,7 +61,7 @@ std::optional<Role> leading_frame_role(tvbuff_t* tvb, packet_info* pinfo, Dialec
 
 HeuristicVerdict try_heuristic(InverterProtocol& p, tvbuff_t* tvb, packet_info* pinfo,
                                proto_tree* tree, const tcpinfo* tcp) {
-  const std::optional<Role> role = leading_frame_role(tvb, pinfo, p.dialects);
+  const std::optional<Role> role = leading_frame_role(tvb, pinfo, p.dialects, tcp != nullptr);
   if (!role) return kDeclined;
   conversation_t* conversation = find_or_create_conversation(pinfo);
   conversation_set_dissector(conversation, tcp != nullptr ? p.stream_handle : p.datagram_handle);

@@ -62,6 +62,23 @@ void BusTrack::link(FrameRecord& r, const SessionFrame& f) const {
   if (f.placed_by) r.placed_by = record(*f.placed_by);
 }
 
+// What the session found of the frame's station: a quantity out of range, a change of
+// dialect, and the name the station gave itself so far.
+void BusTrack::note_findings(FrameRecord& r, const SessionFrame& f) {
+  if (f.quantity_problem) {
+    r.quantity_problem = true;
+    r.quantity_write_part = f.quantity_problem->write_part;
+    r.quantity_found = clamp16(f.quantity_problem->found);
+    r.quantity_min = clamp16(f.quantity_problem->min);
+    r.quantity_max = clamp16(f.quantity_problem->max);
+  }
+  if (f.dialect_changed_from) {
+    r.dialect_changed = true;
+    r.previous_dialect = *f.dialect_changed_from;
+  }
+  r.station_name = names_.note(f);
+}
+
 void BusTrack::on_frame(const SessionFrame& f) {
   FrameRecord* r = new_frame_record();
   r->dialect = f.dialect;
@@ -85,6 +102,7 @@ void BusTrack::on_frame(const SessionFrame& f) {
     r->count_found = clamp16(f.count_mismatch->found);
   }
   link(*r, f);
+  note_findings(*r, f);
   if (r->role == Role::Request) {
     r->bytes =
         static_cast<const guint8*>(wmem_memdup(wmem_file_scope(), f.bytes.data(), f.bytes.size()));

@@ -12,6 +12,7 @@
 #include "pvtap/session/segmented_bus.h"
 #include "registration/inverter_protocol.h"
 #include "stream/held_bytes.h"
+#include "stream/station_names.h"
 
 namespace pvtap::dissector {
 
@@ -43,6 +44,7 @@ class BusTrack final : public BusSessionSink {
   void on_frame(const SessionFrame& f) override;
   void on_timeout(const SessionTimeout& t) override;
   void link(FrameRecord& r, const SessionFrame& f) const;
+  void note_findings(FrameRecord& r, const SessionFrame& f);
 
   SegmentedBus bus_;
   std::vector<FrameRecord*> records_;  // by frame id
@@ -51,6 +53,7 @@ class BusTrack final : public BusSessionSink {
   std::array<bool, 3> seq_known_{};
   std::array<std::uint64_t, 3> datagram_end_{};
   HeldBytes held_;
+  StationNames names_;
 };
 
 // A track that lives until the capture file is closed.

@@ -69,6 +69,7 @@ int common_field_id(const CommonFields& hf, TreeField field) {
       return hf.timeout_in;
     case TreeField::None:
     case TreeField::Protocol:
+    case TreeField::Modbus:
     case TreeField::RegisterValue:
     case TreeField::RegisterFlag:
       break;
@@ -108,6 +109,10 @@ expert_field* expert_of(ExpertFields& ei, TreeExpert expert) {
       return &ei.value_note;
     case TreeExpert::ValueSuspicious:
       return &ei.value_suspicious;
+    case TreeExpert::QuantityProblem:
+      return &ei.quantity_problem;
+    case TreeExpert::DialectChanged:
+      return &ei.dialect_changed;
     case TreeExpert::None:
       break;
   }
@@ -124,6 +129,9 @@ struct Adder {
 
   int field_id(const TreeItem& item) const {
     if (item.field == TreeField::Protocol) return t.protocol->proto;
+    if (item.field == TreeField::Modbus) {
+      return t.protocol->hf.modbus[static_cast<std::size_t>(item.modbus)];
+    }
     const RegisterField* f = item.def != nullptr ? register_field(dialect, item.def) : nullptr;
     if (item.field == TreeField::RegisterValue) return f != nullptr ? f->hf : -1;
     if (item.field == TreeField::RegisterFlag) return f != nullptr ? f->bits[item.bit] : -1;
@@ -138,6 +146,12 @@ struct Adder {
         return t.protocol->ett.noise;
       case Subtree::Device:
         return t.protocol->ett.device;
+      case Subtree::Coils:
+        return t.protocol->ett.coils;
+      case Subtree::Coil:
+        return t.protocol->ett.coil;
+      case Subtree::DeviceObject:
+        return t.protocol->ett.device_object;
       case Subtree::Flags: {
         const RegisterField* f = register_field(dialect, item.def);
         return f != nullptr ? f->ett : -1;
@@ -159,6 +173,9 @@ struct Adder {
         return proto_tree_add_double_format(tree, id, t.tvb, start, i.length, i.number, "%s",
                                             i.text);
       case ValueType::String:
+        if (i.form == LabelForm::Default) {
+          return proto_tree_add_string(tree, id, t.tvb, start, i.length, i.string);
+        }
         return proto_tree_add_string_format(tree, id, t.tvb, start, i.length, i.string, "%s",
                                             i.text);
       case ValueType::Time: {

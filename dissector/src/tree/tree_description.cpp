@@ -10,6 +10,8 @@
 #include "pvtap/codec/function_codes.h"
 #include "pvtap/matching/reply_rules.h"
 #include "pvtap/registers/register_format.h"
+#include "tree/modbus_description.h"
+#include "tree/tree_builder.h"
 
 namespace pvtap::dissector {
 namespace {
@@ -19,11 +21,6 @@ constexpr auto kSuspicious =
     static_cast<std::uint16_t>(static_cast<unsigned>(ValueWarning::LowPartOver9999) |
                                static_cast<unsigned>(ValueWarning::InvalidBcd) |
                                static_cast<unsigned>(ValueWarning::InvalidDate));
-
-// Depths: the top item, the frame's subtree, the subtrees of its fields.
-constexpr std::uint8_t kTop = 0;
-constexpr std::uint8_t kFrame = 1;
-constexpr std::uint8_t kField = 2;
 
 // printf-style text, for the sentences that print numbers in hex.
 [[gnu::format(printf, 1, 2)]] std::string printed(const char* format, ...) {
@@ -35,81 +32,6 @@ constexpr std::uint8_t kField = 2;
   return std::string(text,
                      static_cast<std::size_t>(std::clamp(n, 0, static_cast<int>(sizeof text) - 1)));
 }
-
-// A text of the plan, which a plan made by hand may lack.
-std::string_view text_of(const char* text) {
-  return text != nullptr ? std::string_view(text) : std::string_view();
-}
-
-// Builder: the items of one description, gathered before they are copied to the arena.
-class Builder {
- public:
-  explicit Builder(const DescriptionContext& ctx) : ctx_(ctx) {}
-
-  const DescriptionContext& ctx() const { return ctx_; }
-  const char* text(std::string_view t) const { return ctx_.arena.copy(t); }
-
-  // Adds an item and returns its index.
-  std::uint32_t add(const TreeItem& item) {
-    items_.push_back(item);
-    return static_cast<std::uint32_t>(items_.size() - 1);
-  }
-  TreeItem& item(std::uint32_t index) { return items_[index]; }
-
-  // A field's value at a place in the frame; skipped when the frame has no such place.
-  std::optional<std::uint32_t> uint(TreeField field, FieldSpan s, std::uint32_t value,
-                                    std::uint8_t depth = kFrame) {
-    if (!s.present()) return std::nullopt;
-    return add(field_item(field, s, value, depth));
-  }
-  // A value worked out rather than read: no place in the frame.
-  std::uint32_t generated_uint(TreeField field, std::uint32_t value) {
-    TreeItem item = field_item(field, FieldSpan{}, value, kFrame);
-    item.generated = true;
-    return add(item);
-  }
-  // An expert info on an item that may not have been added (its field absent).
-  void expert_on(std::optional<std::uint32_t> target, TreeExpert expert, std::string_view message) {
-    TreeItem item;
-    item.kind = ItemKind::Expert;
-    item.expert = expert;
-    item.text = text(message);
-    item.target = target ? static_cast<std::int32_t>(*target) : -1;
-    add(item);
-  }
-  // An expert info with an item of its own; a null message shows the expert's summary.
-  std::uint32_t expert_item(TreeExpert expert, FieldSpan s, const char* message) {
-    TreeItem item;
-    item.kind = ItemKind::ExpertItem;
-    item.expert = expert;
-    item.depth = kFrame;
-    item.offset = s.offset;
-    item.length = s.length;
-    item.text = message;
-    return add(item);
-  }
-
-  TreeDescription finish(Dialect dialect) const {
-    TreeItem* items = ctx_.arena.make_array<TreeItem>(items_.size());
-    std::copy(items_.begin(), items_.end(), items);
-    return {items, items_.size(), dialect};
-  }
-
- private:
-  static TreeItem field_item(TreeField field, FieldSpan s, std::uint32_t value,
-                             std::uint8_t depth) {
-    TreeItem item;
-    item.field = field;
-    item.depth = depth;
-    item.offset = s.offset;
-    item.length = s.length;
-    item.uint = value;
-    return item;
-  }
-
-  const DescriptionContext& ctx_;
-  std::vector<TreeItem> items_;
-};
 
 std::uint32_t add_top(Builder& b, Subtree subtree, std::string_view appended) {
   TreeItem top;
@@ -171,12 +93,33 @@ void add_error_body(Builder& b, const FramePlan& plan) {
                       static_cast<unsigned>(plan.start), static_cast<unsigned>(plan.count)));
 }
 
+// The function field names codes by the dialect that first has them (0x11 0x17 0x18 are
+// Hybrid's); a plain Modbus frame names its own.
+void add_function(Builder& b, const FramePlan& plan) {
+  const auto item = b.uint(TreeField::Function, plan.layout.function, plan.function);
+  if (!item || plan.dialect != Dialect::Modbus) return;
+  const bool exception = fc::is_gsl_exception(plan.function);
+  const auto base =
+      static_cast<std::uint8_t>(exception ? plan.function & ~fc::kExceptionFlag : plan.function);
+  std::string name(fc::function_name(plan.dialect, base));
+  if (exception) name = "exception (" + name + ")";
+  TreeItem& function = b.item(*item);
+  function.form = LabelForm::Value;
+  function.text = b.text(name + printed(" (0x%02x)", static_cast<unsigned>(plan.function)));
+}
+
 // Header fields in wire order: a counted reply's byte count and device number come before
 // the register it echoes; a GSL 0x10 request's byte count comes after its count.
 void add_header(Builder& b, const FramePlan& plan) {
   const FrameLayout& l = plan.layout;
-  b.uint(TreeField::Station, l.station, plan.station);
-  b.uint(TreeField::Function, l.function, plan.function);
+  const auto station = b.uint(TreeField::Station, l.station, plan.station);
+  if (station && plan.station_name != nullptr) {
+    TreeItem& item = b.item(*station);
+    item.form = LabelForm::Value;
+    item.text = b.text(std::to_string(plan.station) + " (" + plan.station_name + ")");
+  }
+  add_station_name(b, plan);
+  add_function(b, plan);
   const bool counted_reply = l.byte_count.present() && l.byte_count.offset == 2;
   if (counted_reply) {
     b.uint(TreeField::ByteCount, l.byte_count, plan.byte_count);
@@ -195,7 +138,13 @@ void add_exception(Builder& b, const FramePlan& plan) {
   const FieldSpan s = plan.layout.exception_code;
   if (!s.present()) return;
   const auto item = b.uint(TreeField::ExceptionCode, s, plan.exception_code);
-  const std::string_view name = fc::exception_name(plan.exception_code);
+  // The dialect's own reading of the code: GSL's seed and Modbus name codes 1-3 and 6 apart.
+  const std::string_view name = fc::exception_name(plan.dialect, plan.exception_code);
+  if (item) {
+    TreeItem& code = b.item(*item);
+    code.form = LabelForm::Value;
+    code.text = b.text(std::string(name) + " (" + std::to_string(plan.exception_code) + ")");
+  }
   b.expert_on(item, TreeExpert::Exception,
               "Exception reply: " + std::string(name) + " (code " +
                   std::to_string(plan.exception_code) + ")");
@@ -457,12 +406,14 @@ void describe(Builder& b, const FramePlan& plan, const FrameRecord& record) {
   }
   add_header(b, plan);
   add_exception(b, plan);
+  add_modbus_fields(b, plan);
   add_values(b, plan);
   if (!record.values_trusted && !record.check_ok) {
     add_undecoded(b, plan.layout.words, b.text(printed("the %s failed", b.ctx().check_word)));
   }
   add_check(b, plan);
   add_matching(b, record);
+  add_station_findings(b, plan, record);
 }
 
 void describe_announcement(Builder& b, const FrameRecord& r) {

@@ -44,6 +44,7 @@ enum class TreeField : std::uint8_t {
   TimeoutIn,          // on a request: the packet that announced its timeout
   RegisterValue,      // the field of the map entry `def`
   RegisterFlag,       // the flag `bit` of the map entry `def`
+  Modbus,             // the Modbus field `modbus`
 };
 
 // TreeExpert: the expert info an item raises.
@@ -64,6 +65,8 @@ enum class TreeExpert : std::uint8_t {
   StartAssumed,
   ValueNote,
   ValueSuspicious,
+  QuantityProblem,  // a request asks a quantity out of the specification's range
+  DialectChanged,   // a station changed dialect
 };
 
 // ItemKind: what adding the item does.
@@ -91,7 +94,7 @@ enum class LabelForm : std::uint8_t {
 };
 
 // Subtree: the subtree an item opens for the items one level deeper that follow it.
-enum class Subtree : std::uint8_t { None, Frame, Noise, Device, Flags };
+enum class Subtree : std::uint8_t { None, Frame, Noise, Device, Flags, Coils, Coil, DeviceObject };
 
 // CheckStatus: the value of the check status field, Wireshark's PROTO_CHECKSUM_E_* values.
 enum class CheckStatus : std::uint32_t { Bad = 0, Good = 1, Unverified = 2 };
@@ -122,7 +125,8 @@ struct TreeItem {
   const char* appended = nullptr;    // added to the label once the item is made
   const RegisterDef* def = nullptr;  // RegisterValue and RegisterFlag
   std::uint8_t bit = 0;              // RegisterFlag
-  std::int32_t target = -1;          // Expert: index of the item it is raised on (-1: none)
+  ModbusField modbus = ModbusField::SubFunction;  // Modbus
+  std::int32_t target = -1;  // Expert: index of the item it is raised on (-1: none)
 };
 
 // TreeDescription: the items of one frame or noise run, in an Arena.

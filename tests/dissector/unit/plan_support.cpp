@@ -38,6 +38,12 @@ const char* subtree_name(Subtree s) {
       return " {device}";
     case Subtree::Flags:
       return " {flags}";
+    case Subtree::Coils:
+      return " {coils}";
+    case Subtree::Coil:
+      return " {coil}";
+    case Subtree::DeviceObject:
+      return " {object}";
     case Subtree::None:
       break;
   }
@@ -118,18 +124,32 @@ const char* name_of(TreeField field) {
                                            "UnansweredRequest",
                                            "TimeoutIn",
                                            "RegisterValue",
-                                           "RegisterFlag"};
-  static_assert(std::size(kNames) == static_cast<std::size_t>(TreeField::RegisterFlag) + 1);
+                                           "RegisterFlag",
+                                           "Modbus"};
+  static_assert(std::size(kNames) == static_cast<std::size_t>(TreeField::Modbus) + 1);
   return kNames[static_cast<std::size_t>(field)];
 }
 
 const char* name_of(TreeExpert expert) {
-  static constexpr const char* kNames[] = {
-      "None",           "BadCheck",      "Malformed",    "Noise",        "UnknownFunction",
-      "Exception",      "Unanswered",    "Unsolicited",  "LateReply",    "Duplicate",
-      "CountMismatch",  "RoleCorrected", "StartUnknown", "StartAssumed", "ValueNote",
-      "ValueSuspicious"};
-  static_assert(std::size(kNames) == static_cast<std::size_t>(TreeExpert::ValueSuspicious) + 1);
+  static constexpr const char* kNames[] = {"None",
+                                           "BadCheck",
+                                           "Malformed",
+                                           "Noise",
+                                           "UnknownFunction",
+                                           "Exception",
+                                           "Unanswered",
+                                           "Unsolicited",
+                                           "LateReply",
+                                           "Duplicate",
+                                           "CountMismatch",
+                                           "RoleCorrected",
+                                           "StartUnknown",
+                                           "StartAssumed",
+                                           "ValueNote",
+                                           "ValueSuspicious",
+                                           "QuantityProblem",
+                                           "DialectChanged"};
+  static_assert(std::size(kNames) == static_cast<std::size_t>(TreeExpert::DialectChanged) + 1);
   return kNames[static_cast<std::size_t>(expert)];
 }
 

@@ -212,7 +212,7 @@ TEST(TreeDescription, ExceptionReplyRaisesAnExpertInfoOnItsCode) {
   f.exception_code = 2;
   const Lines lines = described(p, wire(f), record_of(Dialect::Gsl, Role::Response, 2));
   EXPECT_EQ(from(lines, "1 ExceptionCode"),
-            (Lines{"1 ExceptionCode [2+1] = 2",
+            (Lines{"1 ExceptionCode [2+1] = 2 \"address (ID) out of range (2)\"",
                    "  ! Exception on #5: Exception reply: address (ID) out of range (code 2)",
                    check_line(wire(f)), "1 CheckStatus = 1 (generated)"}));
 }
