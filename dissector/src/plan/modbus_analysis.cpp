@@ -250,25 +250,9 @@ void plan_function(Collector& c, const Frame* request, bool with_items, ModbusPl
 }  // namespace
 
 void correct_modbus_layout(const Frame& f, FrameLayout& l) {
-  if (!modbus_family(f.dialect) || f.exception_code || !l.check.present()) return;
-  switch (f.function) {
-    case fc::kDiagnostics:
-      l.words = f.words.empty() ? FieldSpan{} : span(kHeader + 2, f.words.size() * 2);
-      return;
-    case fc::kReadWriteMultiple:
-      if (f.role != Role::Request) return;
-      l.byte_count = span(kHeader + 8, 1);
-      l.words = f.words.empty() ? FieldSpan{} : span(kHeader + 9, f.words.size() * 2);
-      return;
-    case fc::kReadFifoQueue:
-      if (f.role != Role::Response) return;
-      l.byte_count = span(kHeader, 2);
-      l.count = FieldSpan{};  // shown as the FIFO count
-      l.words = f.words.empty() ? FieldSpan{} : span(kHeader + 4, f.words.size() * 2);
-      return;
-    default:
-      return;
-  }
+  // The 0x18 reply's count is the FIFO count, shown by a field of its own.
+  const bool fifo_reply = f.function == fc::kReadFifoQueue && f.role == Role::Response;
+  if (modbus_family(f.dialect) && !f.exception_code && fifo_reply) l.count = FieldSpan{};
 }
 
 void plan_modbus(const Frame& f, const Frame* request, bool with_items, const Arena& arena,

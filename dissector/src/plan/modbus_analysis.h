@@ -8,9 +8,8 @@
 
 namespace pvtap::dissector {
 
-// The places of the fields the core's frame layout leaves out or puts elsewhere for the plain
-// Modbus functions (0x08's sub-function, 0x17's write part, 0x18's two-byte byte count);
-// call before the register values are placed.
+// The layout as the tree shows it: the core's, without the fields the Modbus items show
+// under names of their own (0x18's FIFO count); call before the register values are placed.
 void correct_modbus_layout(const Frame& f, FrameLayout& layout);
 
 // Fills plan.modbus; `request` places a read reply's bits, `with_items` adds the bits and

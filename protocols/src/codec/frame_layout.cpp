@@ -1,5 +1,7 @@
 #include "pvtap/codec/frame_layout.h"
 
+#include "pvtap/codec/function_codes.h"
+
 namespace pvtap {
 namespace {
 
@@ -77,6 +79,36 @@ void plain_layout(const Frame& f, Cursor& c, FrameLayout& l) {
   if (f.byte_count) l.byte_count = c.take(1);
 }
 
+// The plain Modbus frames whose fields do not follow the order above: the diagnostics
+// sub-function before its words, the 0x17 request's write start and quantity before its byte
+// count, the 0x18 reply's two-byte byte count and FIFO count before its words.
+void modbus_layout(const Frame& f, FrameLayout& l) {
+  constexpr std::uint16_t kBody = 2;  // after station and function
+  const auto words_from = [&](std::size_t offset) {
+    return f.words.empty() ? FieldSpan{}
+                           : FieldSpan{static_cast<std::uint16_t>(offset),
+                                       static_cast<std::uint16_t>(f.words.size() * 2)};
+  };
+  switch (f.function) {
+    case fc::kDiagnostics:
+      l.words = words_from(kBody + 2);
+      return;
+    case fc::kReadWriteMultiple:
+      if (f.role != Role::Request) return;
+      l.byte_count = {kBody + 8, 1};
+      l.words = words_from(kBody + 9);
+      return;
+    case fc::kReadFifoQueue:
+      if (f.role != Role::Response) return;
+      l.byte_count = {kBody, 2};
+      l.count = {kBody + 2, 2};
+      l.words = words_from(kBody + 4);
+      return;
+    default:
+      return;
+  }
+}
+
 FrameLayout rtu_layout(const Frame& f, std::size_t length) {
   FrameLayout l = rtu_header_layout(length);
   Cursor c(l);
@@ -87,6 +119,7 @@ FrameLayout rtu_layout(const Frame& f, std::size_t length) {
     plain_layout(f, c, l);
   }
   if (!f.words.empty()) l.words = c.take(f.words.size() * 2);
+  if (modbus_family(f.dialect) && !f.exception_code && l.check.present()) modbus_layout(f, l);
   return l;
 }
 

@@ -124,5 +124,22 @@ TEST(FrameLayout, AsciiRequestAndReply) {
   expect_span(l.end_delimiter, 20, 1);
 }
 
+// The plain Modbus frames whose fields do not follow the GSL order (CRCs are not checked here).
+TEST(FrameLayout, ModbusDiagnosticsReadWriteAndFifoPutTheirWordsWhereTheyAre) {
+  const auto diag = parse("11 08 00 00 A5 37 00 00", Dialect::Modbus, Role::Request);
+  expect_span(diag.layout.words, 4, 2);
+  const auto rw = parse("11 17 00 03 00 06 00 0E 00 03 06 00 FF 00 FF 00 FF 00 00",
+                        Dialect::Modbus, Role::Request);
+  expect_span(rw.layout.start, 2, 2);
+  expect_span(rw.layout.count, 4, 2);
+  expect_span(rw.layout.byte_count, 10, 1);
+  expect_span(rw.layout.words, 11, 6);
+  const auto fifo = parse("11 18 00 06 00 02 01 B8 12 84 00 00", Dialect::Modbus, Role::Response);
+  expect_span(fifo.layout.byte_count, 2, 2);
+  expect_span(fifo.layout.count, 4, 2);
+  expect_span(fifo.layout.words, 6, 4);
+  expect_span(fifo.layout.check, 10, 2);
+}
+
 }  // namespace
 }  // namespace pvtap
