@@ -94,6 +94,8 @@ void add_rtu_candidates(std::span<const std::uint8_t> b, RoleHint hint, DialectS
     return;
   }
   const std::uint8_t f = b[1];
+  // Most positions a hunt tries hold no function code of any dialect.
+  if (fc::detail::kFunctionKinds.of[f] == 0) return;
   const bool requests = hint != RoleHint::Response;
   const bool responses = hint != RoleHint::Request;
   if (dialects.contains(Dialect::Hybrid) && fc::is_hybrid_function(f) && !(strict && b[0] == 0)) {

@@ -135,7 +135,7 @@ void BusSession::Impl::on_frame(Direction direction, const FrameEvent& e) {
   // A damaged frame whose byte count lies does not parse, but it was sent: its header is
   // enough to pair it and count it.
   if (parsed || !e.check.ok) {
-    frame = parsed ? parsed.value() : frame_header(e.bytes, e.dialect, e.role);
+    frame = parsed ? std::move(parsed).value() : frame_header(e.bytes, e.dialect, e.role);
     const auto label = station_dialects.label(frame, e.check.ok);
     frame.dialect = label.dialect;
     out.dialect = label.dialect;

@@ -43,9 +43,11 @@ bool addresses_registers(std::uint8_t f) {
 StationDialects::StationDialects(DialectSet enabled, const RegisterDecoder& decoder)
     : choose_(enabled.contains(Dialect::Gsl) && enabled.contains(Dialect::Modbus)),
       gsl_runs_(wire_runs(decoder.map(Dialect::Gsl), decoder.options())) {
-  for (std::size_t s = 0; s < kStations; ++s) {
+  for (std::size_t s = 0; s < stations_.size(); ++s) {
     const RegisterMap* own = decoder.station_map(static_cast<std::uint8_t>(s));
-    if (own != nullptr && modbus_family(own->dialect())) forced_[s] = own->dialect();
+    if (own != nullptr && modbus_family(own->dialect())) {
+      stations_[s].forced = static_cast<std::uint8_t>(own->dialect());
+    }
   }
 }
 
@@ -69,54 +71,64 @@ std::optional<Dialect> StationDialects::evidence(const Frame& f) const {
   return addresses_gsl_map(*f.start, count) ? Dialect::Gsl : Dialect::Modbus;
 }
 
-// A frame of a dialect of its own says which its station speaks; a GSL/Modbus frame only
-// when its registers say it. A station's first frame claims weakly: a later claim replaces it
-// without a change being reported (a logger probing a GSL inverter with 0x2B first).
-StationDialects::Claim StationDialects::claim_of(const Frame& frame, Dialect label) const {
-  if (!modbus_family(label) || forced_[frame.station]) return {label, false};
-  if (const auto own = evidence(frame)) return {*own, false};
-  return {label, true};
-}
-
-void StationDialects::note_claim(std::uint8_t s, Label& out, Claim claim) {
-  auto& station = station_[s];
-  if (claim.weak && station) return;
-  if (station && !station->weak && station->dialect != claim.dialect) {
-    out.changed_from = station->dialect;
+Dialect StationDialects::choose(const Frame& frame, Station& st, std::optional<Dialect> own,
+                                bool check_ok) {
+  Dialect d = frame.dialect;
+  if (own && check_ok) {
+    st.decided = static_cast<std::uint8_t>(*own);
+    d = *own;
+  } else if (st.decided != kNone) {
+    d = static_cast<Dialect>(st.decided);
+  } else if (own) {
+    d = *own;
+  } else if (frame.role == Role::Response && st.last_request != kNone) {
+    d = static_cast<Dialect>(st.last_request);
+  } else if (fc::is_modbus_function(frame.function) && !fc::is_gsl_function(frame.function)) {
+    d = Dialect::Modbus;
   }
-  station = claim;
+  // GSL names only its own codes; another Modbus function of a GSL station is plain Modbus.
+  // (A damaged function code, which no dialect has, keeps the label its bytes were framed by.)
+  if (d == Dialect::Gsl && !fc::is_gsl_function(frame.function) &&
+      fc::is_modbus_function(frame.function)) {
+    d = Dialect::Modbus;
+  }
+  if (frame.role == Role::Request) st.last_request = static_cast<std::uint8_t>(d);
+  return d;
 }
 
+// A station's first frame claims weakly: a later claim replaces it without a change being
+// reported (a logger probing a GSL inverter with 0x2B first).
+void StationDialects::note_claim(Station& st, Label& out, Dialect claim, bool weak) {
+  const auto code = static_cast<std::uint8_t>(claim);
+  if (st.speaks == kNone || (st.speaks_weakly && !weak)) {
+    st.speaks = code;
+    st.speaks_weakly = weak;
+    return;
+  }
+  if (weak || st.speaks == code) return;
+  if (!st.speaks_weakly) out.changed_from = static_cast<Dialect>(st.speaks);
+  st.speaks = code;
+  st.speaks_weakly = false;
+}
+
+// A frame of a dialect of its own says which its station speaks; a GSL/Modbus frame only
+// when its registers say it (or weakly, as a station's first frame).
 StationDialects::Label StationDialects::label(const Frame& frame, bool check_ok) {
   Label out{frame.dialect, std::nullopt};
-  const std::uint8_t s = frame.station;
-  if (modbus_family(frame.dialect) && forced_[s]) {
-    out.dialect = *forced_[s];
-  } else if (choose_ && modbus_family(frame.dialect)) {
-    const std::optional<Dialect> own = evidence(frame);
-    if (own && check_ok) {
-      decided_[s] = *own;
-      out.dialect = *own;
-    } else if (decided_[s]) {
-      out.dialect = *decided_[s];
-    } else if (own) {
-      out.dialect = *own;
-    } else if (frame.role == Role::Response && last_request_[s]) {
-      out.dialect = *last_request_[s];
-    } else {
-      const bool modbus_only =
-          fc::is_modbus_function(frame.function) && !fc::is_gsl_function(frame.function);
-      out.dialect = modbus_only ? Dialect::Modbus : frame.dialect;
-    }
-    // GSL names only its own codes; another Modbus function of a GSL station is plain Modbus.
-    // (A damaged function code, which no dialect has, keeps the label its bytes were framed by.)
-    if (out.dialect == Dialect::Gsl && !fc::is_gsl_function(frame.function) &&
-        fc::is_modbus_function(frame.function)) {
-      out.dialect = Dialect::Modbus;
-    }
-    if (frame.role == Role::Request) last_request_[s] = out.dialect;
+  Station& st = stations_[frame.station];
+  if (!modbus_family(frame.dialect)) {
+    if (check_ok) note_claim(st, out, frame.dialect, false);
+    return out;
   }
-  if (check_ok) note_claim(s, out, claim_of(frame, out.dialect));
+  if (st.forced != kNone) {
+    out.dialect = static_cast<Dialect>(st.forced);
+    if (check_ok) note_claim(st, out, out.dialect, false);
+    return out;
+  }
+  // What the frame's own registers say, once: it labels the frame and judges its station.
+  const std::optional<Dialect> own = evidence(frame);
+  if (choose_) out.dialect = choose(frame, st, own, check_ok);
+  if (check_ok) note_claim(st, out, own.value_or(out.dialect), !own);
   return out;
 }
 

@@ -41,22 +41,24 @@ class StationDialects {
   Label label(const Frame& frame, bool check_ok);
 
  private:
-  struct Claim {
-    Dialect dialect = Dialect::Gsl;
-    bool weak = false;
+  // What is known of one station; kNone where nothing is. Kept together so that labelling a
+  // frame touches one small record (it runs for every frame of an audit).
+  static constexpr std::uint8_t kNone = 0xFF;
+  struct Station {
+    std::uint8_t decided = kNone;       // by a good request's registers
+    std::uint8_t forced = kNone;        // by a map given for the station
+    std::uint8_t last_request = kNone;  // the label of the last request to it
+    std::uint8_t speaks = kNone;        // what its frames claimed last
+    bool speaks_weakly = false;         // ... by its first frame alone
   };
   std::optional<Dialect> evidence(const Frame& frame) const;
-  Claim claim_of(const Frame& frame, Dialect label) const;
-  void note_claim(std::uint8_t station, Label& out, Claim claim);
+  Dialect choose(const Frame& frame, Station& st, std::optional<Dialect> own, bool check_ok);
+  static void note_claim(Station& st, Label& out, Dialect claim, bool weak);
   bool addresses_gsl_map(std::uint16_t start, std::uint16_t count) const;
 
   bool choose_ = false;        // both GSL and Modbus are enabled
   std::vector<Run> gsl_runs_;  // the GSL map's wire addresses, sorted
-  static constexpr std::size_t kStations = 256;
-  std::array<std::optional<Dialect>, kStations> decided_{};
-  std::array<std::optional<Dialect>, kStations> forced_{};  // by a map given for the station
-  std::array<std::optional<Dialect>, kStations> last_request_{};
-  std::array<std::optional<Claim>, kStations> station_{};  // what each station speaks
+  std::array<Station, 256> stations_{};
 };
 
 }  // namespace pvtap::detail

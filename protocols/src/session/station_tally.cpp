@@ -1,6 +1,7 @@
 #include "session/station_tally.h"
 
 #include "pvtap/codec/device_identification.h"
+#include "pvtap/codec/function_codes.h"
 #include "pvtap/session/event_tally.h"
 #include "pvtap/session/station_rule.h"
 
@@ -17,6 +18,8 @@ void keep(std::string& kept, std::string_view said) {
 // A good reply in which the station names itself.
 void note_device_name(StationSummary& s, const SessionFrame& f) {
   if (!f.check.ok || f.frame == nullptr || f.role != Role::Response) return;
+  const std::uint8_t function = f.frame->function;
+  if (function != fc::kEncapsulatedInterface && function != fc::kReportServerId) return;
   if (const auto id = read_device_identification(*f.frame)) {
     keep(s.device.vendor, id->vendor());
     keep(s.device.product, id->product());
@@ -56,7 +59,11 @@ void StationTally::count_frame(StationSummary& s, const SessionFrame& f) {
   if (f.duplicate) ++s.duplicates;
   if (f.count_mismatch) ++s.count_mismatches;
   if (f.dialect_changed_from) ++s.dialect_changes;
-  note_device_name(s, f);
+  // Only two functions name a device: the call is skipped for the rest.
+  if (f.frame != nullptr && (f.frame->function == fc::kEncapsulatedInterface ||
+                             f.frame->function == fc::kReportServerId)) {
+    note_device_name(s, f);
+  }
   if (exception_code(f)) ++s.exceptions;
 }
 

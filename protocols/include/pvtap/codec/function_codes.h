@@ -51,36 +51,18 @@ constexpr bool is_gsl_exception(std::uint8_t f) {
   return (f & kExceptionFlag) != 0 && f != kHybridError;
 }
 
-constexpr bool is_hybrid_function(std::uint8_t f) {
-  switch (f) {
-    case kHybridDeviceInfo:
-    case kHybridRunningData:
-    case kHybridSettings:
-    case kHybridManufacturer:
-    case kHybridWriteParameter:
-    case kHybridRestoreFactory:
-    case kHybridError:
-      return true;
-    default:
-      return false;
-  }
+// The user-defined codes of the Modbus specification (no public length rule).
+constexpr bool is_user_defined_function(std::uint8_t f) {
+  return (f >= 0x41 && f <= 0x48) || (f >= 0x64 && f <= 0x6E);
 }
 
-// The function codes of the GSL seed, and exceptions to them.
-constexpr bool is_gsl_function(std::uint8_t f) {
-  switch (f & ~kExceptionFlag) {
-    case kGslReadHolding:
-    case kGslReadInput:
-    case kGslWriteSingle:
-    case kGslWriteMultiple:
-      return f != kHybridError;
-    default:
-      return false;
-  }
-}
+namespace detail {
 
-// The public function codes with a length rule (section 6's table), without exceptions.
-constexpr bool is_public_modbus_function(std::uint8_t f) {
+// What each function code is, as bits, so that the framing and the parser, which ask for
+// every byte that may start a frame, look it up instead of walking switches.
+enum FunctionKind : std::uint8_t { kHybridKind = 1, kGslKind = 2, kModbusKind = 4 };
+
+constexpr bool is_public_code(unsigned f) {
   switch (f) {
     case kReadCoils:
     case kReadDiscreteInputs:
@@ -107,20 +89,65 @@ constexpr bool is_public_modbus_function(std::uint8_t f) {
   }
 }
 
-// The user-defined codes of the Modbus specification (no public length rule).
-constexpr bool is_user_defined_function(std::uint8_t f) {
-  return (f >= 0x41 && f <= 0x48) || (f >= 0x64 && f <= 0x6E);
+constexpr std::uint8_t kind_of(unsigned f) {
+  std::uint8_t k = 0;
+  switch (f) {
+    case kHybridDeviceInfo:
+    case kHybridRunningData:
+    case kHybridSettings:
+    case kHybridManufacturer:
+    case kHybridWriteParameter:
+    case kHybridRestoreFactory:
+    case kHybridError:
+      k |= kHybridKind;
+      break;
+    default:
+      break;
+  }
+  const unsigned base = f & ~unsigned{kExceptionFlag};
+  const bool exception = (f & kExceptionFlag) != 0 && f != kHybridError;
+  const bool gsl_code = base == kGslReadHolding || base == kGslReadInput ||
+                        base == kGslWriteSingle || base == kGslWriteMultiple;
+  if (gsl_code && f != kHybridError) k |= kGslKind;
+  // Exceptions only to public or user-defined codes: half of all byte values would otherwise
+  // start a 5-byte frame, and noise would turn into damaged frames.
+  const bool user = (base >= 0x41 && base <= 0x48) || (base >= 0x64 && base <= 0x6E);
+  if (is_public_code(f) || (exception && (is_public_code(base) || user))) k |= kModbusKind;
+  return k;
+}
+
+struct FunctionKinds {
+  std::uint8_t of[256];
+};
+
+constexpr FunctionKinds make_function_kinds() {
+  FunctionKinds t{};
+  for (unsigned f = 0; f < 256; ++f) t.of[f] = kind_of(f);
+  return t;
+}
+
+inline constexpr FunctionKinds kFunctionKinds = make_function_kinds();
+
+}  // namespace detail
+
+constexpr bool is_hybrid_function(std::uint8_t f) {
+  return (detail::kFunctionKinds.of[f] & detail::kHybridKind) != 0;
+}
+
+// The function codes of the GSL seed, and exceptions to them.
+constexpr bool is_gsl_function(std::uint8_t f) {
+  return (detail::kFunctionKinds.of[f] & detail::kGslKind) != 0;
+}
+
+// The public function codes with a length rule (section 6's table), without exceptions.
+constexpr bool is_public_modbus_function(std::uint8_t f) {
+  return detail::is_public_code(f);
 }
 
 // A function code the Modbus family frames by a length rule: the public codes, and the
 // exception to a public or user-defined code (a device answers those it lacks with 01).
-// Exceptions to other codes are not read: half of all byte values would then start a 5-byte
-// frame, and noise would turn into damaged frames.
 constexpr bool is_modbus_function(std::uint8_t f) {
-  if (is_public_modbus_function(f)) return true;
-  if (!is_gsl_exception(f)) return false;
-  const auto base = static_cast<std::uint8_t>(f & ~kExceptionFlag);
-  return is_public_modbus_function(base) || is_user_defined_function(base);
+  return (detail::kFunctionKinds.of[f] & detail::kModbusKind) != 0;
 }
 
 // Whether frames of dialect `d` may carry function code `f`.

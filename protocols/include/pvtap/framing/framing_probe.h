@@ -24,7 +24,7 @@ struct FrameCandidate {
 
 // CandidateList: the readings of the bytes at one position (at most a handful).
 struct CandidateList {
-  static constexpr std::size_t kMax = 8;
+  static constexpr std::size_t kMax = 6;  // Hybrid and Modbus share 0x11 0x16 0x17 0x18
   FrameCandidate items[kMax];
   std::size_t size = 0;
   // The smallest number of bytes needed to know the length of every reading; 0 when known.
