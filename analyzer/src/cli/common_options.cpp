@@ -30,6 +30,8 @@ std::optional<DialectSet> dialects_named(std::string_view names) {
     const std::size_t comma = names.find(',');
     const auto d = dialect_named(names.substr(0, comma));
     if (!d) return std::nullopt;
+    // "modbus,gsl": a shared code nothing else decides is plain Modbus (section 6's order).
+    if (*d == Dialect::Modbus && !set.contains(Dialect::Gsl)) set = set.preferring_modbus();
     set = set.with(*d);
     names = comma == std::string_view::npos ? std::string_view{} : names.substr(comma + 1);
   }
@@ -43,7 +45,9 @@ void add_protocol_options(CLI::App& audit, CommonOptions& o, BaudRange baud_rang
   audit
       .add_option("--dialect", o.dialect,
                   "dialect(s) to recognize: auto, or a comma-separated list of ascii, hybrid, "
-                  "gsl, modbus (auto is all four; modbus is every other Modbus RTU device)")
+                  "gsl, modbus (auto is all four; modbus is every other Modbus RTU device). "
+                  "A GSL code that nothing else labels is taken as the earlier of gsl and "
+                  "modbus in the list (auto: gsl)")
       ->check(CLI::Validator(
           [](std::string& value) {
             return dialects_named(value) ? std::string{}

@@ -42,6 +42,7 @@ bool addresses_registers(std::uint8_t f) {
 
 StationDialects::StationDialects(DialectSet enabled, const RegisterDecoder& decoder)
     : choose_(enabled.contains(Dialect::Gsl) && enabled.contains(Dialect::Modbus)),
+      undecided_(enabled.prefers_modbus() ? Dialect::Modbus : Dialect::Gsl),
       gsl_runs_(wire_runs(decoder.map(Dialect::Gsl), decoder.options())) {
   for (std::size_t s = 0; s < stations_.size(); ++s) {
     const RegisterMap* own = decoder.station_map(static_cast<std::uint8_t>(s));
@@ -85,6 +86,8 @@ Dialect StationDialects::choose(const Frame& frame, Station& st, std::optional<D
     d = static_cast<Dialect>(st.last_request);
   } else if (fc::is_modbus_function(frame.function) && !fc::is_gsl_function(frame.function)) {
     d = Dialect::Modbus;
+  } else if (d == Dialect::Gsl) {
+    d = undecided_;
   }
   // GSL names only its own codes; another Modbus function of a GSL station is plain Modbus.
   // (A damaged function code, which no dialect has, keeps the label its bytes were framed by.)

@@ -56,8 +56,9 @@ class StationDialects {
   static void note_claim(Station& st, Label& out, Dialect claim, bool weak);
   bool addresses_gsl_map(std::uint16_t start, std::uint16_t count) const;
 
-  bool choose_ = false;        // both GSL and Modbus are enabled
-  std::vector<Run> gsl_runs_;  // the GSL map's wire addresses, sorted
+  bool choose_ = false;               // both GSL and Modbus are enabled
+  Dialect undecided_ = Dialect::Gsl;  // a shared code's label when nothing else decides
+  std::vector<Run> gsl_runs_;         // the GSL map's wire addresses, sorted
   std::array<Station, 256> stations_{};
 };
 

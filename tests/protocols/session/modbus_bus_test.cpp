@@ -213,6 +213,21 @@ TEST_F(ModbusBus, ARequestThatOnlyOverlapsGslRegistersIsPlainModbus) {
   EXPECT_EQ(report.dialect_changes, 0u);
 }
 
+// Section 6: with nothing to go by, the earlier of gsl and modbus in --dialect's order.
+TEST_F(ModbusBus, AReplyWithNothingToGoByTakesTheEarlierDialectOfTheList) {
+  send(adu(0x05, "03 02 00 64"));
+  BusSessionOptions options;
+  options.reassembler.dialects = DialectSet::none().with(Dialect::Modbus).with(Dialect::Gsl);
+  EXPECT_FALSE(options.reassembler.dialects.prefers_modbus());
+  options.reassembler.dialects = options.reassembler.dialects.preferring_modbus();
+  make(options);
+  send(adu(0x05, "03 02 00 64"));
+  finish();
+  ASSERT_EQ(recorder_.frames.size(), 2u);
+  EXPECT_EQ(recorder_.frames[0].dialect, Dialect::Gsl);
+  EXPECT_EQ(recorder_.frames[1].dialect, Dialect::Modbus);
+}
+
 TEST_F(ModbusBus, WithoutTheModbusDialectACoilReadIsNoise) {
   BusSessionOptions options;
   options.reassembler.dialects = DialectSet::none().with(Dialect::Gsl).with(Dialect::Hybrid);

@@ -42,9 +42,16 @@ class DialectSet {
   constexpr DialectSet with(Dialect d) const {
     return DialectSet(static_cast<std::uint8_t>(bits_ | bit(d)));
   }
+  // PROTOCOLS.md section 6 labels a frame of a code GSL shares with Modbus that nothing else
+  // decides as the earlier of the two in --dialect's order: GSL unless told otherwise.
+  constexpr DialectSet preferring_modbus() const {
+    return DialectSet(static_cast<std::uint8_t>(bits_ | kPreferModbus));
+  }
+  constexpr bool prefers_modbus() const { return (bits_ & kPreferModbus) != 0; }
   constexpr bool operator==(const DialectSet&) const = default;
 
  private:
+  static constexpr std::uint8_t kPreferModbus = 0x80;
   constexpr explicit DialectSet(std::uint8_t bits) : bits_(bits) {}
   static constexpr std::uint8_t bit(Dialect d) {
     return static_cast<std::uint8_t>(1u << static_cast<unsigned>(d));
