@@ -55,6 +55,9 @@ def compare_frames(found, truth, timed, bad):
         if frame_key(f, "raw") != frame_key(t, "hex"):
             bad.add(f"frame {i}: audit {frame_key(f, 'raw')} != truth {frame_key(t, 'hex')}")
             break
+        # A damaged frame's dialect is a reader's guess from bytes that may be the damaged ones.
+        if t["check"] == "ok" and f["dialect"] != t["dialect"]:
+            bad.add(f"frame {i}: dialect {f['dialect']} != truth {t['dialect']}")
         if timed and not same_number(f["ts"], t["ts"]):
             bad.add(f"frame {i}: ts {f['ts']} != {t['ts']}")
         if timed and "latency_ms" in f and not abs(f["latency_ms"] - t["latency_ms"]) < 0.002:
@@ -68,6 +71,9 @@ def compare_values(i, found, truth, bad):
     if truth.get("fault") == "duplicate":
         return  # answers no request, so its words have no known start address
     values = {v["register"]: v.get("value") for v in found.get("values", [])}
+    if truth["dialect"] == "modbus":
+        compare_float_words(i, values, truth, bad)
+        return
     for v in truth.get("values", []):
         if "value" not in v:
             continue  # bits, enums, text: their raw words are checked with the frame bytes
@@ -77,18 +83,43 @@ def compare_values(i, found, truth, bad):
                     f"truth {v['value']}")
 
 
-READ_FUNCTIONS = {"gsl": (0x03, 0x04), "hybrid": (0x11, 0x12, 0x16, 0x17, 0x1F), "ascii": (0x52,)}
+def compare_float_words(i, values, truth, bad):
+    """A plain Modbus device's truth names the IEEE-754 singles it sent (raw: the 32 bits, high
+    word first); audit, given no map for the device, reports each register's word."""
+    for v in truth.get("values", []):
+        address = int(v["register"], 16)
+        high, low = (values.get(f"0x{a:04X}") for a in (address, address + 1))
+        if not isinstance(high, int) or not isinstance(low, int) or high << 16 | low != v["raw"]:
+            bad.add(f"frame {i}: float at {v['register']} ({v['key']}) words {high}, {low}, "
+                    f"truth 0x{v['raw']:08x}")
+
+
+# Requests whose start and count are poll block fields: reads, and the block writes of plain
+# Modbus. A one-register or one-coil write names a start only; other requests neither.
+READ_FUNCTIONS = {"gsl": (0x03, 0x04), "hybrid": (0x11, 0x12, 0x16, 0x17, 0x1F), "ascii": (0x52,),
+                  "modbus": (0x01, 0x02, 0x03, 0x04, 0x0F, 0x10)}
+MODBUS_START_ONLY = (0x05, 0x06)
+MODBUS_NO_BLOCK = (0x08, 0x2B)
 
 
 def request_block(frame):
-    """(station, dialect, function, start, count) of a read request, from its bytes."""
+    """(station, dialect, function, start, count) of a poll request, from its bytes."""
     raw = bytes.fromhex(frame["hex"])
+    start = count = None
     if frame["dialect"] == "ascii":  # ENQ station(2) R start(4) count(2) checksum(4) EOT
         text = raw[1:-1].decode("ascii")
         start, count = int(text[3:7], 16), int(text[7:9], 16)
-    else:  # station, function, start, count, CRC
+    elif frame["function"] in READ_FUNCTIONS[frame["dialect"]]:  # station, function, start, count
         start, count = int.from_bytes(raw[2:4], "big"), int.from_bytes(raw[4:6], "big")
+    elif frame["function"] in MODBUS_START_ONLY:
+        start = int.from_bytes(raw[2:4], "big")
     return (frame["station"], frame["dialect"], frame["function"], start, count)
+
+
+def has_block_rule(frame):
+    if frame["function"] in READ_FUNCTIONS[frame["dialect"]]:
+        return True
+    return frame["dialect"] == "modbus" and frame["function"] in MODBUS_START_ONLY + MODBUS_NO_BLOCK
 
 
 def interval_figures(times):
@@ -108,7 +139,7 @@ def compare_polls(summary, truth_frames, timed, bad):
     for t in truth_frames:
         if t["role"] != "request" or t["check"] != "ok":
             continue
-        if t["function"] not in READ_FUNCTIONS[t["dialect"]]:
+        if not has_block_rule(t):
             bad.add(f"polls: no block rule for {t['dialect']} function {t['function']}")
             return
         times.setdefault(request_block(t), []).append(t["ts"])
@@ -117,8 +148,8 @@ def compare_polls(summary, truth_frames, timed, bad):
         for p in bus["polls"]:
             key = (p["station"], p["dialect"], p["function"], p["start"], p["count"])
             found[key] = (p["intervals"], p["period_ms"], p["jitter_ms"], p["max_deviation_ms"])
-    if sorted(found) != sorted(times):
-        bad.add(f"poll blocks: audit {sorted(found)}, truth {sorted(times)}")
+    if sorted(found, key=str) != sorted(times, key=str):
+        bad.add(f"poll blocks: audit {sorted(found, key=str)}, truth {sorted(times, key=str)}")
         return
     for key, ts in times.items():
         want = interval_figures(ts)
@@ -130,12 +161,14 @@ def compare_polls(summary, truth_frames, timed, bad):
 
 
 def compare_stations(summary, truth, bad):
-    """The stations are the simulated inverters: a damaged frame's station byte names none. The
-    bad checks are each counted once, under a station or the unknown station."""
-    inverters = list(range(truth["first_station"], truth["first_station"] + truth["inverters"]))
+    """The stations are the simulated inverters and plain Modbus devices: a damaged frame's
+    station byte names none. The bad checks are each counted once, under a station or the
+    unknown station."""
+    stations = list(range(truth["first_station"], truth["first_station"] + truth["inverters"]))
+    stations = sorted(stations + [d["station"] for d in truth.get("devices", [])])
     found = sorted(int(key) for key in summary.get("stations", {}))
-    if found != inverters:
-        bad.add(f"stations: audit {found}, truth {inverters}")
+    if found != stations:
+        bad.add(f"stations: audit {found}, truth {stations}")
     unknown = summary.get("unknown_station", {})
     counted = sum(s["bad_checks"] for s in summary.get("stations", {}).values())
     counted += unknown.get("damaged_frames", 0)

@@ -139,7 +139,7 @@ TEST(FrameDamage, HitsEveryByteOfARequestWithABitOrAByte) {
     SimRandom random(17);
     for (int draw = 0; draw < 3000; ++draw) {
       std::vector<std::uint8_t> bytes = original;
-      const FrameDamage damage = damage_frame(bytes, d, random);
+      const FrameDamage damage = damage_frame(bytes, d, Role::Request, random);
       ++hits[damage.at];
       unsigned changed = 0;
       for (std::size_t i = 0; i < bytes.size(); ++i) changed += bytes[i] != original[i];

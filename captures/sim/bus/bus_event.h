@@ -12,6 +12,13 @@ namespace pvtap::sim {
 
 using Micros = std::int64_t;  // simulated time, microseconds since the Unix epoch
 
+// DeviceLabel: what the ground truth says a plain Modbus device is ("meter", "io_module") and
+// the names its device identification gives (empty when it answers none).
+struct DeviceLabel {
+  std::string kind;
+  std::string vendor, product, revision;
+};
+
 // RegisterTruth: the value one register held when an inverter answered.
 struct RegisterTruth {
   std::string address;  // as the reference writes it ("0x1006", "1056")
@@ -53,6 +60,12 @@ struct FaultTruth {
   std::string kind;
 };
 
+// DeviceTruth: a plain Modbus device on the bus and what it is.
+struct DeviceTruth {
+  std::uint8_t station = 0;
+  DeviceLabel label;
+};
+
 // BusTimeline: everything the simulated bus carried, in time order.
 struct BusTimeline {
   std::vector<BusEvent> events;
@@ -62,6 +75,7 @@ struct BusTimeline {
   std::vector<FaultTruth> faults;
   // Requests still waiting when the capture ends: no capture can show their timeout.
   std::vector<TimeoutTruth> unanswered_at_end;
+  std::vector<DeviceTruth> devices;  // the plain Modbus devices, in poll order
 };
 
 }  // namespace pvtap::sim

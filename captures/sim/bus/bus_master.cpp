@@ -35,6 +35,7 @@ BusMaster::BusMaster(const SimConfig& config)
     const Dialect d = config.dialects[i % config.dialects.size()];
     inverters_.emplace_back(station, d, config.seed, config.start);
   }
+  add_devices();
 }
 
 std::optional<FaultKind> BusMaster::pick_fault(Dialect d) {
@@ -65,15 +66,15 @@ Micros BusMaster::timeout_after(Micros request_end) {
   return request_end + ms(config_.timeout_s * 1000.0) + random_.between(20, 40) * 1000;
 }
 
-Micros BusMaster::send_damaged_requests(const Inverter& inv, const PollBlock& block, Micros at) {
+Micros BusMaster::send_damaged_requests(const Frame& request, Micros at) {
   for (unsigned sent = 1;; ++sent) {
-    BusEvent req = frame_event(read_request(inv.dialect(), inv.station(), block));
-    const FrameDamage damage = damage_frame(req.bytes, inv.dialect(), random_);
+    BusEvent req = frame_event(request);
+    const FrameDamage damage = damage_frame(req.bytes, request.dialect, Role::Request, random_);
     mark_damaged(req, damage, FaultKind::CorruptRequest);
     const std::uint8_t station = req.station, function = req.function;
     const Micros end = wire_.put(std::move(req), at);
     timeline_.faults.push_back(
-        {end, inv.station(), std::string(to_string(FaultKind::CorruptRequest))});
+        {end, request.station, std::string(to_string(FaultKind::CorruptRequest))});
     // An ASCII request damaged into noise is no request at all to a reader.
     if (damage.reading == DamageReading::BadCheckFrame)
       timeline_.unanswered_damaged_requests.push_back({at, end, station, function});
@@ -87,27 +88,26 @@ Micros BusMaster::send_damaged_requests(const Inverter& inv, const PollBlock& bl
 Micros BusMaster::poll(Inverter& inv, const PollBlock& block, Micros at) {
   const std::optional<FaultKind> fault = placed(pick_fault(inv.dialect()));
   next_request_pins_ = false;
-  if (fault == FaultKind::CorruptRequest) return send_damaged_requests(inv, block, at);
-  const Micros request_end =
-      wire_.put(frame_event(read_request(inv.dialect(), inv.station(), block)), at);
+  const Frame request = read_request(inv.dialect(), inv.station(), block);
+  if (fault == FaultKind::CorruptRequest) return send_damaged_requests(request, at);
+  const Micros request_end = wire_.put(frame_event(request), at);
   if (fault)
     timeline_.faults.push_back({request_end, inv.station(), std::string(to_string(*fault))});
   if (fault == FaultKind::Missing) {
     timeline_.timeouts.push_back({at, request_end, inv.station(), block.function});
     return timeout_after(request_end);
   }
-  return answer(inv, block, fault, {at, request_end});
+  BusEvent rep = inv.reply(block, fault, request_end, random_);
+  return answer(std::move(rep), fault, {at, request_end, inv.station(), block.function});
 }
 
-Micros BusMaster::answer(Inverter& inv, const PollBlock& block, std::optional<FaultKind> fault,
-                         TimeoutTruth request) {
-  BusEvent rep = inv.reply(block, fault, request.request_end, random_);
+Micros BusMaster::answer(BusEvent rep, std::optional<FaultKind> fault, TimeoutTruth request) {
   std::optional<FrameDamage> damage;
   if (fault == FaultKind::Corrupt) {
-    damage = damage_frame(rep.bytes, inv.dialect(), random_);
+    damage = damage_frame(rep.bytes, rep.dialect, Role::Response, random_);
     mark_damaged(rep, *damage, FaultKind::Corrupt);
   } else if (fault == FaultKind::CorruptData) {
-    damage = damage_reply_data(rep.bytes, inv.dialect(), random_);
+    damage = damage_reply_data(rep.bytes, rep.dialect, random_);
     mark_damaged(rep, *damage, FaultKind::CorruptData);
   }
   // A slow reply still comes inside the master's timeout: late, not lost.
@@ -120,8 +120,6 @@ Micros BusMaster::answer(Inverter& inv, const PollBlock& block, std::optional<Fa
   Micros end = wire_.put(std::move(rep), request.request_end + copy.latency);
   if (damage && damage->reading == DamageReading::Noise) {
     // No reply a reader can see: the request timed out, and the master waited it out.
-    request.station = inv.station();
-    request.function = block.function;
     timeline_.timeouts.push_back(request);
     return std::max(end, timeout_after(request.request_end));
   }
@@ -162,6 +160,10 @@ void BusMaster::close_on_a_good_frame(Micros at) {
       events.back().role != Role::Request || events.back().check_ok)
     return;
   closing_ = true;
+  if (inverters_.empty()) {
+    poll_device(*devices_.front(), devices_.front()->requests(1).front(), at);
+    return;
+  }
   Inverter& inv = inverters_.front();
   for (const PollBlock& block : poll_blocks(inv.dialect())) {
     if (block.first_round_only) continue;
@@ -181,11 +183,15 @@ BusTimeline BusMaster::run() {
         at = poll(inv, block, at);
       }
     }
+    for (auto& device : devices_)
+      for (const Frame& request : device->requests(round)) at = poll_device(*device, request, at);
     round_start = std::max(round_start + ms(config_.period_s * 1000.0), at);
   }
   close_on_a_good_frame(round_start);  // the next round's first poll
   set_aside_unexpired_timeouts();
   timeline_.events = wire_.take_events();
+  for (const auto& device : devices_)
+    timeline_.devices.push_back({device->station(), device->label()});
   return std::move(timeline_);
 }
 

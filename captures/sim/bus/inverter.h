@@ -20,6 +20,7 @@ class Inverter {
 
   std::uint8_t station() const { return station_; }
   Dialect dialect() const { return dialect_; }
+  const PlantState& plant() const { return plant_.state(); }
 
   // The reply to a read of `block` whose request ended at `request_end`, with the values the
   // plant had then, shaped by the fault (an error reply, a count one short).

@@ -28,6 +28,20 @@ std::string parse_dialects(const std::string& text, std::vector<Dialect>& out) {
   return {};
 }
 
+// Every device needs a station of its own, and a bus something on it.
+std::string station_problem(const SimConfig& c, unsigned first_station) {
+  const auto taken = [&](std::optional<std::uint8_t> s) {
+    return s && *s >= first_station && *s < first_station + c.inverters;
+  };
+  if (c.inverters == 0 && !c.meter_station && !c.io_module_station)
+    return "--inverters 0 needs a --meter or an --io-module";
+  if (taken(c.meter_station) || taken(c.io_module_station))
+    return "--meter and --io-module need stations no inverter has";
+  if (c.meter_station && c.meter_station == c.io_module_station)
+    return "--meter and --io-module need different stations";
+  return {};
+}
+
 }  // namespace
 
 std::optional<SimCommand> parse_sim_command(int argc, char** argv, int& exit_code) {
@@ -39,7 +53,9 @@ std::optional<SimCommand> parse_sim_command(int argc, char** argv, int& exit_cod
   CLI::App app{"pvtap-sim: a simulated RS485 bus of PV inverters, written as captures"};
   app.add_option("--seed", c.seed, "seed; one seed gives the same bytes every time");
   app.add_option("--dialect", dialects, "ascii, hybrid, gsl, or a list for a mixed bus");
-  app.add_option("--inverters", c.inverters, "number of inverters")->check(CLI::Range(1, 31));
+  app.add_option("--inverters", c.inverters,
+                 "number of inverters (0: only the --meter and --io-module devices)")
+      ->check(CLI::Range(0, 31));
   app.add_option("--first-station", first_station, "address of the first inverter")
       ->check(CLI::Range(1, 200));
   app.add_option("--start", start_s, "simulated start time, Unix seconds (UTC = solar time)");
@@ -50,6 +66,14 @@ std::optional<SimCommand> parse_sim_command(int argc, char** argv, int& exit_cod
   app.add_option("--faults", faults,
                  "none, all, or kind=percent,... (corrupt missing slow "
                  "noise error_reply count_mismatch duplicate corrupt_request corrupt_data)");
+  app.add_option("--meter", c.meter_station,
+                 "station of a plain Modbus energy meter (SDM630 float registers, device "
+                 "identification) polled after the inverters")
+      ->check(CLI::Range(1, 247));
+  app.add_option("--io-module", c.io_module_station,
+                 "station of a plain Modbus IO module (coils, discrete inputs, registers; "
+                 "function codes 1 2 3 4 5 6 15 16) polled after the inverters")
+      ->check(CLI::Range(1, 247));
   app.add_option("--pdu", cmd.outputs.pdu, "write a link type 252 capture");
   app.add_option("--gateway", cmd.outputs.gateway, "write an Ethernet/IPv4/TCP gateway capture");
   app.add_option("--chunked", cmd.outputs.chunked, "write a USER0 chunked serial capture");
@@ -76,6 +100,12 @@ std::optional<SimCommand> parse_sim_command(int argc, char** argv, int& exit_cod
       std::find(c.dialects.begin(), c.dialects.end(), Dialect::Ascii) != c.dialects.end();
   if (ascii && first_station + c.inverters - 1 > 0x1F) {
     std::cerr << "pvtap-sim: ASCII stations go up to 31; lower --first-station or --inverters\n";
+    exit_code = 2;
+    return std::nullopt;
+  }
+  error = station_problem(c, first_station);
+  if (!error.empty()) {
+    std::cerr << "pvtap-sim: " << error << "\n";
     exit_code = 2;
     return std::nullopt;
   }

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "bus/bus_event.h"
@@ -13,7 +14,7 @@ namespace pvtap::sim {
 struct SimConfig {
   std::uint64_t seed = 1;
   std::vector<Dialect> dialects{Dialect::Gsl};  // station i speaks dialects[i % size]
-  unsigned inverters = 3;
+  unsigned inverters = 3;                       // 0: a bus of plain Modbus devices only
   std::uint8_t first_station = 1;
   Micros start = 1'782'036'000'000'000;  // 2026-06-21 10:00:00 UTC
   double duration_s = 60.0;
@@ -21,6 +22,9 @@ struct SimConfig {
   double timeout_s = 1.0;  // how long the master waits for a reply
   unsigned baud = 9600;
   FaultPlan faults;
+  // Plain Modbus devices beside the inverters, polled after them in every round.
+  std::optional<std::uint8_t> meter_station;
+  std::optional<std::uint8_t> io_module_station;
 };
 
 }  // namespace pvtap::sim

@@ -31,12 +31,59 @@ bool good_crc_prefix(std::span<const std::uint8_t> damaged) {
   return false;
 }
 
+// The request quantity limits of the Modbus specification (PROTOCOLS.md section 6).
+std::uint16_t max_quantity(std::uint8_t function) {
+  switch (function) {
+    case fc::kReadCoils:
+    case fc::kReadDiscreteInputs:
+      return 2000;
+    case fc::kGslReadHolding:
+    case fc::kGslReadInput:
+      return 125;
+    case fc::kWriteMultipleCoils:
+      return 1968;
+    case fc::kGslWriteMultiple:
+      return 123;
+    default:
+      return 0;  // no quantity field
+  }
+}
+
+// A plain Modbus frame's length follows from its function (and a request's quantity is
+// bounded): damage to the function byte, or a request quantity the specification rules out,
+// leaves a run that reads as a frame of another length or as noise as well as a damaged frame.
+bool modbus_shape_kept(std::span<const std::uint8_t> original,
+                       std::span<const std::uint8_t> damaged, bool request) {
+  if (damaged[1] != original[1]) return false;
+  // A byte count (a read's reply, a block write's request) gives the length too.
+  const bool counted =
+      request ? original[1] == fc::kWriteMultipleCoils || original[1] == fc::kGslWriteMultiple
+              : max_quantity(original[1]) > 0 && original[1] <= 0x04;
+  if (counted && damaged[request ? 6 : 2] != original[request ? 6 : 2]) return false;
+  // A single coil is written with FF00 or 0000 and nothing else.
+  if (original[1] == fc::kWriteSingleCoil) {
+    const unsigned value = static_cast<unsigned>(damaged[4] << 8 | damaged[5]);
+    if (value != 0xFF00 && value != 0x0000) return false;
+  }
+  const std::uint16_t limit = max_quantity(original[1]);
+  if (!request || limit == 0) return true;
+  const unsigned quantity = static_cast<unsigned>(damaged[4] << 8 | damaged[5]);
+  if (quantity < 1 || quantity > limit) return false;
+  // A block write's byte count is fixed by its quantity.
+  if (original[1] == fc::kWriteMultipleCoils) return damaged[6] == (quantity + 7) / 8;
+  if (original[1] == fc::kGslWriteMultiple) return damaged[6] == 2 * quantity;
+  return true;
+}
+
 }  // namespace
 
 std::optional<DamageReading> reading_of(std::span<const std::uint8_t> original,
-                                        std::span<const std::uint8_t> damaged, Dialect dialect) {
+                                        std::span<const std::uint8_t> damaged, Dialect dialect,
+                                        bool request) {
   if (dialect != Dialect::Ascii) {
     if (verify_check(damaged, dialect).ok || good_crc_prefix(damaged)) return std::nullopt;
+    if (dialect == Dialect::Modbus && !modbus_shape_kept(original, damaged, request))
+      return std::nullopt;
     return DamageReading::BadCheckFrame;
   }
   for (std::size_t i = 0; i < damaged.size(); ++i) {
@@ -52,22 +99,23 @@ std::optional<DamageReading> reading_of(std::span<const std::uint8_t> original,
 namespace {
 
 // Damages one byte of bytes[first..last].
-FrameDamage damage_one_of(std::vector<std::uint8_t>& bytes, Dialect dialect, SimRandom& random,
-                          std::int64_t first, std::int64_t last) {
+FrameDamage damage_one_of(std::vector<std::uint8_t>& bytes, Dialect dialect, bool request,
+                          SimRandom& random, std::int64_t first, std::int64_t last) {
   const std::vector<std::uint8_t> original = bytes;
   for (;;) {
     const auto at = static_cast<std::size_t>(random.between(first, last));
     const auto mask = random.percent(50) ? 1u << random.between(0, 7) : random.between(1, 255);
     bytes[at] = static_cast<std::uint8_t>(original[at] ^ mask);
-    if (const auto reading = reading_of(original, bytes, dialect)) return {at, *reading};
+    if (const auto reading = reading_of(original, bytes, dialect, request)) return {at, *reading};
     bytes[at] = original[at];
   }
 }
 
 }  // namespace
 
-FrameDamage damage_frame(std::vector<std::uint8_t>& bytes, Dialect dialect, SimRandom& random) {
-  return damage_one_of(bytes, dialect, random, 0, std::ssize(bytes) - 1);
+FrameDamage damage_frame(std::vector<std::uint8_t>& bytes, Dialect dialect, Role role,
+                         SimRandom& random) {
+  return damage_one_of(bytes, dialect, role == Role::Request, random, 0, std::ssize(bytes) - 1);
 }
 
 FrameDamage damage_reply_data(std::vector<std::uint8_t>& bytes, Dialect dialect,
@@ -75,8 +123,8 @@ FrameDamage damage_reply_data(std::vector<std::uint8_t>& bytes, Dialect dialect,
   // RTU: station, function, byte count, data, CRC(2). ASCII: ACK, station(2), 'R',
   // address(4), data, checksum(4), EOT.
   const std::int64_t size = std::ssize(bytes);
-  if (dialect == Dialect::Ascii) return damage_one_of(bytes, dialect, random, 8, size - 6);
-  return damage_one_of(bytes, dialect, random, 3, size - 3);
+  if (dialect == Dialect::Ascii) return damage_one_of(bytes, dialect, false, random, 8, size - 6);
+  return damage_one_of(bytes, dialect, false, random, 3, size - 3);
 }
 
 std::uint8_t wire_station(std::span<const std::uint8_t> bytes, Dialect dialect) {

@@ -31,13 +31,18 @@ struct FrameDamage {
 //   hidden at the pinned start);
 // - ASCII: a bad-check frame when ENQ/ACK, 'R', EOT and every hex digit survive, noise
 //   otherwise; ambiguous when the new byte is itself a delimiter (EOT, ENQ, ACK) or a
-//   frame-shaped result still has a good check (a case flip in the checksum).
+//   frame-shaped result still has a good check (a case flip in the checksum);
+// - plain Modbus (`request`: the frame is one): ambiguous too when the function byte changed
+//   or a request's quantity left the specification's range (a frame of another length, or
+//   noise, is as good a reading).
 std::optional<DamageReading> reading_of(std::span<const std::uint8_t> original,
-                                        std::span<const std::uint8_t> damaged, Dialect dialect);
+                                        std::span<const std::uint8_t> damaged, Dialect dialect,
+                                        bool request = false);
 
 // XORs any one byte of `bytes` (every header field included) with one bit or with a random
 // nonzero byte, 50/50, drawing again until reading_of has one answer.
-FrameDamage damage_frame(std::vector<std::uint8_t>& bytes, Dialect dialect, SimRandom& random);
+FrameDamage damage_frame(std::vector<std::uint8_t>& bytes, Dialect dialect, Role role,
+                         SimRandom& random);
 // The same for one byte of a read reply's data only: station, function, byte count (ASCII:
 // address) and check stay as sent, so the frame's length is still written in its header.
 FrameDamage damage_reply_data(std::vector<std::uint8_t>& bytes, Dialect dialect, SimRandom& random);

@@ -101,6 +101,22 @@ void write_config(std::ostream& o, const SimConfig& c) {
   o << "}";
 }
 
+// The plain Modbus devices, named only when there are any (the older samples keep their bytes).
+void write_devices(std::ostream& o, const std::vector<DeviceTruth>& devices) {
+  if (devices.empty()) return;
+  o << ",\"devices\":[";
+  for (std::size_t i = 0; i < devices.size(); ++i) {
+    const DeviceTruth& d = devices[i];
+    o << (i ? "," : "") << "{\"station\":" << int{d.station} << ",\"kind\":\"" << d.label.kind
+      << "\"";
+    if (!d.label.vendor.empty())
+      o << ",\"vendor\":\"" << d.label.vendor << "\",\"product\":\"" << d.label.product
+        << "\",\"revision\":\"" << d.label.revision << "\"";
+    o << "}";
+  }
+  o << "]";
+}
+
 void write_requests(std::ostream& o, const char* name, const std::vector<TimeoutTruth>& list) {
   o << "],\n\"" << name << "\":[";
   for (std::size_t i = 0; i < list.size(); ++i) {
@@ -117,6 +133,7 @@ std::string write_ground_truth(const BusTimeline& timeline, const SimConfig& con
   std::ostringstream o;
   o << "{";
   write_config(o, config);
+  write_devices(o, timeline.devices);
   o << ",\n\"events\":[\n";
   for (std::size_t i = 0; i < timeline.events.size(); ++i) {
     write_event(o, timeline.events[i]);

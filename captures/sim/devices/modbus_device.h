@@ -1,0 +1,32 @@
+// ModbusDevice: a plain Modbus RTU device on the inverters' bus (PROTOCOLS.md section 6): the
+// requests a data logger sends it in each poll round and its normal replies.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "bus/bus_event.h"
+#include "pvtap/codec/frame.h"
+
+namespace pvtap::sim {
+
+class ModbusDevice {
+ public:
+  explicit ModbusDevice(std::uint8_t station) : station_(station) {}
+  virtual ~ModbusDevice() = default;
+
+  std::uint8_t station() const { return station_; }
+  virtual DeviceLabel label() const = 0;
+  // The requests of poll round `round`, in the order the logger sends them (round 0 adds the
+  // start-up requests: diagnostics, identification, settings).
+  virtual std::vector<Frame> requests(unsigned round) const = 0;
+  // The normal reply to `request`, which ended at `request_end`, with the values it carries.
+  // A write takes effect here: a device changes only what it answers.
+  virtual BusEvent reply(const Frame& request, Micros request_end) = 0;
+
+ private:
+  std::uint8_t station_;
+};
+
+}  // namespace pvtap::sim
