@@ -347,6 +347,7 @@ def check_no_phantom_station(latest, prefix, capture, bad):
     with open(truth_path, encoding="utf-8") as f:
         truth = json.load(f)
     inverters = set(range(truth["first_station"], truth["first_station"] + truth["inverters"]))
+    inverters |= {d["station"] for d in truth.get("devices", [])}  # plain Modbus devices
     retained = {int(m.group(1)) for m in
                 (re.match(re.escape(prefix) + r"/bus/(\d+)/", t) for t in latest) if m}
     devices = {int(m.group(1)) for m in

@@ -188,12 +188,13 @@ def audit_frames(args, pcap):
 
 
 def check_truth(args):
-    """All three dialects and every fault kind: the frames, noise, timeouts and totals of the
+    """All three dialects, a meter and an IO module, every fault kind: the frames, noise, timeouts and totals of the
     truth; the pcap written with --write, cut by SIGTERM, reads back to the same frames (their
     times differ: a record carries the frame's last byte's time, the live line its first's)."""
     bad = Failures()
     truth = simulate(args, "mixed", "--dialect", "gsl,hybrid,ascii", "--inverters", "4",
-                     "--duration", "6", "--seed", "3", "--faults", "all")
+                     "--duration", "6", "--seed", "3", "--faults", "all", "--meter", "10",
+                     "--io-module", "20")
     pcap = os.path.join(args.scratch, "mixed.pcap")
     pty = pty_bus.Pty()
     sniffer = Sniffer(args.pvtap, args.scratch, "mixed",
