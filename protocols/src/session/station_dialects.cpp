@@ -90,8 +90,8 @@ Dialect StationDialects::choose(const Frame& frame, Station& st, std::optional<D
     d = undecided_;
   }
   // GSL names only its own codes; another Modbus function of a GSL station is plain Modbus.
-  // (A damaged function code, which no dialect has, keeps the label its bytes were framed by.)
-  if (d == Dialect::Gsl && !fc::is_gsl_function(frame.function) &&
+  // A frame with a bad check keeps its station's label: its function may be the damaged byte.
+  if (check_ok && d == Dialect::Gsl && !fc::is_gsl_function(frame.function) &&
       fc::is_modbus_function(frame.function)) {
     d = Dialect::Modbus;
   }

@@ -228,6 +228,18 @@ TEST_F(ModbusBus, AReplyWithNothingToGoByTakesTheEarlierDialectOfTheList) {
   EXPECT_EQ(recorder_.frames[1].dialect, Dialect::Modbus);
 }
 
+// A GSL request whose function code 0x03 was damaged into 0x02 stays its station's GSL.
+TEST_F(ModbusBus, ADamagedFrameKeepsItsStationsDialect) {
+  exchange(0x03, "03 04 1A 00 2E", "83 02");
+  Bytes damaged = adu(0x03, "03 04 1A 00 2E");
+  damaged[1] = 0x02;
+  send(damaged);
+  finish();
+  ASSERT_EQ(recorder_.frames.size(), 3u);
+  EXPECT_FALSE(recorder_.frames[2].check_ok);
+  EXPECT_EQ(recorder_.frames[2].dialect, Dialect::Gsl);
+}
+
 TEST_F(ModbusBus, WithoutTheModbusDialectACoilReadIsNoise) {
   BusSessionOptions options;
   options.reassembler.dialects = DialectSet::none().with(Dialect::Gsl).with(Dialect::Hybrid);
