@@ -32,6 +32,7 @@ class RegisterEntryReader {
     std::optional<std::int64_t> last;
     bool has_address = false;
     bool has_kind = false;
+    bool has_words = false;
     std::uint32_t last_line = 0;
     std::uint32_t last_column = 0;
   };
@@ -44,6 +45,7 @@ class RegisterEntryReader {
   void read_kind(const toml::node& node, RegisterSpec& spec);
   void read_scale(const toml::node& node, RegisterSpec& spec);
   void read_combine(const toml::node& node, RegisterSpec& spec);
+  void read_word_order(const toml::node& node, RegisterSpec& spec);
   void read_values(const toml::node& node, RegisterSpec& spec);
 
   MapNodeReader& nodes_;

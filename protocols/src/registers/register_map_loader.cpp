@@ -2,6 +2,7 @@
 #include <toml++/toml.h>
 
 #include "pvtap/registers/register_map.h"
+#include "registers/coil_entry_reader.h"
 #include "registers/map_node_reader.h"
 #include "registers/register_entry_reader.h"
 #include "registers/register_map_builder.h"
@@ -31,6 +32,8 @@ class MapFileReader {
     read_enums(root.get("enums"));
     RegisterMapBuilder builder(std::move(header));
     read_registers(root.get("register"), builder);
+    read_coils(root.get("coil"), detail::CoilTable::Coils, builder);
+    read_coils(root.get("discrete_input"), detail::CoilTable::DiscreteInputs, builder);
     return std::move(builder).build(nodes_.take_problems());
   }
 
@@ -46,9 +49,10 @@ class MapFileReader {
         if (const auto* s = nodes_.expect_string(node, "title")) header.title = s->get();
       } else if (name == "mode") {
         read_mode(node, header);
-      } else if (name != "enums" && name != "register") {
+      } else if (!is_table_name(name)) {
         nodes_.fail(key.source(), "unknown setting '" + std::string(name) +
-                                      "' (expected dialect, title, mode, [enums] or [[register]])");
+                                      "' (expected dialect, title, mode, [enums], [[register]], "
+                                      "[[coil]] or [[discrete_input]])");
       }
     }
     if (!root.contains("dialect")) {
@@ -56,6 +60,27 @@ class MapFileReader {
                      "the map must name its dialect: dialect = \"ascii\", \"hybrid\" or \"gsl\"");
     }
     return header;
+  }
+
+  static bool is_table_name(std::string_view name) {
+    return name == "enums" || name == "register" || name == "coil" || name == "discrete_input";
+  }
+
+  void read_coils(const toml::node* node, detail::CoilTable table, RegisterMapBuilder& builder) {
+    if (node == nullptr) return;
+    const std::string name(detail::coil_table_name(table));
+    const auto* entries = node->as_array();
+    if (entries == nullptr) {
+      nodes_.fail(node->source(), name + " entries are written as [[" + name + "]]");
+      return;
+    }
+    for (const toml::node& entry : *entries) {
+      if (const auto* t = entry.as_table()) {
+        builder.add(detail::read_coil_entry(nodes_, *t, table));
+      } else {
+        nodes_.fail(entry.source(), "each [[" + name + "]] entry must be a table");
+      }
+    }
   }
 
   void read_dialect(const toml::node& node, detail::MapHeaderSpec& header) {
