@@ -56,8 +56,9 @@ class MapFileReader {
       }
     }
     if (!root.contains("dialect")) {
-      nodes_.fail_at(1, 1,
-                     "the map must name its dialect: dialect = \"ascii\", \"hybrid\" or \"gsl\"");
+      nodes_.fail_at(
+          1, 1,
+          "the map must name its dialect: dialect = \"ascii\", \"hybrid\", \"gsl\" or \"modbus\"");
     }
     return header;
   }
@@ -92,7 +93,7 @@ class MapFileReader {
       dialect_known_ = true;
     } else {
       nodes_.fail(node.source(),
-                  "unknown dialect '" + s->get() + "' (expected ascii, hybrid or gsl)");
+                  "unknown dialect '" + s->get() + "' (expected ascii, hybrid, gsl or modbus)");
     }
   }
 
