@@ -1,4 +1,5 @@
-// RegisterEntryReader: one [[register]] table of a map file as a spec (private to the core).
+// The entries of a map file as specs: [[register]], [[coil]], [[discrete_input]] (private to the
+// core).
 #pragma once
 
 #include <toml++/toml.h>
@@ -52,5 +53,9 @@ class RegisterEntryReader {
   Dialect dialect_;
   const EnumTables& enums_;
 };
+
+// A [[coil]] or [[discrete_input]] entry: address, key and name; unknown fields and wrong types
+// go to `nodes`.
+CoilSpec read_coil_entry(MapNodeReader& nodes, const toml::table& table, CoilTable kind);
 
 }  // namespace pvtap::detail

@@ -206,4 +206,28 @@ void check_register_entry(const RegisterSpec& spec, Dialect dialect, DiagnosticL
   check_bits(spec, label, out);
 }
 
+std::string coil_label(const CoilSpec& spec, Dialect dialect) {
+  std::string label(coil_table_name(spec.table));
+  if (!spec.key.empty()) label += " '" + spec.key + "'";
+  if (spec.address >= 0 && spec.address <= 0xFFFF) {
+    label += " (";
+    label += format_register_address(dialect, static_cast<std::uint16_t>(spec.address)).view();
+    label += ")";
+  }
+  return label;
+}
+
+void check_coil_entry(const CoilSpec& spec, Dialect dialect, DiagnosticList& out) {
+  const std::string label = coil_label(spec, dialect);
+  if (!modbus_family(dialect)) {
+    out.add(spec.line, spec.column,
+            label + ": only gsl and modbus maps name coils and discrete inputs");
+  }
+  check_key(spec.key, spec.line, spec.column, label, out);
+  if (spec.name.empty()) out.add(spec.line, spec.column, label + ": name is missing or empty");
+  if (spec.address < 0 || spec.address > 0xFFFF) {
+    out.add(spec.line, spec.column, label + ": address must be 0 .. 65535");
+  }
+}
+
 }  // namespace pvtap::detail

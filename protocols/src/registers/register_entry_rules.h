@@ -1,4 +1,5 @@
-// The rules one register entry must follow on its own (private to the core).
+// The rules one register, coil or discrete-input entry must follow on its own (private to the
+// core).
 #pragma once
 
 #include <cstdint>
@@ -24,5 +25,12 @@ std::string entry_label(const RegisterSpec& spec, Dialect dialect);
 
 // Adds a diagnostic for each rule the entry breaks.
 void check_register_entry(const RegisterSpec& spec, Dialect dialect, DiagnosticList& out);
+
+// "coil 'pump' (0x0000)", for messages about a coil or discrete-input entry.
+std::string coil_label(const CoilSpec& spec, Dialect dialect);
+
+// Adds a diagnostic for each rule a coil or input entry breaks: its key, its name, its address,
+// and a dialect whose frames carry no coils (only GSL and plain Modbus maps name them).
+void check_coil_entry(const CoilSpec& spec, Dialect dialect, DiagnosticList& out);
 
 }  // namespace pvtap::detail

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <utility>
 
-#include "registers/coil_entry_rules.h"
 #include "registers/map_diagnostics.h"
 #include "registers/register_entry_rules.h"
 #include "registers/register_map_data.h"
@@ -75,6 +75,20 @@ void check_coverage(const std::vector<const RegisterSpec*>& specs, Dialect diale
                     std::to_string(other.line) + ")");
       }
     });
+  }
+}
+
+// Entries of one table may not share an address.
+void check_coil_addresses(const std::vector<const CoilSpec*>& specs, Dialect dialect,
+                          detail::DiagnosticList& out) {
+  std::map<std::pair<detail::CoilTable, std::int64_t>, const CoilSpec*> first_use;
+  for (const CoilSpec* spec : specs) {
+    auto [it, inserted] = first_use.emplace(std::pair{spec->table, spec->address}, spec);
+    if (!inserted) {
+      out.add(spec->line, spec->column,
+              detail::coil_label(*spec, dialect) + ": duplicate address, also defined at line " +
+                  std::to_string(it->second->line));
+    }
   }
 }
 
@@ -247,7 +261,7 @@ RegisterMapResult RegisterMapBuilder::build(std::vector<MapDiagnostic> earlier) 
   }
   check_keys_unique(valid, valid_coils, header_.dialect, problems);
   check_coverage(valid, header_.dialect, problems);
-  detail::check_coil_addresses(valid_coils, header_.dialect, problems);
+  check_coil_addresses(valid_coils, header_.dialect, problems);
   if (!problems.empty()) {
     std::stable_sort(
         problems.items.begin(), problems.items.end(),

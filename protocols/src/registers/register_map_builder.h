@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "pvtap/registers/register_map.h"
@@ -41,6 +42,11 @@ struct RegisterSpec {
 
 // CoilTable: which table of a map a coil entry belongs to.
 enum class CoilTable : std::uint8_t { Coils, DiscreteInputs };
+
+// The table's name in map files: "coil" or "discrete_input".
+constexpr std::string_view coil_table_name(CoilTable table) {
+  return table == CoilTable::Coils ? "coil" : "discrete_input";
+}
 
 // CoilSpec: one [[coil]] or [[discrete_input]] entry as read from a file.
 struct CoilSpec {

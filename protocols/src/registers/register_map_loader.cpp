@@ -2,7 +2,6 @@
 #include <toml++/toml.h>
 
 #include "pvtap/registers/register_map.h"
-#include "registers/coil_entry_reader.h"
 #include "registers/map_node_reader.h"
 #include "registers/register_entry_reader.h"
 #include "registers/register_map_builder.h"
