@@ -301,6 +301,61 @@ def mode_user_maps(options, checks):
         shutil.rmtree(home, ignore_errors=True)
 
 
+def station_values(options, args, station, checks):
+    """{register: (name, value)} of one station in the summary of an audit."""
+    lines = audit_jsonl(options, args, checks)
+    if not lines:
+        return {}
+    values = lines[-1]["stations"].get(station, {}).get("values", [])
+    return {v["register"]: (v["name"], v["value"]) for v in values}
+
+
+def mode_station_maps(options, checks):
+    """--map STATION=FILE: the example SDM630 map given to the meter (station 10) beside a GSL
+    inverter; several stations with one map; usage errors in audit and sniff."""
+    d = options.dir
+    capture = capture_path(d, "station_map")
+    meter = f"10={options.example_map}"
+    plain = station_values(options, [capture], "10", checks)
+    checks.equal("without a map the summary names no value of the meter", plain, {})
+    named = station_values(options, ["--map", meter, capture], "10", checks)
+    checks.equal("phase 1 voltage from the example map", named.get("0x0000"),
+                 ("phase 1 line to neutral voltage", 230.1))
+    checks.equal("phase 3 voltage", named.get("0x0004"), ("phase 3 line to neutral voltage", 229.8))
+    checks.equal("frequency", named.get("0x0046"), ("supply frequency", 49.98))
+    inverter = station_values(options, ["--map", meter, capture], "1", checks)
+    checks.equal("the inverter keeps the GSL map", inverter.get("1050", (None,))[0],
+                 "grid line voltage AB")
+    # One map for two stations: the inverter now speaks the map's dialect and its words are
+    # read by the meter's map, where 1050 (0x041A) has no name.
+    frames = [f for f in audit_jsonl(options, ["--map", f"1,10={options.example_map}", capture],
+                                     checks) if f.get("type") == "frame" and f["station"] == 1]
+    checks.true("station 1 has frames", len(frames) == 2)
+    checks.true(f"a station list gives the map to each: {frames}",
+                all(f["dialect"] == "modbus" for f in frames) and
+                any(v["register"] == "0x041A" and v["name"] is None
+                    for f in frames for v in f["values"]))
+    errors = {"0=m.toml": "0 is the broadcast address", "248=m.toml": "station 248 is outside",
+              "x=m.toml": "'x' is not a station address", "10,=m.toml": "'' is not a station",
+              "10=": "no map FILE", f"10={d}/missing.toml": "cannot open the file",
+              f"10={d}/bad_map.toml": "bad_map.toml:2:1:",
+              f"10={d}/site_map.toml": "must be a gsl or modbus map, not hybrid"}
+    for value, phrase in errors.items():
+        result = run(options.pvtap, ["--map", value, capture], 2, checks)
+        checks.true(f"--map {value} says {phrase!r}: {result.stderr.strip()}",
+                    phrase in result.stderr)
+        checks.equal(f"nothing printed for --map {value}", result.stdout, "")
+    sniff = subprocess.run([options.pvtap, "sniff", "--device", "/dev/null", "--map", "0=m.toml"],
+                           capture_output=True, text=True, timeout=RUN_GUARD_S)
+    checks.equal("sniff: exit status for a bad station", sniff.returncode, 2)
+    checks.true(f"sniff names the bad station: {sniff.stderr.strip()}",
+                "station 0 is outside" in sniff.stderr)
+    for command in ("audit", "sniff"):
+        helped = subprocess.run([options.pvtap, command, "--help"], capture_output=True, text=True,
+                                timeout=RUN_GUARD_S)
+        checks.true(f"{command} --help explains STATION=FILE", "STATION=FILE" in helped.stdout)
+
+
 def mode_version(options, checks):
     result = subprocess.run([options.pvtap, "--version"], capture_output=True, text=True,
                             timeout=RUN_GUARD_S)
@@ -427,13 +482,16 @@ def main():
     parser.add_argument("--dir", required=True)
     parser.add_argument("--plugin", default="")
     parser.add_argument("--gen", default="", help="pvtap-capture-gen, for mode threads")
+    parser.add_argument("--example-map", default="", help="a map of examples/maps, for mode "
+                        "station-maps")
     parser.add_argument("mode")
     parser.add_argument("name", nargs="?")
     options = parser.parse_args()
     checks = Checks()
     modes = {"expect": mode_expect, "roundtrip": mode_roundtrip, "fail-on": mode_fail_on,
              "bad-inputs": mode_bad_inputs, "usage": mode_usage, "formats": mode_formats,
-             "tshark": mode_tshark, "user-maps": mode_user_maps, "version": mode_version, "threads": mode_threads}
+             "tshark": mode_tshark, "user-maps": mode_user_maps, "version": mode_version, "threads": mode_threads,
+             "station-maps": mode_station_maps}
     if modes[options.mode](options, checks) == SKIP:
         return SKIP
     return checks.finish()

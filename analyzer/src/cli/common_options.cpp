@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cli/map_file.h"
+#include "cli/station_map_argument.h"
 #include "cli/user_map_folder.h"
 #include "pvtap/registers/register_decoder.h"
 #include "pvtap/registers/register_map.h"
@@ -85,10 +86,12 @@ void add_protocol_options(CLI::App& audit, CommonOptions& o, BaudRange baud_rang
       ->default_str("decimal");
   audit
       .add_option("--map", o.maps,
-                  "register map (TOML, see protocols/maps/README.md) replacing or extending the "
-                  "built-in map of its dialect; repeatable; read after the user's maps in "
-                  "~/.config/pvtap/maps/*.toml")
-      ->type_name("FILE")
+                  "register map (TOML, see protocols/maps/README.md). FILE replaces or extends "
+                  "the built-in map of its dialect, read after the user's maps in "
+                  "~/.config/pvtap/maps/*.toml. STATION=FILE gives a gsl or modbus map to one "
+                  "station (10=meter.toml) or several (10,11=meter.toml), 1 to 247: their frames "
+                  "decode with it, e.g. an energy meter on a bus of inverters; repeatable")
+      ->type_name("FILE|STATION=FILE")
       ->allow_extra_args(false);
 }
 
@@ -146,22 +149,73 @@ void add_html_options(CLI::App& command, CommonOptions& o) {
       ->allow_extra_args(false);
 }
 
-bool load_maps(const CommonOptions& o, RegisterDecoder& decoder) {
-  // The user's own maps first, so that a --map file is laid over them.
-  std::vector<std::string> paths = user_map_files(user_map_folder());
-  paths.insert(paths.end(), o.maps.begin(), o.maps.end());
-  for (const std::string& path : paths) {
-    const RegisterMapResult loaded = read_register_map_file(path);
-    // Several files stack in the order given, as the plugin stacks its folder's files.
+namespace {
+
+// The map in the file, or nullopt after saying why not (the loader's diagnostics).
+std::optional<RegisterMap> read_map_or_say_why(const std::string& path,
+                                               const RegisterMapResult& loaded) {
+  if (loaded) return loaded.value();
+  std::fprintf(stderr, "pvtap: %s: bad register map\n%s\n", path.c_str(),
+               loaded.error_text().c_str());
+  return std::nullopt;
+}
+
+// Several files stack in the order given, as the plugin stacks its folder's files.
+bool load_dialect_map(const std::string& path, RegisterDecoder& decoder) {
+  const RegisterMapResult loaded = read_register_map_file(path);
+  if (!loaded) return read_map_or_say_why(path, loaded).has_value();
+  const RegisterMapResult resolved =
+      stack_register_map(decoder.map(loaded->dialect()), loaded.value());
+  const std::optional<RegisterMap> map = read_map_or_say_why(path, resolved);
+  if (map) decoder.use_map(*map);
+  return map.has_value();
+}
+
+// A station's map stacks like a dialect's: an extend map is laid over what the station had
+// so far, or over the map in effect for its dialect.
+bool load_station_map(const StationMapArgument& arg, RegisterDecoder& decoder) {
+  const RegisterMapResult loaded = read_register_map_file(arg.path);
+  if (!loaded) return read_map_or_say_why(arg.path, loaded).has_value();
+  if (!modbus_family(loaded->dialect())) {
+    std::fprintf(stderr, "pvtap: %s: a station's map must be a gsl or modbus map, not %s\n",
+                 arg.path.c_str(), std::string(to_string(loaded->dialect())).c_str());
+    return false;
+  }
+  for (const std::uint8_t station : arg.stations) {
+    const RegisterMap* own = decoder.station_map(station);
+    const bool stacks = own != nullptr && own->dialect() == loaded->dialect();
     const RegisterMapResult resolved =
-        loaded ? stack_register_map(decoder.map(loaded->dialect()), loaded.value()) : loaded;
-    const RegisterMapResult& failed = loaded ? resolved : loaded;
-    if (!loaded || !resolved) {
-      std::fprintf(stderr, "pvtap: %s: bad register map\n%s", path.c_str(),
-                   failed.error_text().c_str());
+        stack_register_map(stacks ? *own : decoder.map(loaded->dialect()), loaded.value());
+    const std::optional<RegisterMap> map = read_map_or_say_why(arg.path, resolved);
+    if (!map) return false;
+    decoder.use_station_map(station, *map);
+  }
+  return true;
+}
+
+}  // namespace
+
+bool load_maps(const CommonOptions& o, RegisterDecoder& decoder) {
+  // The user's own maps first, so that a --map file is laid over them; station maps last,
+  // so that an extend map for a station is laid over its dialect's map as the files made it.
+  std::vector<std::string> paths = user_map_files(user_map_folder());
+  std::vector<StationMapArgument> station_maps;
+  for (const std::string& value : o.maps) {
+    std::optional<StationMapArgument> arg = read_station_map_argument(value);
+    if (!arg) {
+      paths.push_back(value);
+    } else if (!arg->problem.empty()) {
+      std::fprintf(stderr, "pvtap: --map %s: %s\n", value.c_str(), arg->problem.c_str());
       return false;
+    } else {
+      station_maps.push_back(std::move(*arg));
     }
-    decoder.use_map(resolved.value());
+  }
+  for (const std::string& path : paths) {
+    if (!load_dialect_map(path, decoder)) return false;
+  }
+  for (const StationMapArgument& arg : station_maps) {
+    if (!load_station_map(arg, decoder)) return false;
   }
   return true;
 }

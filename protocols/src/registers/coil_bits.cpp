@@ -65,4 +65,15 @@ std::optional<CoilBits> coil_bits(const Frame& f, const Frame* request) {
   }
 }
 
+std::optional<std::uint16_t> CoilBits::address(std::size_t i) const {
+  if (!start || *start + i > 0xFFFF) return std::nullopt;
+  return static_cast<std::uint16_t>(*start + i);
+}
+
+const CoilDef* coil_def(const RegisterMap& map, const CoilBits& bits, std::size_t i) {
+  const std::optional<std::uint16_t> at = bits.address(i);
+  if (!at) return nullptr;
+  return bits.inputs ? map.find_discrete_input(*at) : map.find_coil(*at);
+}
+
 }  // namespace pvtap

@@ -10,6 +10,7 @@ RegisterSpec RegisterEntryReader::read(const toml::table& table) {
   for (const auto& [key, node] : table) read_field(key, node, spec, pending);
   if (!pending.has_address) nodes_.fail(table.source(), "register entry has no address");
   if (!pending.has_kind) spec.kind = inferred_kind(spec);
+  if (spec.float32 && !pending.has_words) spec.words = 2;  // a float32 is two words wide
   if (pending.last) apply_last(spec, pending);
   return spec;
 }
@@ -51,6 +52,7 @@ void RegisterEntryReader::read_field(const toml::key& key, const toml::node& nod
     read_kind(node, spec);
   } else if (name == "words" || name == "decimals") {
     if (const auto* i = nodes_.expect_integer(node, name)) {
+      pending.has_words = pending.has_words || name == "words";
       if (name == "words")
         spec.words = i->get();
       else
@@ -73,6 +75,8 @@ void RegisterEntryReader::read_option_field(const toml::key& key, const toml::no
       nodes_.fail(node.source(), "signed must be true or false");
   } else if (name == "combine") {
     read_combine(node, spec);
+  } else if (name == "word_order") {
+    read_word_order(node, spec);
   } else if (name == "values") {
     read_values(node, spec);
   } else if (name == "bits") {
@@ -83,19 +87,35 @@ void RegisterEntryReader::read_option_field(const toml::key& key, const toml::no
   } else {
     nodes_.fail(key.source(), "unknown register field '" + std::string(name) +
                                   "' (expected address, last, key, name, kind, scale, unit, words, "
-                                  "combine, signed, decimals, values, bits)");
+                                  "combine, word_order, signed, decimals, values, bits)");
   }
 }
 
 void RegisterEntryReader::read_kind(const toml::node& node, RegisterSpec& spec) {
   const auto* s = nodes_.expect_string(node, "kind");
   if (s == nullptr) return;
-  if (auto kind = register_kind_from_string(s->get())) {
+  if (s->get() == "float32") {
+    spec.kind = RegisterKind::Number;
+    spec.float32 = true;
+  } else if (auto kind = register_kind_from_string(s->get())) {
     spec.kind = *kind;
   } else {
     nodes_.fail(node.source(), "unknown kind '" + s->get() +
-                                   "' (expected number, raw, enum, bits, text, bcd, "
+                                   "' (expected number, float32, raw, enum, bits, text, bcd, "
                                    "bcd_phase_capacity, bcd_year_month or device_number)");
+  }
+}
+
+void RegisterEntryReader::read_word_order(const toml::node& node, RegisterSpec& spec) {
+  const auto* s = nodes_.expect_string(node, "word_order");
+  if (s == nullptr) return;
+  if (s->get() == "high_first") {
+    spec.word_order = WordOrder::HighFirst;
+  } else if (s->get() == "low_first") {
+    spec.word_order = WordOrder::LowFirst;
+  } else {
+    nodes_.fail(node.source(),
+                "unknown word order '" + s->get() + "' (expected high_first or low_first)");
   }
 }
 
@@ -137,6 +157,32 @@ void RegisterEntryReader::read_values(const toml::node& node, RegisterSpec& spec
     nodes_.fail(node.source(),
                 "values must be a table { 0 = \"off\" } or the name of an [enums] table");
   }
+}
+
+CoilSpec read_coil_entry(MapNodeReader& nodes, const toml::table& table, CoilTable kind) {
+  CoilSpec spec;
+  spec.table = kind;
+  spec.line = line_of(table.source());
+  spec.column = column_of(table.source());
+  bool has_address = false;
+  for (const auto& [key, node] : table) {
+    const std::string_view name = key.str();
+    if (name == "address") {
+      has_address = true;
+      if (const auto* i = nodes.expect_integer(node, "address")) spec.address = i->get();
+    } else if (name == "key" || name == "name") {
+      if (const auto* s = nodes.expect_string(node, name)) {
+        (name == "key" ? spec.key : spec.name) = s->get();
+      }
+    } else {
+      nodes.fail(key.source(), "unknown " + std::string(coil_table_name(kind)) + " field '" +
+                                   std::string(name) + "' (expected address, key, name)");
+    }
+  }
+  if (!has_address) {
+    nodes.fail(table.source(), std::string(coil_table_name(kind)) + " entry has no address");
+  }
+  return spec;
 }
 
 }  // namespace pvtap::detail

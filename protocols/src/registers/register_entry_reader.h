@@ -1,4 +1,5 @@
-// RegisterEntryReader: one [[register]] table of a map file as a spec (private to the core).
+// The entries of a map file as specs: [[register]], [[coil]], [[discrete_input]] (private to the
+// core).
 #pragma once
 
 #include <toml++/toml.h>
@@ -32,6 +33,7 @@ class RegisterEntryReader {
     std::optional<std::int64_t> last;
     bool has_address = false;
     bool has_kind = false;
+    bool has_words = false;
     std::uint32_t last_line = 0;
     std::uint32_t last_column = 0;
   };
@@ -44,11 +46,16 @@ class RegisterEntryReader {
   void read_kind(const toml::node& node, RegisterSpec& spec);
   void read_scale(const toml::node& node, RegisterSpec& spec);
   void read_combine(const toml::node& node, RegisterSpec& spec);
+  void read_word_order(const toml::node& node, RegisterSpec& spec);
   void read_values(const toml::node& node, RegisterSpec& spec);
 
   MapNodeReader& nodes_;
   Dialect dialect_;
   const EnumTables& enums_;
 };
+
+// A [[coil]] or [[discrete_input]] entry: address, key and name; unknown fields and wrong types
+// go to `nodes`.
+CoilSpec read_coil_entry(MapNodeReader& nodes, const toml::table& table, CoilTable kind);
 
 }  // namespace pvtap::detail

@@ -17,6 +17,9 @@ struct KindRules {
   bool takes_range;
 };
 
+// A float32 is a number read from IEEE-754 words: exactly two of them, its own sign.
+constexpr KindRules kFloat32Rules{2, 2, false, false, false, false};
+
 KindRules rules_of(RegisterKind kind) {
   switch (kind) {
     case RegisterKind::Number:
@@ -43,31 +46,28 @@ bool is_key_char(char c) {
   return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_';
 }
 
-void check_key(const RegisterSpec& spec, const std::string& label, DiagnosticList& out) {
-  const std::string& key = spec.key;
-  if (key.empty()) {
-    out.add(spec.line, spec.column, label + ": key is missing or empty");
-    return;
-  }
-  if (key.size() > 64)
-    out.add(spec.line, spec.column, label + ": key is longer than 64 characters");
-  if (key.front() < 'a' || key.front() > 'z') {
-    out.add(spec.line, spec.column, label + ": key must start with a lowercase letter");
-  }
-  if (!std::all_of(key.begin(), key.end(), is_key_char)) {
-    out.add(spec.line, spec.column,
-            label + ": key may hold only lowercase letters, digits and '_' (it names a field)");
-  }
+KindRules rules_of(const RegisterSpec& spec) {
+  return spec.float32 ? kFloat32Rules : rules_of(spec.kind);
+}
+
+std::string kind_name(const RegisterSpec& spec) {
+  return spec.float32 ? "float32" : std::string(to_string(spec.kind));
+}
+
+// Kinds whose two words make one number, so that their order on the wire is a question.
+bool takes_word_order(const RegisterSpec& spec) {
+  return spec.words == 2 && (spec.kind == RegisterKind::Number || spec.kind == RegisterKind::Raw ||
+                             spec.kind == RegisterKind::Enum);
 }
 
 void check_width(const RegisterSpec& spec, const std::string& label, Dialect dialect,
                  DiagnosticList& out) {
-  const KindRules rules = rules_of(spec.kind);
-  const std::string kind_name(to_string(spec.kind));
+  const KindRules rules = rules_of(spec);
+  const std::string kind = kind_name(spec);
   if (spec.words < rules.min_words || spec.words > rules.max_words) {
     out.add(
         spec.line, spec.column,
-        label + ": a " + kind_name + " register is " + std::to_string(rules.min_words) +
+        label + ": a " + kind + " register is " + std::to_string(rules.min_words) +
             (rules.max_words > rules.min_words ? " to " + std::to_string(rules.max_words) : "") +
             " word(s) wide, not " + std::to_string(spec.words));
     return;
@@ -102,7 +102,16 @@ void check_number_settings(const RegisterSpec& spec, const std::string& label,
   if (spec.pair_rule && spec.words != 2) {
     out.add(spec.line, spec.column, label + ": 'combine' applies only to 2-word registers");
   }
-  if (spec.is_signed && !rules_of(spec.kind).takes_sign) {
+  if (spec.pair_rule && spec.float32) {
+    out.add(spec.line, spec.column, label + ": 'combine' does not apply to a float32 register");
+  }
+  if (spec.word_order && !takes_word_order(spec)) {
+    out.add(spec.line, spec.column,
+            label + ": 'word_order' applies only to 2-word number, float32, raw or enum registers");
+  }
+  if (spec.is_signed && spec.float32) {
+    out.add(spec.line, spec.column, label + ": a float32 register carries its own sign");
+  } else if (spec.is_signed && !rules_of(spec.kind).takes_sign) {
     out.add(spec.line, spec.column, label + ": only number registers can be signed");
   }
   if (spec.is_signed && spec.pair_rule == PairRule::Decimal) {
@@ -160,6 +169,22 @@ void check_bits(const RegisterSpec& spec, const std::string& label, DiagnosticLi
 
 }  // namespace
 
+void check_key(std::string_view key, std::uint32_t line, std::uint32_t column,
+               const std::string& label, DiagnosticList& out) {
+  if (key.empty()) {
+    out.add(line, column, label + ": key is missing or empty");
+    return;
+  }
+  if (key.size() > 64) out.add(line, column, label + ": key is longer than 64 characters");
+  if (key.front() < 'a' || key.front() > 'z') {
+    out.add(line, column, label + ": key must start with a lowercase letter");
+  }
+  if (!std::all_of(key.begin(), key.end(), is_key_char)) {
+    out.add(line, column,
+            label + ": key may hold only lowercase letters, digits and '_' (it names a field)");
+  }
+}
+
 std::string entry_label(const RegisterSpec& spec, Dialect dialect) {
   std::string label = "register";
   if (!spec.key.empty()) label += " '" + spec.key + "'";
@@ -173,12 +198,36 @@ std::string entry_label(const RegisterSpec& spec, Dialect dialect) {
 
 void check_register_entry(const RegisterSpec& spec, Dialect dialect, DiagnosticList& out) {
   const std::string label = entry_label(spec, dialect);
-  check_key(spec, label, out);
+  check_key(spec.key, spec.line, spec.column, label, out);
   if (spec.name.empty()) out.add(spec.line, spec.column, label + ": name is missing or empty");
   check_width(spec, label, dialect, out);
   check_number_settings(spec, label, out);
   check_values(spec, label, out);
   check_bits(spec, label, out);
+}
+
+std::string coil_label(const CoilSpec& spec, Dialect dialect) {
+  std::string label(coil_table_name(spec.table));
+  if (!spec.key.empty()) label += " '" + spec.key + "'";
+  if (spec.address >= 0 && spec.address <= 0xFFFF) {
+    label += " (";
+    label += format_register_address(dialect, static_cast<std::uint16_t>(spec.address)).view();
+    label += ")";
+  }
+  return label;
+}
+
+void check_coil_entry(const CoilSpec& spec, Dialect dialect, DiagnosticList& out) {
+  const std::string label = coil_label(spec, dialect);
+  if (!modbus_family(dialect)) {
+    out.add(spec.line, spec.column,
+            label + ": only gsl and modbus maps name coils and discrete inputs");
+  }
+  check_key(spec.key, spec.line, spec.column, label, out);
+  if (spec.name.empty()) out.add(spec.line, spec.column, label + ": name is missing or empty");
+  if (spec.address < 0 || spec.address > 0xFFFF) {
+    out.add(spec.line, spec.column, label + ": address must be 0 .. 65535");
+  }
 }
 
 }  // namespace pvtap::detail

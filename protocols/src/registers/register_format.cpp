@@ -2,6 +2,7 @@
 
 #include <array>
 #include <charconv>
+#include <cmath>
 
 namespace pvtap {
 namespace {
@@ -32,7 +33,23 @@ void append_unit(std::string& out, std::string_view unit) {
   out += unit;
 }
 
+// A float32 NaN is a device saying it has no reading: its words are shown, not a number.
+void append_not_finite(std::string& out, const DecodedValue& v) {
+  if (std::isnan(v.value)) {
+    out += "not a number (";
+    append_hex(out, v.raw, 8);
+    out += ')';
+    return;
+  }
+  out += v.value < 0 ? "-infinity" : "infinity";
+  append_unit(out, v.def->unit);
+}
+
 void append_number(std::string& out, const DecodedValue& v) {
+  if (!std::isfinite(v.value)) {
+    append_not_finite(out, v);
+    return;
+  }
   append_fixed(out, v.value, v.def->decimals);
   append_unit(out, v.def->unit);
 }
@@ -143,7 +160,7 @@ void append_value_text(std::string& out, const DecodedValue& v) {
 }
 
 double value_as_shown(const DecodedValue& v) {
-  if (v.def == nullptr) return v.value;
+  if (v.def == nullptr || !std::isfinite(v.value)) return v.value;
   FixedChars buf{};
   double shown = v.value;
   std::from_chars(buf.data(), write_fixed(buf, v.value, v.def->decimals), shown);
@@ -181,6 +198,8 @@ std::string_view describe(ValueWarning w) {
       return "text holds non-printable characters";
     case ValueWarning::NoWrittenAddress:
       return "wire address has no decimal ID reading";
+    case ValueWarning::NotFinite:
+      return "float32 value is not a number or infinite";
   }
   return "?";
 }

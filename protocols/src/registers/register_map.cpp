@@ -110,6 +110,37 @@ const RegisterDef* RegisterMap::find_kind(RegisterKind kind) const {
   return nullptr;
 }
 
+namespace {
+
+const CoilDef* find_point(std::span<const CoilDef> points, std::uint16_t address) {
+  auto it = std::lower_bound(points.begin(), points.end(), address,
+                             [](const CoilDef& c, std::uint16_t a) { return c.address < a; });
+  return it != points.end() && it->address == address ? &*it : nullptr;
+}
+
+}  // namespace
+
+std::span<const CoilDef> RegisterMap::coils() const {
+  return data_ ? std::span<const CoilDef>(data_->coils) : std::span<const CoilDef>{};
+}
+std::span<const CoilDef> RegisterMap::discrete_inputs() const {
+  return data_ ? std::span<const CoilDef>(data_->discrete_inputs) : std::span<const CoilDef>{};
+}
+const CoilDef* RegisterMap::find_coil(std::uint16_t address) const {
+  return find_point(coils(), address);
+}
+const CoilDef* RegisterMap::find_discrete_input(std::uint16_t address) const {
+  return find_point(discrete_inputs(), address);
+}
+std::string_view RegisterMap::coil_name(std::uint16_t address) const {
+  const CoilDef* def = find_coil(address);
+  return def != nullptr ? def->name : std::string_view{};
+}
+std::string_view RegisterMap::input_name(std::uint16_t address) const {
+  const CoilDef* def = find_discrete_input(address);
+  return def != nullptr ? def->name : std::string_view{};
+}
+
 std::optional<RegisterSlot> RegisterMap::locate(std::uint16_t address) const {
   if (!data_ || address < data_->first_address) return std::nullopt;
   const std::size_t offset = address - data_->first_address;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <utility>
 
 #include "registers/map_diagnostics.h"
 #include "registers/register_entry_rules.h"
@@ -11,6 +12,7 @@
 namespace pvtap {
 namespace {
 
+using detail::CoilSpec;
 using detail::RegisterSpec;
 
 std::uint16_t to_u16(std::int64_t v) {
@@ -27,16 +29,24 @@ void for_each_covered_address(const RegisterSpec& spec, Dialect dialect, Visit v
   }
 }
 
-void check_keys_unique(const std::vector<const RegisterSpec*>& specs, Dialect dialect,
+// Keys name fields, so a coil's key may not be a register's either.
+void check_keys_unique(const std::vector<const RegisterSpec*>& specs,
+                       const std::vector<const CoilSpec*>& coils, Dialect dialect,
                        detail::DiagnosticList& out) {
-  std::map<std::string, const RegisterSpec*> first_use;
-  for (const RegisterSpec* spec : specs) {
-    auto [it, inserted] = first_use.emplace(spec->key, spec);
+  std::map<std::string, std::uint32_t> first_line;
+  const auto check = [&](const std::string& key, std::uint32_t line, std::uint32_t column,
+                         const std::string& label) {
+    auto [it, inserted] = first_line.emplace(key, line);
     if (!inserted) {
-      out.add(spec->line, spec->column,
-              detail::entry_label(*spec, dialect) + ": key is already used by the entry at line " +
-                  std::to_string(it->second->line));
+      out.add(line, column,
+              label + ": key is already used by the entry at line " + std::to_string(it->second));
     }
+  };
+  for (const RegisterSpec* spec : specs) {
+    check(spec->key, spec->line, spec->column, detail::entry_label(*spec, dialect));
+  }
+  for (const CoilSpec* spec : coils) {
+    check(spec->key, spec->line, spec->column, detail::coil_label(*spec, dialect));
   }
 }
 
@@ -68,6 +78,20 @@ void check_coverage(const std::vector<const RegisterSpec*>& specs, Dialect diale
   }
 }
 
+// Entries of one table may not share an address.
+void check_coil_addresses(const std::vector<const CoilSpec*>& specs, Dialect dialect,
+                          detail::DiagnosticList& out) {
+  std::map<std::pair<detail::CoilTable, std::int64_t>, const CoilSpec*> first_use;
+  for (const CoilSpec* spec : specs) {
+    auto [it, inserted] = first_use.emplace(std::pair{spec->table, spec->address}, spec);
+    if (!inserted) {
+      out.add(spec->line, spec->column,
+              detail::coil_label(*spec, dialect) + ": duplicate address, also defined at line " +
+                  std::to_string(it->second->line));
+    }
+  }
+}
+
 std::uint8_t decimals_for_scale(double scale) {
   for (std::uint8_t d = 0; d < 9; ++d) {
     const double shifted = scale * std::pow(10.0, d);
@@ -76,10 +100,19 @@ std::uint8_t decimals_for_scale(double scale) {
   return 9;
 }
 
+// A float32 carries fractions of whatever its scale is: without a map's say, three digits
+// (230.100 V, 12.345 kWh) show them without pretending to the last bit of the mantissa.
+std::uint8_t default_decimals(const RegisterSpec& spec) {
+  constexpr std::uint8_t kFloatDecimals = 3;
+  const std::uint8_t for_scale = decimals_for_scale(spec.scale);
+  return spec.float32 ? std::max(for_scale, kFloatDecimals) : for_scale;
+}
+
 class MapLayout {
  public:
-  MapLayout(const detail::MapHeaderSpec& header, std::vector<const RegisterSpec*> specs)
-      : data_(std::make_shared<RegisterMap::Data>()), specs_(std::move(specs)) {
+  MapLayout(const detail::MapHeaderSpec& header, std::vector<const RegisterSpec*> specs,
+            const std::vector<const CoilSpec*>& coils)
+      : data_(std::make_shared<RegisterMap::Data>()), specs_(std::move(specs)), coils_(coils) {
     data_->dialect = header.dialect;
     data_->mode = header.mode;
     data_->title = header.title;
@@ -96,6 +129,7 @@ class MapLayout {
     for (const RegisterSpec* spec : specs_) add_def(*spec);
     attach_tables();
     index_slots();
+    add_coils();
     return data_;
   }
 
@@ -117,9 +151,11 @@ class MapLayout {
     def.kind = spec.kind;
     def.is_signed = spec.is_signed;
     def.pair_rule = spec.pair_rule.value_or(PairRule::FromOptions);
+    def.word_order = spec.word_order.value_or(WordOrder::HighFirst);
+    def.encoding = spec.float32 ? NumberEncoding::Float32 : NumberEncoding::Integer;
     def.scale = spec.scale;
     def.decimals =
-        spec.decimals ? static_cast<std::uint8_t>(*spec.decimals) : decimals_for_scale(spec.scale);
+        spec.decimals ? static_cast<std::uint8_t>(*spec.decimals) : default_decimals(spec);
     def.key = intern(spec.key);
     def.name = intern(spec.name);
     def.unit = intern(spec.unit);
@@ -189,8 +225,21 @@ class MapLayout {
     }
   }
 
+  void add_coils() {
+    for (const CoilSpec* spec : coils_) {
+      auto& into = spec->table == detail::CoilTable::Coils ? data_->coils : data_->discrete_inputs;
+      into.push_back(
+          CoilDef{to_u16(spec->address), intern(spec->key), intern(spec->name), spec->line});
+    }
+    for (auto* table : {&data_->coils, &data_->discrete_inputs}) {
+      std::sort(table->begin(), table->end(),
+                [](const CoilDef& a, const CoilDef& b) { return a.address < b.address; });
+    }
+  }
+
   std::shared_ptr<RegisterMap::Data> data_;
   std::vector<const RegisterSpec*> specs_;
+  const std::vector<const CoilSpec*>& coils_;
   std::vector<TableSpan> tables_;
 };
 
@@ -204,15 +253,22 @@ RegisterMapResult RegisterMapBuilder::build(std::vector<MapDiagnostic> earlier) 
     detail::check_register_entry(spec, header_.dialect, problems);
     if (problems.items.size() == before) valid.push_back(&spec);
   }
-  check_keys_unique(valid, header_.dialect, problems);
+  std::vector<const CoilSpec*> valid_coils;
+  for (const CoilSpec& spec : coil_specs_) {
+    const std::size_t before = problems.items.size();
+    detail::check_coil_entry(spec, header_.dialect, problems);
+    if (problems.items.size() == before) valid_coils.push_back(&spec);
+  }
+  check_keys_unique(valid, valid_coils, header_.dialect, problems);
   check_coverage(valid, header_.dialect, problems);
+  check_coil_addresses(valid_coils, header_.dialect, problems);
   if (!problems.empty()) {
     std::stable_sort(
         problems.items.begin(), problems.items.end(),
         [](const MapDiagnostic& a, const MapDiagnostic& b) { return a.line < b.line; });
     return RegisterMapResult::failure(std::move(problems.items));
   }
-  return RegisterMap(MapLayout(header_, std::move(valid)).run());
+  return RegisterMap(MapLayout(header_, std::move(valid), valid_coils).run());
 }
 
 }  // namespace pvtap
@@ -226,7 +282,9 @@ RegisterSpec spec_of(const RegisterDef& def) {
   spec.repeat = def.repeat;
   spec.kind = def.kind;
   spec.is_signed = def.is_signed;
-  if (def.words == 2) spec.pair_rule = def.pair_rule;
+  if (def.words == 2 && !def.is_float()) spec.pair_rule = def.pair_rule;
+  if (def.word_order != WordOrder::HighFirst) spec.word_order = def.word_order;
+  spec.float32 = def.is_float();
   spec.decimals = def.decimals;
   spec.scale = def.scale;
   spec.key = std::string(def.key);
@@ -234,6 +292,16 @@ RegisterSpec spec_of(const RegisterDef& def) {
   spec.unit = std::string(def.unit);
   for (const EnumText& v : def.values) spec.values.push_back({v.value, std::string(v.text), 0, 0});
   for (const BitName& b : def.bits) spec.bits.push_back({b.index, std::string(b.name), 0, 0});
+  spec.line = def.line;
+  return spec;
+}
+
+CoilSpec spec_of(const CoilDef& def, CoilTable table) {
+  CoilSpec spec;
+  spec.table = table;
+  spec.address = def.address;
+  spec.key = std::string(def.key);
+  spec.name = std::string(def.name);
   spec.line = def.line;
   return spec;
 }

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "pvtap/registers/register_map.h"
@@ -25,7 +26,9 @@ struct RegisterSpec {
   std::int64_t repeat = 1;
   RegisterKind kind = RegisterKind::Number;
   bool is_signed = false;
-  std::optional<PairRule> pair_rule;  // unset: FromOptions for 2-word entries
+  std::optional<PairRule> pair_rule;    // unset: FromOptions for 2-word entries
+  std::optional<WordOrder> word_order;  // unset: high word first
+  bool float32 = false;                 // kind = "float32": a number in IEEE-754 words
   std::optional<std::int64_t> decimals;
   double scale = 1.0;
   std::string key;
@@ -33,6 +36,24 @@ struct RegisterSpec {
   std::string unit;
   std::vector<SpecValue> values;
   std::vector<SpecValue> bits;
+  std::uint32_t line = 0;
+  std::uint32_t column = 0;
+};
+
+// CoilTable: which table of a map a coil entry belongs to.
+enum class CoilTable : std::uint8_t { Coils, DiscreteInputs };
+
+// The table's name in map files: "coil" or "discrete_input".
+constexpr std::string_view coil_table_name(CoilTable table) {
+  return table == CoilTable::Coils ? "coil" : "discrete_input";
+}
+
+// CoilSpec: one [[coil]] or [[discrete_input]] entry as read from a file.
+struct CoilSpec {
+  CoilTable table = CoilTable::Coils;
+  std::int64_t address = 0;
+  std::string key;
+  std::string name;
   std::uint32_t line = 0;
   std::uint32_t column = 0;
 };
@@ -47,6 +68,7 @@ struct MapHeaderSpec {
 
 // The entry as a spec again, so that maps can be merged through the same checks.
 RegisterSpec spec_of(const RegisterDef& def);
+CoilSpec spec_of(const CoilDef& def, CoilTable table);
 
 }  // namespace pvtap::detail
 
@@ -57,6 +79,7 @@ class RegisterMapBuilder {
  public:
   explicit RegisterMapBuilder(detail::MapHeaderSpec header) : header_(std::move(header)) {}
   void add(detail::RegisterSpec spec) { specs_.push_back(std::move(spec)); }
+  void add(detail::CoilSpec spec) { coil_specs_.push_back(std::move(spec)); }
   // `earlier` holds problems found while reading the file; they are reported together
   // with the builder's own, sorted by line.
   RegisterMapResult build(std::vector<MapDiagnostic> earlier = {}) &&;
@@ -64,6 +87,7 @@ class RegisterMapBuilder {
  private:
   detail::MapHeaderSpec header_;
   std::vector<detail::RegisterSpec> specs_;
+  std::vector<detail::CoilSpec> coil_specs_;
 };
 
 }  // namespace pvtap

@@ -31,6 +31,8 @@ class MapFileReader {
     read_enums(root.get("enums"));
     RegisterMapBuilder builder(std::move(header));
     read_registers(root.get("register"), builder);
+    read_coils(root.get("coil"), detail::CoilTable::Coils, builder);
+    read_coils(root.get("discrete_input"), detail::CoilTable::DiscreteInputs, builder);
     return std::move(builder).build(nodes_.take_problems());
   }
 
@@ -46,16 +48,39 @@ class MapFileReader {
         if (const auto* s = nodes_.expect_string(node, "title")) header.title = s->get();
       } else if (name == "mode") {
         read_mode(node, header);
-      } else if (name != "enums" && name != "register") {
+      } else if (!is_table_name(name)) {
         nodes_.fail(key.source(), "unknown setting '" + std::string(name) +
-                                      "' (expected dialect, title, mode, [enums] or [[register]])");
+                                      "' (expected dialect, title, mode, [enums], [[register]], "
+                                      "[[coil]] or [[discrete_input]])");
       }
     }
     if (!root.contains("dialect")) {
-      nodes_.fail_at(1, 1,
-                     "the map must name its dialect: dialect = \"ascii\", \"hybrid\" or \"gsl\"");
+      nodes_.fail_at(
+          1, 1,
+          "the map must name its dialect: dialect = \"ascii\", \"hybrid\", \"gsl\" or \"modbus\"");
     }
     return header;
+  }
+
+  static bool is_table_name(std::string_view name) {
+    return name == "enums" || name == "register" || name == "coil" || name == "discrete_input";
+  }
+
+  void read_coils(const toml::node* node, detail::CoilTable table, RegisterMapBuilder& builder) {
+    if (node == nullptr) return;
+    const std::string name(detail::coil_table_name(table));
+    const auto* entries = node->as_array();
+    if (entries == nullptr) {
+      nodes_.fail(node->source(), name + " entries are written as [[" + name + "]]");
+      return;
+    }
+    for (const toml::node& entry : *entries) {
+      if (const auto* t = entry.as_table()) {
+        builder.add(detail::read_coil_entry(nodes_, *t, table));
+      } else {
+        nodes_.fail(entry.source(), "each [[" + name + "]] entry must be a table");
+      }
+    }
   }
 
   void read_dialect(const toml::node& node, detail::MapHeaderSpec& header) {
@@ -67,7 +92,7 @@ class MapFileReader {
       dialect_known_ = true;
     } else {
       nodes_.fail(node.source(),
-                  "unknown dialect '" + s->get() + "' (expected ascii, hybrid or gsl)");
+                  "unknown dialect '" + s->get() + "' (expected ascii, hybrid, gsl or modbus)");
     }
   }
 

@@ -1,4 +1,5 @@
 // Laying a user's map over the built-in one.
+#include <algorithm>
 #include <set>
 #include <string>
 
@@ -34,6 +35,23 @@ struct CoveredAddresses {
   }
 };
 
+// An overlay's coil replaces the base's coil at its address or with its key; so for inputs.
+void add_coils(const RegisterMap& base, const RegisterMap& overlay, RegisterMapBuilder& builder) {
+  using detail::CoilTable;
+  for (const CoilTable table : {CoilTable::Coils, CoilTable::DiscreteInputs}) {
+    const auto points = [&](const RegisterMap& m) {
+      return table == CoilTable::Coils ? m.coils() : m.discrete_inputs();
+    };
+    for (const CoilDef& def : points(base)) {
+      const bool replaced = std::any_of(
+          points(overlay).begin(), points(overlay).end(),
+          [&](const CoilDef& o) { return o.address == def.address || o.key == def.key; });
+      if (!replaced) builder.add(detail::spec_of(def, table));
+    }
+    for (const CoilDef& def : points(overlay)) builder.add(detail::spec_of(def, table));
+  }
+}
+
 }  // namespace
 
 RegisterMapResult merge_register_maps(const RegisterMap& base, const RegisterMap& overlay) {
@@ -57,6 +75,7 @@ RegisterMapResult merge_register_maps(const RegisterMap& base, const RegisterMap
     if (!replaced.conflicts_with(def, step)) builder.add(detail::spec_of(def));
   }
   for (const RegisterDef& def : overlay.registers()) builder.add(detail::spec_of(def));
+  add_coils(base, overlay, builder);
   return std::move(builder).build();
 }
 

@@ -1,5 +1,9 @@
 #include "registers/register_value_conversion.h"
 
+#include <array>
+#include <bit>
+#include <cmath>
+
 namespace pvtap::detail {
 namespace {
 
@@ -31,6 +35,14 @@ void combine(const RegisterDef& def, std::span<const std::uint16_t> words, PairR
     v.raw = (std::uint32_t{words[0]} << 16) | words[1];
   }
   v.signed_raw = static_cast<std::int32_t>(v.raw);
+}
+
+// IEEE-754 single precision: a meter says "no reading" with NaN, so NaN and infinities are
+// kept as they are and flagged rather than turned into a number nobody measured.
+void convert_float32(const RegisterDef& def, DecodedValue& v) {
+  const auto reading = std::bit_cast<float>(v.raw);
+  v.value = static_cast<double>(reading) * def.scale;
+  if (!std::isfinite(v.value)) v.add(ValueWarning::NotFinite);
 }
 
 void convert_enum(const RegisterDef& def, DecodedValue& v) {
@@ -120,7 +132,16 @@ void convert_words(const RegisterDef& def, std::span<const std::uint16_t> words,
     convert_device_number(&def, words.first<2>(), v);
     return;
   }
-  combine(def, words, option_rule, v);
+  std::array<std::uint16_t, 2> swapped{};
+  if (def.word_order == WordOrder::LowFirst && words.size() == 2) {
+    swapped = {words[1], words[0]};
+    words = swapped;
+  }
+  combine(def, words, def.is_float() ? PairRule::Binary : option_rule, v);
+  if (def.is_float()) {
+    convert_float32(def, v);
+    return;
+  }
   v.value =
       (def.is_signed ? static_cast<double>(v.signed_raw) : static_cast<double>(v.raw)) * def.scale;
   switch (def.kind) {

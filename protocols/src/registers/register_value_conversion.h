@@ -9,7 +9,8 @@
 namespace pvtap::detail {
 
 // Fills raw, signed_raw, value and the kind's own fields of `v` from all words of the
-// value (high word first). `option_rule` decides pairs whose entry leaves the rule open.
+// value in wire order (the entry's word order puts them high word first). `option_rule` decides
+// pairs whose entry leaves the rule open.
 void convert_words(const RegisterDef& def, std::span<const std::uint16_t> words,
                    PairRule option_rule, DecodedValue& v);
 

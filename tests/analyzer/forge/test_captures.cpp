@@ -12,6 +12,7 @@
 #include "gateway_render.h"
 #include "inverter_traffic.h"
 #include "pvtap/capture/capture_writer.h"
+#include "pvtap/codec/function_codes.h"
 #include "serial_render.h"
 
 namespace pvtap::forge {
@@ -269,6 +270,55 @@ void decoder_options(const std::string& dir) {
   save(dir, "options", e);
 }
 
+// An energy meter (station 10, float32 input registers) beside a GSL inverter: decoded with a
+// map given to its station only. Voltages high word first, the energy low word first.
+Frame meter_read(std::uint16_t start, std::uint16_t count) {
+  Frame f = make_frame(Dialect::Modbus, Role::Request, 10, fc::kGslReadInput);
+  f.start = start;
+  f.count = count;
+  return f;
+}
+
+Frame meter_reply(const WordList& words) {
+  Frame f = make_frame(Dialect::Modbus, Role::Response, 10, fc::kGslReadInput);
+  f.byte_count = static_cast<std::uint8_t>(2 * words.size());
+  f.words = words;
+  return f;
+}
+
+void station_map(const std::string& dir) {
+  BusPlan plan;
+  double at = plan.exchange(kStart, gsl_read(1, 1050, 7),
+                            gsl_reply(1, {2301, 2302, 2299, 120, 121, 119, 5002}), 0.030);
+  // 230.1 V, 231.4 V, 229.8 V.
+  at = plan.exchange(at + 0.05, meter_read(0x0000, 6),
+                     meter_reply({0x4366, 0x199A, 0x4367, 0x6666, 0x4365, 0xCCCD}), 0.020);
+  // 49.98 Hz; 1234.5 kWh as 0x449A5000, low word first.
+  plan.exchange(at + 0.05, meter_read(0x0046, 4), meter_reply({0x4247, 0xEB85, 0x5000, 0x449A}),
+                0.020);
+  plan.expect_value("1", "1050", 230.1);
+  plan.expect_value("10", "0x0000", 230.1);
+  plan.expect_value("10", "0x0004", 229.8);
+  plan.expect_value("10", "0x0046", 49.98);
+  plan.expect_value("10", "0x0048", 1234.5);
+  {
+    PcapCaptureWriter out(path_in(dir, "station_map.pcap"), DLT_USER1);
+    write_timer_chunks(plan, out);
+  }
+  std::ofstream map(path_in(dir, "meter.toml"));
+  map << "dialect = \"modbus\"\n";
+  for (const char* entry : {"0x0000\nkey = \"v1\"\nname = \"voltage 1\"\nunit = \"V\"",
+                            "0x0004\nkey = \"v3\"\nname = \"voltage 3\"\nunit = \"V\"",
+                            "0x0046\nkey = \"hz\"\nname = \"frequency\"\nunit = \"Hz\"",
+                            "0x0048\nkey = \"kwh\"\nname = \"energy\"\nword_order = "
+                            "\"low_first\""}) {
+    map << "\n[[register]]\nkind = \"float32\"\naddress = " << entry << "\n";
+  }
+  Expected e = plan.expected();
+  e.args = {"--map", "10={dir}/meter.toml"};
+  save(dir, "station_map", e);
+}
+
 void bad_inputs(const std::string& dir) {
   std::ofstream(path_in(dir, "not_a_capture.txt")) << "time,station,value\n1,2,3\n";
   std::ofstream(path_in(dir, "empty.pcap"));
@@ -294,6 +344,7 @@ void write_test_captures(const std::string& dir) {
   user0_and_raw(dir);
   rtac(dir);
   decoder_options(dir);
+  station_map(dir);
   bad_inputs(dir);
 }
 

@@ -6,6 +6,7 @@
 #include <span>
 
 #include "pvtap/codec/frame.h"
+#include "pvtap/registers/register_map.h"
 
 namespace pvtap {
 
@@ -18,6 +19,8 @@ struct CoilBits {
   bool inputs = false;  // discrete inputs (0x02) rather than coils
 
   bool on(std::size_t i) const { return (bytes[i / 8] >> (i % 8)) & 1u; }
+  // The address of bit i, when the start is known and the address within 0 .. 65535.
+  std::optional<std::uint16_t> address(std::size_t i) const;
 };
 
 // The bits a frame carries, or nullopt for a frame that carries none:
@@ -26,5 +29,9 @@ struct CoilBits {
 //   0x0F request       start, quantity and its bytes
 // A quantity the bytes cannot hold is cut to what they hold.
 std::optional<CoilBits> coil_bits(const Frame& frame, const Frame* request);
+
+// What a map says of bit i: its [[coil]] or [[discrete_input]] entry (as the bits are), or
+// null when the map does not name that address or the bits' start is unknown.
+const CoilDef* coil_def(const RegisterMap& map, const CoilBits& bits, std::size_t i);
 
 }  // namespace pvtap

@@ -54,6 +54,7 @@ enum class ValueWarning : std::uint16_t {
   InvalidDate = 1u << 6,       // BCD month outside 1..12
   NonPrintableText = 1u << 7,  // text with characters outside printable ASCII (shown as '?')
   NoWrittenAddress = 1u << 8,  // GSL hex IDs: the wire address has a digit above 9
+  NotFinite = 1u << 9,         // a float32 value that is NaN or infinite (value holds it)
 };
 
 // BcdParts: the parts of a BCD value (phase+capacity: phases, capacity in raw units;

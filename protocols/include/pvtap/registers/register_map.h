@@ -40,6 +40,17 @@ enum class PairRule : std::uint8_t {
   FromOptions,  // left to DecoderOptions::pair_rule (the reference leaves it open)
 };
 
+// WordOrder: which word of a 2-word value comes first on the wire. Most devices send the high
+// word first; some energy meters swap the two.
+enum class WordOrder : std::uint8_t { HighFirst, LowFirst };
+
+// NumberEncoding: how the words of a number register hold its value. A float32 register is a
+// number to everything that shows or charts it; only its words are read differently.
+enum class NumberEncoding : std::uint8_t {
+  Integer,  // the words combined by the pair rule, signed if asked
+  Float32,  // IEEE-754 single precision over two words (map files: kind = "float32")
+};
+
 // MapMode: whether a map stands alone or is laid over the built-in map of its dialect.
 enum class MapMode : std::uint8_t { Replace, Extend };
 
@@ -64,19 +75,31 @@ struct RegisterDef {
   std::uint16_t repeat = 1;   // number of like registers; more than 1 for a range entry
   RegisterKind kind = RegisterKind::Number;
   bool is_signed = false;
-  PairRule pair_rule = PairRule::FromOptions;  // used when words == 2
-  std::uint8_t decimals = 0;                   // digits shown after the point
-  double scale = 1.0;                          // value = raw * scale
-  std::string_view key;                        // stable field key, [a-z][a-z0-9_]*
-  std::string_view name;                       // human name
-  std::string_view unit;                       // of the scaled value; may be empty
-  std::span<const EnumText> values;            // sorted by value
-  std::span<const BitName> bits;               // sorted by index
-  std::uint32_t line = 0;                      // where the entry starts in its map file
+  PairRule pair_rule = PairRule::FromOptions;         // used when words == 2
+  WordOrder word_order = WordOrder::HighFirst;        // used when words == 2
+  NumberEncoding encoding = NumberEncoding::Integer;  // kind number only
+  std::uint8_t decimals = 0;                          // digits shown after the point
+  double scale = 1.0;                                 // value = raw * scale
+  std::string_view key;                               // stable field key, [a-z][a-z0-9_]*
+  std::string_view name;                              // human name
+  std::string_view unit;                              // of the scaled value; may be empty
+  std::span<const EnumText> values;                   // sorted by value
+  std::span<const BitName> bits;                      // sorted by index
+  std::uint32_t line = 0;                             // where the entry starts in its map file
 
   bool is_range() const { return repeat > 1; }
+  bool is_float() const { return encoding == NumberEncoding::Float32; }
   std::string_view value_text(std::uint32_t value) const;  // empty when not listed
   std::string_view bit_name(unsigned index) const;         // empty when not listed
+};
+
+// CoilDef: a named coil ([[coil]]) or discrete input ([[discrete_input]]) of a map: one bit
+// at one address. Its views live as long as the map, like a RegisterDef's.
+struct CoilDef {
+  std::uint16_t address = 0;
+  std::string_view key;   // stable field key, unique among all entries of the map
+  std::string_view name;  // human name
+  std::uint32_t line = 0;
 };
 
 // RegisterSlot: the entry that covers one address, and which of its words that is.
@@ -120,6 +143,15 @@ class RegisterMap {
   // The entry covering a written address; a single entry wins over a range containing it.
   std::optional<RegisterSlot> locate(std::uint16_t address) const;
   const RegisterDef* find_kind(RegisterKind kind) const;  // the first entry of a kind
+
+  // Named coils and discrete inputs (Modbus-family maps), each sorted by address.
+  std::span<const CoilDef> coils() const;
+  std::span<const CoilDef> discrete_inputs() const;
+  const CoilDef* find_coil(std::uint16_t address) const;
+  const CoilDef* find_discrete_input(std::uint16_t address) const;
+  // The name of the coil or input at an address; empty when the map does not name it.
+  std::string_view coil_name(std::uint16_t address) const;
+  std::string_view input_name(std::uint16_t address) const;
 
   struct Data;  // defined by the library
 
