@@ -69,7 +69,41 @@ void append_bits_text(std::string& o, const CoilBits& bits) {
   o += ')';
 }
 
-void append_bits_json(std::string& o, const CoilBits& bits) {
+// "; pump relay on, valve off": the bits the station's map names.
+void append_named_bits_text(std::string& o, const CoilBits& bits, const RegisterMap* map) {
+  if (map == nullptr || !bits.start) return;
+  bool first = true;
+  for (std::size_t i = 0; i < bits.count; ++i) {
+    const CoilDef* def = coil_def(*map, bits, i);
+    if (def == nullptr) continue;
+    o += first ? "; " : ", ";
+    first = false;
+    o += def->name;
+    o += bits.on(i) ? " on" : " off";
+  }
+}
+
+// ,"named":[{"address":19,"key":"pump","name":"pump relay","on":true}]
+void append_named_bits_json(std::string& o, const CoilBits& bits, const RegisterMap* map) {
+  if (map == nullptr || !bits.start) return;
+  bool first = true;
+  for (std::size_t i = 0; i < bits.count; ++i) {
+    const CoilDef* def = coil_def(*map, bits, i);
+    if (def == nullptr) continue;
+    o += first ? ",\"named\":[" : ",";
+    first = false;
+    o += "{\"address\":";
+    append_uint(o, def->address);
+    o += ",\"key\":";
+    append_json_string(o, def->key);
+    o += ",\"name\":";
+    append_json_string(o, def->name);
+    o += bits.on(i) ? ",\"on\":true}" : ",\"on\":false}";
+  }
+  if (!first) o += ']';
+}
+
+void append_bits_json(std::string& o, const CoilBits& bits, const RegisterMap* map) {
   o += bits.inputs ? ",\"inputs\":{\"start\":" : ",\"coils\":{\"start\":";
   if (bits.start) {
     append_uint(o, *bits.start);
@@ -87,7 +121,9 @@ void append_bits_json(std::string& o, const CoilBits& bits) {
     // Without the request the bits are numbered from 0.
     append_uint(o, bits.start.value_or(0) + i);
   }
-  o += "]}";
+  o += ']';
+  append_named_bits_json(o, bits, map);
+  o += '}';
 }
 
 void append_device_text(std::string& o, const DeviceIdentification& id) {
@@ -126,7 +162,10 @@ void append_device_json(std::string& o, const DeviceIdentification& id) {
 void append_contents_text(std::string& o, const SessionFrame& f) {
   if (!may_carry_contents(f)) return;
   const Frame& frame = *f.frame;
-  if (const auto bits = coil_bits(frame, f.placing_request)) append_bits_text(o, *bits);
+  if (const auto bits = coil_bits(frame, f.placing_request)) {
+    append_bits_text(o, *bits);
+    append_named_bits_text(o, *bits, f.map);
+  }
   if (frame.sub_function) {
     o += "  diagnostics: ";
     const std::string_view name = fc::diagnostics_name(*frame.sub_function);
@@ -152,7 +191,7 @@ void append_contents_text(std::string& o, const SessionFrame& f) {
 void append_contents_json(std::string& o, const SessionFrame& f) {
   if (!may_carry_contents(f)) return;
   const Frame& frame = *f.frame;
-  if (const auto bits = coil_bits(frame, f.placing_request)) append_bits_json(o, *bits);
+  if (const auto bits = coil_bits(frame, f.placing_request)) append_bits_json(o, *bits, f.map);
   if (frame.sub_function) {
     o += ",\"diagnostics\":{\"sub_function\":";
     append_uint(o, *frame.sub_function);

@@ -15,6 +15,7 @@ constexpr ValueWarning kAllWarnings[] = {
     ValueWarning::NotInMap,         ValueWarning::Incomplete,       ValueWarning::LowPartOver9999,
     ValueWarning::UnknownEnumValue, ValueWarning::UnnamedBitSet,    ValueWarning::InvalidBcd,
     ValueWarning::InvalidDate,      ValueWarning::NonPrintableText, ValueWarning::NoWrittenAddress,
+    ValueWarning::NotFinite,
 };
 
 void add_count_mismatch(const ByteCountMismatch& m, std::vector<std::string>& out) {
@@ -174,7 +175,8 @@ void append_value_json_unit(std::string& out, const DecodedValue& v) {
 
 ReadingKind reading_kind(const DecodedValue& v) {
   if (v.def == nullptr) return ReadingKind::Number;  // the word itself
-  if (!v.complete()) return ReadingKind::None;
+  // JSON has no NaN or infinity: null, and the warning says why.
+  if (!v.complete() || v.has(ValueWarning::NotFinite)) return ReadingKind::None;
   switch (v.def->kind) {
     case RegisterKind::Text:
     case RegisterKind::BcdYearMonth:

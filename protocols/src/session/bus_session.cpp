@@ -38,7 +38,8 @@ struct BusSession::Impl {
         matcher(o.matcher),
         times(options),
         replies(d, options),
-        station_dialects(o.reassembler.dialects, d) {}
+        station_dialects(o.reassembler.dialects, d),
+        decoder(d) {}
 
   DirectionStream& stream(Direction d) {
     auto& slot = streams[index_of(d)];
@@ -64,6 +65,7 @@ struct BusSession::Impl {
   detail::ReplyValues replies;
   detail::BusTally tally;
   detail::StationDialects station_dialects;
+  const RegisterDecoder& decoder;
   Frame frame;  // the frame being handled; SessionFrame::frame points here
   std::uint64_t next_id = 0;
   std::uint64_t loss_boundary_id = 0;  // requests before this id were waiting during a loss
@@ -140,6 +142,8 @@ void BusSession::Impl::on_frame(Direction direction, const FrameEvent& e) {
     frame.dialect = label.dialect;
     out.dialect = label.dialect;
     out.dialect_changed_from = label.changed_from;
+    const RegisterMap* own = decoder.station_map(frame.station);
+    out.map = own != nullptr ? own : &decoder.map(label.dialect);
     out.frame = &frame;
     handle_parsed(out, e);
   }

@@ -73,7 +73,10 @@ struct SessionFrame {
   // with a good check, and never placed by a request with a bad one.
   std::optional<std::uint64_t> placed_by;
   const Frame* placing_request = nullptr;  // that request's frame (coil_bits places by it)
-  bool values_trusted = false;             // a good check: its values may be decoded
+  // The register map its station's values are read with (its own, or its dialect's): it also
+  // names the station's coils and inputs (coil_def).
+  const RegisterMap* map = nullptr;
+  bool values_trusted = false;  // a good check: its values may be decoded
   DecodeReport decode;
   std::span<const DecodedValue> values;  // empty unless options.decode_values
 };
