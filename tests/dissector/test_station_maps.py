@@ -171,6 +171,11 @@ class StationMaps(StationMapCase, unittest.TestCase):
                          [self.at["meter_rep1"], self.at["meter_rep2"]])
         self.assertEqual(self.packets('invrtu.map_value == "voltage phase 1: 251.3 V"'),
                          [self.at["meter_rep1"], self.at["meter_rep2"]])
+        # The README's filter about one entry.
+        self.assertEqual(self.packets('invrtu.map_value matches "^voltage phase 1: 2[5-9][0-9]"'),
+                         [self.at["meter_rep1"], self.at["meter_rep2"]])
+        self.assertEqual(self.packets('invrtu.map_value matches "^voltage phase 1: 2[6-9][0-9]"'),
+                         [])
 
     def test_the_tree_labels_values_as_the_built_in_ones(self):
         lines = [line.strip() for line in self.tshark.verbose(self.capture).splitlines()]
