@@ -116,6 +116,15 @@ class TsharkHome:
     def path(self, name):
         return os.path.join(self.home, name)
 
+    def write_text(self, name, text, config=False):
+        """A file in HOME, or with config=True in the personal configuration folder (a UAT's
+        file, for example); returns its path."""
+        path = os.path.join(self.home, ".config", "wireshark", name) if config else self.path(name)
+        with open(path, "w") as f:
+            f.write(text)
+        self._hand_over()
+        return path
+
     def write(self, name, pcap):
         path = self.path(name)
         pcap.write(path)

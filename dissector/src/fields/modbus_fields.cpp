@@ -92,6 +92,13 @@ constexpr ModbusFieldSpec kFields[] = {
      Names::None, nullptr},
     {ModbusField::QuantityMax, "Largest quantity allowed", "quantity.max", FT_UINT16, BASE_DEC,
      Names::None, nullptr},
+    {ModbusField::MapValue, "Station map value", "map_value", FT_STRING, BASE_NONE, Names::None,
+     "A value of a station's own register map (preference Station register maps): its name "
+     "and value, \"voltage phase 1: 230.1 V\""},
+    {ModbusField::MapKey, "Station map key", "map_key", FT_STRING, BASE_NONE, Names::None,
+     "The key of the station map's entry the value belongs to"},
+    {ModbusField::MapNumber, "Station map number", "map_number", FT_DOUBLE, BASE_NONE, Names::None,
+     "The value of a numeric station map entry, scaled, as shown"},
 };
 static_assert(std::size(kFields) == kModbusFieldCount);
 
@@ -167,7 +174,7 @@ void register_modbus_items(InverterProtocol& p) {
   }
   register_fields(p);
   register_experts(p);
-  gint* etts[] = {&p.ett.coils, &p.ett.coil, &p.ett.device_object};
+  gint* etts[] = {&p.ett.coils, &p.ett.coil, &p.ett.device_object, &p.ett.map_entry};
   proto_register_subtree_array(etts, G_N_ELEMENTS(etts));
 }
 

@@ -70,7 +70,14 @@ std::string value_label(const DecodedValue& v, Dialect d) {
   return std::string(v.name()) + " (" + address + ")";
 }
 
-PlannedValue plan_value(const DecodedValue& v, const DecodeReport& report, Dialect d,
+// The generic fields of a station map's entry, which Wireshark registered no field for.
+void plan_map_entry(const DecodedValue& v, const std::string& text, const Arena& arena,
+                    PlannedValue& p) {
+  p.map_key = arena.copy(v.key());
+  p.map_value = arena.copy(std::string(v.name()) + ": " + text);
+}
+
+PlannedValue plan_value(const DecodedValue& v, const DecodeReport& report, Dialect d, bool own_map,
                         const FramePlan& plan, const Arena& arena) {
   const auto index = static_cast<std::uint16_t>(v.wire_address - report.start) / address_step(d);
   PlannedValue p;
@@ -80,8 +87,10 @@ PlannedValue plan_value(const DecodedValue& v, const DecodeReport& report, Diale
   // writes doubles in full, prints what the text says.
   p.number = value_as_shown(v);
   p.raw = v.raw;
-  p.text = arena.copy(format_value(v));
+  const std::string text = format_value(v);
+  p.text = arena.copy(text);
   p.label = arena.copy(value_label(v, d));
+  if (own_map && v.def != nullptr) plan_map_entry(v, text, arena, p);
   p.warnings = static_cast<std::uint16_t>(v.warnings & ~kShownElsewhere);
   return p;
 }
@@ -96,9 +105,14 @@ void plan_values(const Frame& f, const Frame* request, const AnalysisContext& ct
     plan.decode_note = ctx.arena.copy(describe(report));
   }
   if (report.count == 0) return;
+  // The decoder's rule: a station's own map decodes its GSL and plain Modbus frames, and its
+  // values are addressed in the map's dialect.
+  const RegisterMap* own = ctx.decoder->station_map(f.station);
+  const bool own_map = own != nullptr && modbus_family(f.dialect);
+  const Dialect d = own_map ? own->dialect() : f.dialect;
   auto* planned = ctx.arena.make_array<PlannedValue>(report.count);
   for (std::size_t i = 0; i < report.count; ++i) {
-    planned[i] = plan_value(values[report.first + i], report, f.dialect, plan, ctx.arena);
+    planned[i] = plan_value(values[report.first + i], report, d, own_map, plan, ctx.arena);
   }
   plan.values = planned;
   plan.value_count = report.count;

@@ -21,6 +21,10 @@ struct PlannedValue {
   const char* text = nullptr;        // the value as a person reads it ("26.6 V")
   const char* label = nullptr;       // "battery voltage (0x1006)"
   std::uint16_t warnings = 0;        // ValueWarning bits worth an expert info
+  // An entry of the station's own map (station register maps), which has no field of its own:
+  // its key and "name: value", for the generic map fields. Null for any other value.
+  const char* map_key = nullptr;
+  const char* map_value = nullptr;
 };
 
 // Built by analyze_frame with the core before any Wireshark call that may throw (those

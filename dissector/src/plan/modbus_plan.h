@@ -48,6 +48,9 @@ enum class ModbusField : std::uint8_t {
   PreviousDialect,  // the dialect a station spoke before this frame
   QuantityMin,      // the range a request's quantity breaks
   QuantityMax,
+  MapValue,   // a value of a station's own map: "voltage phase 1: 230.1 V"
+  MapKey,     // its entry's key
+  MapNumber,  // its number, where it is one
   Count_,
 };
 

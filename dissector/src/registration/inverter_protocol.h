@@ -76,6 +76,7 @@ struct Subtrees {
   int coils = -1;
   int coil = -1;
   int device_object = -1;
+  int map_entry = -1;  // a value of a station's own map
 };
 
 // ProtocolSettings: preference values; Wireshark writes them through pointers.

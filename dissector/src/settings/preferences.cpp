@@ -5,6 +5,7 @@
 #include <string>
 
 #include "settings/register_decoding.h"
+#include "settings/station_maps.h"
 
 namespace pvtap::dissector {
 namespace {
@@ -32,6 +33,7 @@ void register_rtu_options(module_t* module, ProtocolSettings& s) {
       "How the two words of the GSL 32-bit values (total energy, CO2 reduction) combine: "
       "binary (high x 65536 + low) or decimal (high x 10000 + low)",
       &s.pair_rule, kPairRules, false);
+  register_station_map_table(module);
 }
 
 }  // namespace

@@ -6,10 +6,11 @@
 #include <algorithm>
 #include <array>
 #include <filesystem>
-#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "settings/map_file.h"
 
 namespace pvtap::dissector {
 namespace {
@@ -56,25 +57,6 @@ void apply_user_map(const fs::path& file, const RegisterMap& user) {
     return;
   }
   current = stacked.value();
-}
-
-// The file's text, read here with glib: the core parses text and reads no files.
-std::optional<std::string> file_text(const fs::path& file) {
-  gchar* contents = nullptr;
-  gsize length = 0;
-  if (!g_file_get_contents(file.c_str(), &contents, &length, nullptr)) return std::nullopt;
-  std::string text(contents, length);
-  g_free(contents);
-  return text;
-}
-
-RegisterMapResult read_map_file(const fs::path& file) {
-  const std::optional<std::string> text = file_text(file);
-  if (!text) {
-    MapDiagnostic d{file.string(), 0, 0, "cannot open the file"};
-    return RegisterMapResult::failure({std::move(d)});
-  }
-  return load_register_map(*text, file.string());
 }
 
 void load_user_map(const fs::path& file) {

@@ -152,6 +152,8 @@ struct Adder {
         return t.protocol->ett.coil;
       case Subtree::DeviceObject:
         return t.protocol->ett.device_object;
+      case Subtree::MapEntry:
+        return t.protocol->ett.map_entry;
       case Subtree::Flags: {
         const RegisterField* f = register_field(dialect, item.def);
         return f != nullptr ? f->ett : -1;
@@ -170,6 +172,8 @@ struct Adder {
       case ValueType::Boolean:
         return proto_tree_add_boolean(tree, id, t.tvb, start, i.length, i.uint);
       case ValueType::Double:
+        if (i.text == nullptr)
+          return proto_tree_add_double(tree, id, t.tvb, start, i.length, i.number);
         return proto_tree_add_double_format(tree, id, t.tvb, start, i.length, i.number, "%s",
                                             i.text);
       case ValueType::String:

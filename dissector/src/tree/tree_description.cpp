@@ -182,7 +182,50 @@ void add_flags(Builder& b, const PlannedValue& v) {
   }
 }
 
+bool numeric(const RegisterDef& def) {
+  return def.kind != RegisterKind::Text && def.kind != RegisterKind::BcdYearMonth;
+}
+
+// A value of a station's own map, which has no field of its own (Wireshark registers fields
+// at start-up; the table of station maps changes at run time): the generic map fields, with
+// the entry's key and, for numbers, the number under it.
+std::uint32_t add_map_value(Builder& b, const PlannedValue& v) {
+  TreeItem item;
+  item.field = TreeField::Modbus;
+  item.modbus = ModbusField::MapValue;
+  item.type = ValueType::String;
+  item.form = LabelForm::Whole;
+  item.depth = kFrame;
+  item.offset = v.span.offset;
+  item.length = v.span.length;
+  item.string = v.map_value;
+  item.text = b.text(std::string(text_of(v.label)) + ": " + std::string(text_of(v.text)));
+  item.subtree = Subtree::MapEntry;
+  const std::uint32_t index = b.add(item);
+  TreeItem key = item;
+  key.modbus = ModbusField::MapKey;
+  key.form = LabelForm::Default;
+  key.depth = kField;
+  key.string = v.map_key;
+  key.text = nullptr;
+  key.subtree = Subtree::None;
+  key.generated = true;
+  b.add(key);
+  if (!numeric(*v.def)) return index;
+  TreeItem number = key;
+  number.modbus = ModbusField::MapNumber;
+  number.type = ValueType::Double;
+  number.generated = false;
+  // Integer kinds (raw words, enumerations, bits) as their integer, the rest as shown.
+  number.number = register_field_type(*v.def) == RegisterFieldType::Double
+                      ? v.number
+                      : static_cast<double>(v.raw);
+  b.add(number);
+  return index;
+}
+
 std::uint32_t add_value(Builder& b, const PlannedValue& v) {
+  if (v.map_key != nullptr && v.def != nullptr) return add_map_value(b, v);
   TreeItem item;
   item.depth = kFrame;
   item.offset = v.span.offset;

@@ -94,7 +94,17 @@ enum class LabelForm : std::uint8_t {
 };
 
 // Subtree: the subtree an item opens for the items one level deeper that follow it.
-enum class Subtree : std::uint8_t { None, Frame, Noise, Device, Flags, Coils, Coil, DeviceObject };
+enum class Subtree : std::uint8_t {
+  None,
+  Frame,
+  Noise,
+  Device,
+  Flags,
+  Coils,
+  Coil,
+  DeviceObject,
+  MapEntry,  // a value of a station's own map: its key and number
+};
 
 // CheckStatus: the value of the check status field, Wireshark's PROTO_CHECKSUM_E_* values.
 enum class CheckStatus : std::uint32_t { Bad = 0, Good = 1, Unverified = 2 };

@@ -44,6 +44,8 @@ const char* subtree_name(Subtree s) {
       return " {coil}";
     case Subtree::DeviceObject:
       return " {object}";
+    case Subtree::MapEntry:
+      return " {map entry}";
     case Subtree::None:
       break;
   }
@@ -56,8 +58,26 @@ void write_place(std::ostream& out, const TreeItem& item) {
   out << " [" << item.offset << "+" << item.length << "]";
 }
 
+// The generic fields of a station map's entries by name, other Modbus fields by number.
+void write_modbus_field(std::ostream& out, ModbusField field) {
+  switch (field) {
+    case ModbusField::MapValue:
+      out << ".MapValue";
+      return;
+    case ModbusField::MapKey:
+      out << ".MapKey";
+      return;
+    case ModbusField::MapNumber:
+      out << ".MapNumber";
+      return;
+    default:
+      out << "." << static_cast<unsigned>(field);
+  }
+}
+
 void write_field(std::ostream& out, const TreeItem& item) {
   out << unsigned{item.depth} << " " << name_of(item.field);
+  if (item.field == TreeField::Modbus) write_modbus_field(out, item.modbus);
   if (item.def != nullptr) out << " " << item.def->key;
   write_place(out, item);
   write_value(out, item);
