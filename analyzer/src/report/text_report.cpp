@@ -201,9 +201,9 @@ void findings(const AuditReport& r, const BusReport& b, std::string& o) {
     if (e.dialect == Dialect::Hybrid) {
       o += report_line("  hybrid error reply (0xFF): %llu", u(e.count));
     } else {
-      o +=
-          report_line("  %s exception 0x%02X (%s): %llu", std::string(to_string(e.dialect)).c_str(),
-                      e.code, std::string(fc::exception_name(e.dialect, e.code)).c_str(), u(e.count));
+      o += report_line("  %s exception 0x%02X (%s): %llu",
+                       std::string(to_string(e.dialect)).c_str(), e.code,
+                       std::string(fc::exception_name(e.dialect, e.code)).c_str(), u(e.count));
     }
   }
   o += report_line("noise: %llu bytes in %llu runs", u(b.bytes.noise_bytes), u(b.bytes.noise_runs));

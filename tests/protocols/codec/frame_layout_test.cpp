@@ -128,8 +128,8 @@ TEST(FrameLayout, AsciiRequestAndReply) {
 TEST(FrameLayout, ModbusDiagnosticsReadWriteAndFifoPutTheirWordsWhereTheyAre) {
   const auto diag = parse("11 08 00 00 A5 37 00 00", Dialect::Modbus, Role::Request);
   expect_span(diag.layout.words, 4, 2);
-  const auto rw = parse("11 17 00 03 00 06 00 0E 00 03 06 00 FF 00 FF 00 FF 00 00",
-                        Dialect::Modbus, Role::Request);
+  const auto rw = parse("11 17 00 03 00 06 00 0E 00 03 06 00 FF 00 FF 00 FF 00 00", Dialect::Modbus,
+                        Role::Request);
   expect_span(rw.layout.start, 2, 2);
   expect_span(rw.layout.count, 4, 2);
   expect_span(rw.layout.byte_count, 10, 1);

@@ -133,8 +133,8 @@ TEST(ModbusCodec, DeviceIdentificationNamesTheDevice) {
     }
     return out;
   };
-  const std::string pdu = "2B 0E 01 01 00 00 03 00 16" + text_hex("Company identification") + " 01 0F" +
-        text_hex("Product code XX") + " 02 05" + text_hex("V2.11");
+  const std::string pdu = "2B 0E 01 01 00 00 03 00 16" + text_hex("Company identification") +
+                          " 01 0F" + text_hex("Product code XX") + " 02 05" + text_hex("V2.11");
   const Frame r = parsed(pdu, Role::Response);
   const auto id = read_device_identification(r);
   ASSERT_TRUE(id);
