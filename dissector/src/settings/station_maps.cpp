@@ -16,6 +16,7 @@
 #include "settings/preferences.h"
 #include "settings/register_maps.h"
 #include "settings/station_list.h"
+#include "wireshark_api/uat_types.h"
 
 namespace pvtap::dissector {
 namespace {
@@ -62,23 +63,23 @@ LoadedMap load_station_map(std::string_view path) {
 
 // Field and record checks: Wireshark shows the message beside the row (GUI) or with the
 // table's file and line (tshark), and keeps a row that fails out of the table's records.
-gboolean check_stations(void*, const char* text, unsigned length, const void*, const void*,
-                        char** error) {
+UatVerdict check_stations(void*, const char* text, unsigned length, const void*, const void*,
+                          char** error) {
   const StationList list = read_station_list({text, length});
   if (list.ok()) return TRUE;
   *error = g_strdup(list.problem.c_str());
   return FALSE;
 }
 
-gboolean check_file(void*, const char* text, unsigned length, const void*, const void*,
-                    char** error) {
+UatVerdict check_file(void*, const char* text, unsigned length, const void*, const void*,
+                      char** error) {
   const LoadedMap loaded = load_station_map({text, length});
   if (loaded.map) return TRUE;
   *error = g_strdup(loaded.problem.c_str());
   return FALSE;
 }
 
-gboolean check_row(void* record, char** error) {
+UatVerdict check_row(void* record, char** error) {
   const auto* row = static_cast<const StationMapRow*>(record);
   const std::string_view stations = text_of(row->stations);
   const std::string_view file = text_of(row->file);
