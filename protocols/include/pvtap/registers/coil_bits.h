@@ -18,7 +18,7 @@ struct CoilBits {
   std::span<const std::uint8_t> bytes;
   bool inputs = false;  // discrete inputs (0x02) rather than coils
 
-  bool on(std::size_t i) const { return (bytes[i / 8] >> (i % 8)) & 1u; }
+  bool on(std::size_t i) const { return ((unsigned{bytes[i / 8]} >> (i % 8)) & 1u) != 0; }
   // The address of bit i, when the start is known and the address within 0 .. 65535.
   std::optional<std::uint16_t> address(std::size_t i) const;
 };
