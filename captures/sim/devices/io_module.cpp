@@ -90,7 +90,7 @@ void IoModule::apply_write(const Frame& request) {
       break;
     case fc::kWriteMultipleCoils:
       for (unsigned i = 0; i < request.count.value_or(0) && start + i < kPoints; ++i)
-        coils_[start + i] = (request.data[i / 8] >> (i % 8) & 1u) != 0;
+        coils_[start + i] = ((unsigned{request.data[i / 8]} >> (i % 8)) & 1u) != 0;
       break;
     default:  // 0x06 and 0x10: the setpoints
       for (unsigned i = 0; i < request.words.size(); ++i)
