@@ -1,9 +1,15 @@
 #include "extcap/extcap_capture.h"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <string>
+#include <thread>
 
 #include "cli/exit_status.h"
 #include "cli/sniff_command.h"
@@ -49,6 +55,26 @@ std::string call_problem(const ExtcapCall& call, const DiscoveredPort* port) {
   return problems.empty() ? std::string() : problems.front();
 }
 
+// A refused call still opens and closes Wireshark's fifo: dumpcap may be blocked opening
+// its reading end, and would wait for a writer that never comes (tshark then hangs on a loaded
+// machine instead of showing why pvtap refused). Its reader may come a moment after us, so
+// the open is tried for a while; the capture's end of file then ends dumpcap's wait.
+void release_fifo(const std::string& fifo) {
+  if (fifo.empty()) return;
+  constexpr auto kPatience = std::chrono::seconds(2);
+  constexpr auto kStep = std::chrono::milliseconds(20);
+  const auto deadline = std::chrono::steady_clock::now() + kPatience;
+  while (std::chrono::steady_clock::now() < deadline) {
+    const int fd = ::open(fifo.c_str(), O_WRONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd >= 0) {
+      ::close(fd);
+      return;
+    }
+    if (errno != ENXIO) return;  // no fifo there, or not ours to open
+    std::this_thread::sleep_for(kStep);
+  }
+}
+
 }  // namespace
 
 SniffOptions capture_options(const DiscoveredPort& port, const ExtcapSettings& settings,
@@ -72,6 +98,8 @@ int run_extcap_capture(const ExtcapCall& call, const std::vector<DiscoveredPort>
   const DiscoveredPort* port = named == ports.end() ? nullptr : &*named;
   if (const std::string problem = call_problem(call, port); !problem.empty()) {
     std::fprintf(stderr, "pvtap: %s\n", problem.c_str());
+    std::fflush(stderr);
+    release_fifo(call.fifo);
     return kExitBadInput;
   }
   SniffOptions options = capture_options(*port, call.settings, call.fifo);
