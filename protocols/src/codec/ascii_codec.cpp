@@ -1,6 +1,7 @@
 #include "codec/ascii_codec.h"
 
 #include "codec/hex_digits.h"
+#include "codec/wire_fields.h"
 #include "pvtap/codec/checksums.h"
 #include "pvtap/codec/function_codes.h"
 
@@ -11,17 +12,13 @@ namespace {
 constexpr std::size_t kHeaderLength = 8;
 constexpr std::size_t kTrailerLength = 5;  // checksum(4) + EOT
 
-ParseOutcome fail(std::string_view why) {
-  return ParseOutcome::failure(why);
-}
-
 void put_hex(std::vector<std::uint8_t>& out, unsigned value, int digits) {
   for (int i = digits - 1; i >= 0; --i) out.push_back(hex_char(value >> (4 * i)));
 }
 
 }  // namespace
 
-ParseOutcome parse_ascii(std::span<const std::uint8_t> b, Role role) {
+ParseStatus parse_ascii(std::span<const std::uint8_t> b, Role role, Frame& f) {
   const bool request = role == Role::Request;
   if (request && b.size() != kAsciiRequestLength) return fail("ASCII request is not 15 bytes");
   if (!request && (b.size() < kAsciiReplyOverhead || (b.size() - kAsciiReplyOverhead) % 4 != 0)) {
@@ -35,25 +32,21 @@ ParseOutcome parse_ascii(std::span<const std::uint8_t> b, Role role) {
   if (!station || !start) return fail("non-hex character in a hex field");
   if (!read_hex(b.subspan(b.size() - kTrailerLength, 4))) return fail("non-hex checksum");
 
-  Frame f;
-  f.dialect = Dialect::Ascii;
-  f.role = role;
-  f.station = static_cast<std::uint8_t>(*station);
-  f.function = fc::kAsciiRead;
+  f = make_frame(Dialect::Ascii, role, static_cast<std::uint8_t>(*station), fc::kAsciiRead);
   f.start = *start;
   const auto body = b.subspan(kHeaderLength, b.size() - kHeaderLength - kTrailerLength);
   if (request) {
     const auto count = read_hex(body);
     if (!count) return fail("non-hex character in a hex field");
     f.count = *count;
-    return f;
+    return kParsed;
   }
   for (std::size_t i = 0; i < body.size(); i += 4) {
     const auto word = read_hex(body.subspan(i, 4));
     if (!word) return fail("non-hex character in a data word");
     if (!f.words.push_back(*word)) return fail("ASCII reply has more than 255 words");
   }
-  return f;
+  return kParsed;
 }
 
 FrameCheck verify_ascii_check(std::span<const std::uint8_t> b) {

@@ -5,6 +5,7 @@
 #include <span>
 #include <vector>
 
+#include "codec/wire_fields.h"
 #include "pvtap/codec/frame_codec.h"
 
 namespace pvtap::detail {
@@ -15,7 +16,8 @@ inline constexpr std::uint8_t kEot = 0x04;
 inline constexpr std::size_t kAsciiRequestLength = 15;
 inline constexpr std::size_t kAsciiReplyOverhead = 13;  // + 4 per data word
 
-ParseOutcome parse_ascii(std::span<const std::uint8_t> bytes, Role role);
+// Fills `f` (see wire_fields.h).
+ParseStatus parse_ascii(std::span<const std::uint8_t> bytes, Role role, Frame& f);
 FrameCheck verify_ascii_check(std::span<const std::uint8_t> bytes);
 bool encode_ascii(const Frame& frame, std::vector<std::uint8_t>& out);
 

@@ -6,9 +6,17 @@
 
 namespace pvtap {
 
+std::string_view parse_frame_into(std::span<const std::uint8_t> bytes, Dialect dialect, Role role,
+                                  Frame& out) {
+  if (dialect == Dialect::Ascii) return detail::parse_ascii(bytes, role, out);
+  return detail::parse_rtu(bytes, dialect, role, out);
+}
+
 ParseOutcome parse_frame(std::span<const std::uint8_t> bytes, Dialect dialect, Role role) {
-  if (dialect == Dialect::Ascii) return detail::parse_ascii(bytes, role);
-  return detail::parse_rtu(bytes, dialect, role);
+  Frame f;
+  const std::string_view why = parse_frame_into(bytes, dialect, role, f);
+  if (!why.empty()) return ParseOutcome::failure(why);
+  return f;
 }
 
 Frame frame_header(std::span<const std::uint8_t> bytes, Dialect dialect, Role role) {

@@ -1,5 +1,7 @@
 #include "codec/modbus_codec.h"
 
+#include "codec/wire_fields.h"
+
 #include "pvtap/codec/function_codes.h"
 
 namespace pvtap::detail {
@@ -8,34 +10,13 @@ namespace {
 constexpr std::size_t kHeader = 2;  // station, function
 constexpr std::size_t kCrc = 2;
 
-ParseOutcome fail(std::string_view why) {
-  return ParseOutcome::failure(why);
-}
-
-std::uint16_t be16(std::span<const std::uint8_t> b, std::size_t at) {
-  return static_cast<std::uint16_t>((b[at] << 8) | b[at + 1]);
-}
-
-void put16(std::vector<std::uint8_t>& out, std::uint16_t v) {
-  out.push_back(static_cast<std::uint8_t>(v >> 8));
-  out.push_back(static_cast<std::uint8_t>(v & 0xFFu));
-}
-
 // The bytes between the function code and the CRC.
 std::span<const std::uint8_t> body_of(std::span<const std::uint8_t> b) {
   return b.subspan(kHeader, b.size() - kHeader - kCrc);
 }
 
-bool read_words(std::span<const std::uint8_t> data, WordList& words) {
-  if (data.size() % 2 != 0) return false;
-  for (std::size_t i = 0; i < data.size(); i += 2) {
-    if (!words.push_back(be16(data, i))) return false;
-  }
-  return true;
-}
-
 // Body: n(1) and n bytes.
-ParseOutcome counted(std::span<const std::uint8_t> body, Frame& f, bool as_words) {
+ParseStatus counted(std::span<const std::uint8_t> body, Frame& f, bool as_words) {
   if (body.empty() || body.size() != 1u + body[0]) {
     return fail("Modbus frame length disagrees with its byte count");
   }
@@ -46,11 +27,11 @@ ParseOutcome counted(std::span<const std::uint8_t> body, Frame& f, bool as_words
   } else {
     f.data.assign(data);
   }
-  return f;
+  return kParsed;
 }
 
 // Body: two 16-bit fields (address and value, or start and quantity).
-ParseOutcome two_fields(std::span<const std::uint8_t> body, Frame& f, bool second_is_count) {
+ParseStatus two_fields(std::span<const std::uint8_t> body, Frame& f, bool second_is_count) {
   if (body.size() != 4) return fail("Modbus frame is not 8 bytes");
   f.start = be16(body, 0);
   if (second_is_count) {
@@ -58,15 +39,15 @@ ParseOutcome two_fields(std::span<const std::uint8_t> body, Frame& f, bool secon
   } else {
     f.words.push_back(be16(body, 2));
   }
-  return f;
+  return kParsed;
 }
 
-ParseOutcome empty_body(std::span<const std::uint8_t> body, Frame& f) {
+ParseStatus empty_body(std::span<const std::uint8_t> body) {
   if (!body.empty()) return fail("Modbus request of this function carries no data");
-  return f;
+  return kParsed;
 }
 
-ParseOutcome diagnostics(std::span<const std::uint8_t> body, Frame& f) {
+ParseStatus diagnostics(std::span<const std::uint8_t> body, Frame& f) {
   if (body.size() < 2) return fail("Modbus diagnostics frame has no sub-function");
   f.sub_function = be16(body, 0);
   const auto data = body.subspan(2);
@@ -75,10 +56,10 @@ ParseOutcome diagnostics(std::span<const std::uint8_t> body, Frame& f) {
   } else {
     f.data.assign(data);
   }
-  return f;
+  return kParsed;
 }
 
-ParseOutcome write_multiple_coils(std::span<const std::uint8_t> body, Frame& f) {
+ParseStatus write_multiple_coils(std::span<const std::uint8_t> body, Frame& f) {
   if (body.size() < 5 || body.size() != 5u + body[4]) {
     return fail("Modbus 0x0F length disagrees with n");
   }
@@ -86,10 +67,10 @@ ParseOutcome write_multiple_coils(std::span<const std::uint8_t> body, Frame& f) 
   f.count = be16(body, 2);
   f.byte_count = body[4];
   f.data.assign(body.subspan(5));
-  return f;
+  return kParsed;
 }
 
-ParseOutcome read_write_multiple(std::span<const std::uint8_t> body, Frame& f) {
+ParseStatus read_write_multiple(std::span<const std::uint8_t> body, Frame& f) {
   if (body.size() < 9 || body.size() != 9u + body[8]) {
     return fail("Modbus 0x17 length disagrees with n");
   }
@@ -99,18 +80,18 @@ ParseOutcome read_write_multiple(std::span<const std::uint8_t> body, Frame& f) {
   f.write_count = be16(body, 6);
   f.byte_count = body[8];
   if (!read_words(body.subspan(9), f.words)) return fail("Modbus 0x17 data is not whole registers");
-  return f;
+  return kParsed;
 }
 
-ParseOutcome mask_write(std::span<const std::uint8_t> body, Frame& f) {
+ParseStatus mask_write(std::span<const std::uint8_t> body, Frame& f) {
   if (body.size() != 6) return fail("Modbus 0x16 frame is not 10 bytes");
   f.start = be16(body, 0);
   f.words.push_back(be16(body, 2));
   f.words.push_back(be16(body, 4));
-  return f;
+  return kParsed;
 }
 
-ParseOutcome fifo_reply(std::span<const std::uint8_t> body, Frame& f) {
+ParseStatus fifo_reply(std::span<const std::uint8_t> body, Frame& f) {
   if (body.size() < 4) return fail("Modbus 0x18 reply shorter than its counts");
   const std::size_t n = be16(body, 0);
   if (body.size() != 2 + n || n > 0xFF)
@@ -118,17 +99,17 @@ ParseOutcome fifo_reply(std::span<const std::uint8_t> body, Frame& f) {
   f.byte_count = static_cast<std::uint8_t>(n);
   f.count = be16(body, 2);
   if (!read_words(body.subspan(4), f.words)) return fail("Modbus 0x18 data is not whole registers");
-  return f;
+  return kParsed;
 }
 
-ParseOutcome raw(std::span<const std::uint8_t> body, Frame& f) {
+ParseStatus raw(std::span<const std::uint8_t> body, Frame& f) {
   if (!f.data.assign(body)) return fail("Modbus frame longer than an ADU");
-  return f;
+  return kParsed;
 }
 
 }  // namespace
 
-ParseOutcome parse_modbus_request(std::span<const std::uint8_t> b, Frame& f) {
+ParseStatus parse_modbus_request(std::span<const std::uint8_t> b, Frame& f) {
   const auto body = body_of(b);
   switch (f.function) {
     case fc::kReadCoils:
@@ -140,7 +121,7 @@ ParseOutcome parse_modbus_request(std::span<const std::uint8_t> b, Frame& f) {
     case fc::kCommEventCounter:
     case fc::kCommEventLog:
     case fc::kReportServerId:
-      return empty_body(body, f);
+      return empty_body(body);
     case fc::kDiagnostics:
       return diagnostics(body, f);
     case fc::kWriteMultipleCoils:
@@ -155,7 +136,7 @@ ParseOutcome parse_modbus_request(std::span<const std::uint8_t> b, Frame& f) {
     case fc::kReadFifoQueue:
       if (body.size() != 2) return fail("Modbus 0x18 request is not 6 bytes");
       f.start = be16(body, 0);
-      return f;
+      return kParsed;
     case fc::kEncapsulatedInterface:
       return raw(body, f);
     default:
@@ -163,7 +144,7 @@ ParseOutcome parse_modbus_request(std::span<const std::uint8_t> b, Frame& f) {
   }
 }
 
-ParseOutcome parse_modbus_reply(std::span<const std::uint8_t> b, Frame& f) {
+ParseStatus parse_modbus_reply(std::span<const std::uint8_t> b, Frame& f) {
   const auto body = body_of(b);
   switch (f.function) {
     case fc::kReadCoils:
@@ -182,11 +163,11 @@ ParseOutcome parse_modbus_reply(std::span<const std::uint8_t> b, Frame& f) {
     case fc::kReadExceptionStatus:
       if (body.size() != 1) return fail("Modbus 0x07 reply is not 5 bytes");
       f.data.push_back(body[0]);
-      return f;
+      return kParsed;
     case fc::kCommEventCounter:
       if (body.size() != 4) return fail("Modbus 0x0B reply is not 8 bytes");
       read_words(body, f.words);
-      return f;
+      return kParsed;
     case fc::kDiagnostics:
       return diagnostics(body, f);
     case fc::kMaskWriteRegister:

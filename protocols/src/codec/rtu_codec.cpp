@@ -1,6 +1,7 @@
 #include "codec/rtu_codec.h"
 
 #include "codec/modbus_codec.h"
+#include "codec/wire_fields.h"
 #include "pvtap/codec/checksums.h"
 #include "pvtap/codec/function_codes.h"
 
@@ -10,27 +11,6 @@ namespace {
 constexpr std::size_t kCrcLength = 2;
 constexpr std::size_t kFixedLength = 8;  // addr fc word word crc
 constexpr std::size_t kDeviceNumberLength = 4;
-
-ParseOutcome fail(std::string_view why) {
-  return ParseOutcome::failure(why);
-}
-
-std::uint16_t be16(std::span<const std::uint8_t> b, std::size_t at) {
-  return static_cast<std::uint16_t>((b[at] << 8) | b[at + 1]);
-}
-
-void put16(std::vector<std::uint8_t>& out, std::uint16_t v) {
-  out.push_back(static_cast<std::uint8_t>(v >> 8));
-  out.push_back(static_cast<std::uint8_t>(v & 0xFFu));
-}
-
-bool read_words(std::span<const std::uint8_t> data, Frame& f) {
-  if (data.size() % 2 != 0) return false;
-  for (std::size_t i = 0; i < data.size(); i += 2) {
-    if (!f.words.push_back(be16(data, i))) return false;
-  }
-  return true;
-}
 
 bool is_hybrid_read(std::uint8_t f) {
   return f == fc::kHybridDeviceInfo || f == fc::kHybridRunningData || f == fc::kHybridSettings ||
@@ -49,7 +29,7 @@ std::optional<std::span<const std::uint8_t>> counted_body(std::span<const std::u
 
 // The parsers below fill in the frame they are given: passing a Frame by value copies its
 // disengaged optionals, which g++ 14 reports as a read of uninitialized memory.
-ParseOutcome parse_hybrid_request(std::span<const std::uint8_t> b, Frame& f) {
+ParseStatus parse_hybrid_request(std::span<const std::uint8_t> b, Frame& f) {
   if (b.size() != kFixedLength) return fail("Hybrid request is not 8 bytes");
   f.start = be16(b, 2);
   if (f.function == fc::kHybridWriteParameter) {
@@ -59,10 +39,10 @@ ParseOutcome parse_hybrid_request(std::span<const std::uint8_t> b, Frame& f) {
   } else {
     return fail("not a Hybrid request function code");
   }
-  return f;
+  return kParsed;
 }
 
-ParseOutcome parse_hybrid_reply(std::span<const std::uint8_t> b, Frame& f) {
+ParseStatus parse_hybrid_reply(std::span<const std::uint8_t> b, Frame& f) {
   const auto body = counted_body(b, f);
   if (!body) return fail("Hybrid reply length disagrees with its byte count");
   if (body->size() < kDeviceNumberLength) return fail("Hybrid reply shorter than a device number");
@@ -77,20 +57,21 @@ ParseOutcome parse_hybrid_reply(std::span<const std::uint8_t> b, Frame& f) {
              (f.function == fc::kHybridRestoreFactory || f.function == fc::kHybridError)) {
     f.start = be16(rest, 0);
     f.count = be16(rest, 2);
-  } else if (!read_words(rest, f)) {
+  } else if (!read_words(rest, f.words)) {
     return fail("Hybrid reply data is not whole 16-bit registers");
   }
-  return f;
+  return kParsed;
 }
 
-ParseOutcome parse_gsl_request(std::span<const std::uint8_t> b, Frame& f) {
+ParseStatus parse_gsl_request(std::span<const std::uint8_t> b, Frame& f) {
   if (f.function == fc::kGslWriteMultiple) {
     if (b.size() < 9 || b.size() != 9u + b[6]) return fail("GSL 0x10 length disagrees with n");
     f.start = be16(b, 2);
     f.count = be16(b, 4);
     f.byte_count = b[6];
-    if (!read_words(b.subspan(7, b[6]), f)) return fail("GSL 0x10 data is not whole registers");
-    return f;
+    if (!read_words(b.subspan(7, b[6]), f.words))
+      return fail("GSL 0x10 data is not whole registers");
+    return kParsed;
   }
   if (b.size() != kFixedLength) return fail("GSL request is not 8 bytes");
   f.start = be16(b, 2);
@@ -101,20 +82,20 @@ ParseOutcome parse_gsl_request(std::span<const std::uint8_t> b, Frame& f) {
   } else {
     return fail("not a GSL request function code");
   }
-  return f;
+  return kParsed;
 }
 
-ParseOutcome parse_gsl_reply(std::span<const std::uint8_t> b, Frame& f) {
+ParseStatus parse_gsl_reply(std::span<const std::uint8_t> b, Frame& f) {
   if (fc::is_gsl_exception(f.function)) {
     if (b.size() != 5) return fail("GSL exception is not 5 bytes");
     f.exception_code = b[2];
-    return f;
+    return kParsed;
   }
   if (f.function == fc::kGslReadHolding || f.function == fc::kGslReadInput) {
     const auto body = counted_body(b, f);
     if (!body) return fail("GSL reply length disagrees with its byte count");
-    if (!read_words(*body, f)) return fail("GSL reply data is not whole registers");
-    return f;
+    if (!read_words(*body, f.words)) return fail("GSL reply data is not whole registers");
+    return kParsed;
   }
   if (b.size() != kFixedLength) return fail("GSL write reply is not 8 bytes");
   f.start = be16(b, 2);
@@ -125,7 +106,7 @@ ParseOutcome parse_gsl_reply(std::span<const std::uint8_t> b, Frame& f) {
   } else {
     return fail("not a GSL reply function code");
   }
-  return f;
+  return kParsed;
 }
 
 void encode_hybrid_reply_body(const Frame& f, std::vector<std::uint8_t>& body) {
@@ -170,13 +151,9 @@ bool encode_body(const Frame& f, std::vector<std::uint8_t>& out) {
 
 }  // namespace
 
-ParseOutcome parse_rtu(std::span<const std::uint8_t> b, Dialect dialect, Role role) {
+ParseStatus parse_rtu(std::span<const std::uint8_t> b, Dialect dialect, Role role, Frame& f) {
   if (b.size() < 4) return fail("RTU frame shorter than 4 bytes");
-  Frame f;
-  f.dialect = dialect;
-  f.role = role;
-  f.station = b[0];
-  f.function = b[1];
+  f = make_frame(dialect, role, b[0], b[1]);
   if (!fc::dialect_has_function(dialect, f.function)) {
     return fail("function code of another dialect");
   }

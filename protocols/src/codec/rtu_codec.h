@@ -5,11 +5,13 @@
 #include <span>
 #include <vector>
 
+#include "codec/wire_fields.h"
 #include "pvtap/codec/frame_codec.h"
 
 namespace pvtap::detail {
 
-ParseOutcome parse_rtu(std::span<const std::uint8_t> bytes, Dialect dialect, Role role);
+// Fills `f` (see wire_fields.h).
+ParseStatus parse_rtu(std::span<const std::uint8_t> bytes, Dialect dialect, Role role, Frame& f);
 FrameCheck verify_rtu_check(std::span<const std::uint8_t> bytes);
 bool encode_rtu(const Frame& frame, std::vector<std::uint8_t>& out);
 

@@ -132,12 +132,12 @@ void BusSession::Impl::on_frame(Direction direction, const FrameEvent& e) {
   out.dialect = e.dialect;
   out.role = e.role;
   out.check = e.check;
-  ParseOutcome parsed = parse_frame(e.bytes, e.dialect, e.role);
-  if (!parsed) out.parse_error = parsed.diagnostics();
+  out.parse_error = parse_frame_into(e.bytes, e.dialect, e.role, frame);
+  const bool parsed = out.parse_error.empty();
   // A damaged frame whose byte count lies does not parse, but it was sent: its header is
   // enough to pair it and count it.
   if (parsed || !e.check.ok) {
-    frame = parsed ? std::move(parsed).value() : frame_header(e.bytes, e.dialect, e.role);
+    if (!parsed) frame = frame_header(e.bytes, e.dialect, e.role);
     const auto label = station_dialects.label(frame, e.check.ok);
     frame.dialect = label.dialect;
     out.dialect = label.dialect;
@@ -162,7 +162,10 @@ void BusSession::Impl::handle_parsed(SessionFrame& out, const FrameEvent& e) {
   take_findings(out, frame, match);
   out.station = frame_station(e.check.ok, frame.station, match);
   if (match.role == Role::Request) {
-    if (e.check.ok) out.quantity_problem = pvtap::quantity_problem(frame);
+    // Only the Modbus family limits quantities: the call is skipped for the rest.
+    if (e.check.ok && modbus_family(frame.dialect)) {
+      out.quantity_problem = pvtap::quantity_problem(frame);
+    }
     replies.remember_request(out, frame);
   } else {
     summary.role = match.role;

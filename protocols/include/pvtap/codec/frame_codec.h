@@ -27,6 +27,12 @@ using ParseOutcome = Result<Frame>;
 // The check is not judged here: a frame with a bad check still parses (see verify_check).
 ParseOutcome parse_frame(std::span<const std::uint8_t> bytes, Dialect dialect, Role role);
 
+// The same into `out`, a frame the caller keeps, for the hot path: a Result copies the
+// frame's inline words. Returns why the bytes do not parse, or an empty view when they do
+// (`out` is then unspecified).
+std::string_view parse_frame_into(std::span<const std::uint8_t> bytes, Dialect dialect, Role role,
+                                  Frame& out);
+
 // The station and function a frame carries by their position alone, for a damaged frame
 // that does not parse (its byte count lies): enough to match it and to report it. Fields an
 // ASCII frame writes as hex digits are 0 when a digit is not one.
