@@ -54,7 +54,14 @@ StationDialects::StationDialects(DialectSet enabled, const RegisterDecoder& deco
 
 // Every register asked for is one the GSL map has. Overlapping it is not enough: a meter
 // reading 1024..1039 is not a KSTAR inverter because 1030..1033 are its alarm words.
-bool StationDialects::addresses_gsl_map(std::uint16_t start, std::uint16_t count) const {
+bool StationDialects::addresses_gsl_map(std::uint16_t start, std::uint16_t count) {
+  const std::uint32_t range = (std::uint32_t{start} << 16) | count;
+  RangeMemo& m = memo_[(start ^ (start >> 4) ^ count) % kMemoSize];
+  if (!m.known || m.range != range) m = RangeMemo{range, true, search_gsl_map(start, count)};
+  return m.gsl;
+}
+
+bool StationDialects::search_gsl_map(std::uint16_t start, std::uint16_t count) const {
   const unsigned last = unsigned{start} + std::max<unsigned>(count, 1) - 1;
   const auto after = std::upper_bound(gsl_runs_.begin(), gsl_runs_.end(), start,
                                       [](std::uint16_t a, const Run& r) { return a < r.first; });
@@ -64,7 +71,7 @@ bool StationDialects::addresses_gsl_map(std::uint16_t start, std::uint16_t count
 }
 
 // What a frame says of its station by itself: only a request naming registers says anything.
-std::optional<Dialect> StationDialects::evidence(const Frame& f) const {
+std::optional<Dialect> StationDialects::evidence(const Frame& f) {
   if (f.role != Role::Request || !addresses_registers(f.function) || !f.start) {
     return std::nullopt;
   }
@@ -89,12 +96,7 @@ Dialect StationDialects::choose(const Frame& frame, Station& st, std::optional<D
   } else if (d == Dialect::Gsl) {
     d = undecided_;
   }
-  // GSL names only its own codes; another Modbus function of a GSL station is plain Modbus.
-  // A frame with a bad check keeps its station's label: its function may be the damaged byte.
-  if (check_ok && d == Dialect::Gsl && !fc::is_gsl_function(frame.function) &&
-      fc::is_modbus_function(frame.function)) {
-    d = Dialect::Modbus;
-  }
+  d = own_codes_only(d, frame.function, check_ok);
   if (frame.role == Role::Request) st.last_request = static_cast<std::uint8_t>(d);
   return d;
 }
@@ -115,8 +117,9 @@ void StationDialects::note_claim(Station& st, Label& out, Dialect claim, bool we
 }
 
 // A frame of a dialect of its own says which its station speaks; a GSL/Modbus frame only
-// when its registers say it (or weakly, as a station's first frame).
-StationDialects::Label StationDialects::label(const Frame& frame, bool check_ok) {
+// when its registers say it (or weakly, as a station's first frame). A bad frame claims
+// nothing.
+StationDialects::Label StationDialects::label_in_full(const Frame& frame, bool check_ok) {
   Label out{frame.dialect, std::nullopt};
   Station& st = stations_[frame.station];
   if (!modbus_family(frame.dialect)) {
