@@ -175,7 +175,7 @@ std::size_t decode_with(const RegisterMap& map, Dialect d, const DecoderOptions&
 std::size_t RegisterDecoder::decode_block(Dialect d, std::uint16_t wire_start,
                                           std::span<const std::uint16_t> words, ValueOrigin origin,
                                           std::vector<DecodedValue>& out) const {
-  return decode_with(map(d), d, options_, wire_start, words, origin, out);
+  return place(map(d), d, wire_start, words, origin, out).count;
 }
 
 DecodedValue RegisterDecoder::decode_device_number(const DeviceNumber& device) const {

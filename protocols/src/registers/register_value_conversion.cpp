@@ -1,6 +1,5 @@
 #include "registers/register_value_conversion.h"
 
-#include <array>
 #include <bit>
 #include <cmath>
 
@@ -27,12 +26,16 @@ void combine(const RegisterDef& def, std::span<const std::uint16_t> words, PairR
         def.is_signed ? static_cast<std::int16_t>(words[0]) : static_cast<std::int32_t>(v.raw);
     return;
   }
+  // Some meters send a pair's low word first (word_order = "low_first").
+  const bool low_first = def.word_order == WordOrder::LowFirst;
+  const std::uint16_t high = words[low_first ? 1 : 0];
+  const std::uint16_t low = words[low_first ? 0 : 1];
   PairRule rule = def.pair_rule == PairRule::FromOptions ? option_rule : def.pair_rule;
   if (rule == PairRule::Decimal) {
-    v.raw = std::uint32_t{words[0]} * 10000u + words[1];
-    if (words[1] > 9999) v.add(ValueWarning::LowPartOver9999);
+    v.raw = std::uint32_t{high} * 10000u + low;
+    if (low > 9999) v.add(ValueWarning::LowPartOver9999);
   } else {
-    v.raw = (std::uint32_t{words[0]} << 16) | words[1];
+    v.raw = (std::uint32_t{high} << 16) | low;
   }
   v.signed_raw = static_cast<std::int32_t>(v.raw);
 }
@@ -131,11 +134,6 @@ void convert_words(const RegisterDef& def, std::span<const std::uint16_t> words,
   if (def.kind == RegisterKind::DeviceNumber) {
     convert_device_number(&def, words.first<2>(), v);
     return;
-  }
-  std::array<std::uint16_t, 2> swapped{};
-  if (def.word_order == WordOrder::LowFirst && words.size() == 2) {
-    swapped = {words[1], words[0]};
-    words = swapped;
   }
   combine(def, words, def.is_float() ? PairRule::Binary : option_rule, v);
   if (def.is_float()) {

@@ -24,8 +24,8 @@ void note_device_name(StationSummary& s, const SessionFrame& f) {
     keep(s.device.vendor, id->vendor());
     keep(s.device.product, id->product());
     keep(s.device.revision, id->revision());
-  } else if (modbus_family(f.dialect)) {
-    if (const auto server = read_server_id(*f.frame)) keep(s.device.server_id, server->text);
+  } else if (const auto server = read_server_id(*f.frame)) {
+    keep(s.device.server_id, server->text);
   }
 }
 
@@ -59,9 +59,11 @@ void StationTally::count_frame(StationSummary& s, const SessionFrame& f) {
   if (f.duplicate) ++s.duplicates;
   if (f.count_mismatch) ++s.count_mismatches;
   if (f.dialect_changed_from) ++s.dialect_changes;
-  // Only two functions name a device: the call is skipped for the rest.
-  if (f.frame != nullptr && (f.frame->function == fc::kEncapsulatedInterface ||
-                             f.frame->function == fc::kReportServerId)) {
+  // Only two Modbus functions name a device: the call is skipped for the rest (and for
+  // Hybrid's 0x11, which shares a code with report server ID).
+  if (f.frame != nullptr && modbus_family(f.dialect) &&
+      (f.frame->function == fc::kEncapsulatedInterface ||
+       f.frame->function == fc::kReportServerId)) {
     note_device_name(s, f);
   }
   if (exception_code(f)) ++s.exceptions;
