@@ -1,8 +1,11 @@
 // pvtap-sim: simulates a master polling inverters and writes the bus as captures.
 #include <iostream>
+#include <optional>
 
 #include "bus/bus_master.h"
 #include "command/sim_command.h"
+#include "lan/mbap_session.h"
+#include "lan/v5_session.h"
 #include "outputs/capture_outputs.h"
 #include "outputs/ground_truth.h"
 #include "outputs/serial_pacer.h"
@@ -19,6 +22,17 @@ bool produce(const std::string& path, Write write) {
   return false;
 }
 
+// The LAN carrier asked for, planned; it makes the timeline what the LAN client saw.
+std::optional<pvtap::sim::LanCapture> plan_lan(pvtap::sim::BusTimeline& timeline,
+                                               const pvtap::sim::SimCommand& cmd) {
+  using namespace pvtap::sim;
+  const LanOutputs& lan = cmd.outputs.lan;
+  if (!lan.v5.empty())
+    return plan_v5_session(timeline, lan.v5_options, cmd.config.start, cmd.config.seed);
+  if (!lan.mbap.empty()) return plan_mbap_session(timeline, lan.mbap_options, cmd.config.seed);
+  return std::nullopt;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -26,16 +40,24 @@ int main(int argc, char** argv) {
   int exit_code = 0;
   const auto cmd = parse_sim_command(argc, argv, exit_code);
   if (!cmd) return exit_code;
-  const BusTimeline timeline = BusMaster(cmd->config).run();
+  BusTimeline timeline = BusMaster(cmd->config).run();
   const SimOutputs& out = cmd->outputs;
-  bool ok = produce(out.pdu, [&] { return write_pdu_capture(timeline, out.pdu); });
+  const auto lan = plan_lan(timeline, *cmd);
+  const std::string& lan_path = out.lan.v5.empty() ? out.lan.mbap : out.lan.v5;
+  bool ok =
+      produce(lan_path, [&] { return write_tcp_session(lan->segments, lan->ends, lan_path); });
+  ok = produce(out.pdu, [&] { return write_pdu_capture(timeline, out.pdu); }) && ok;
   ok = produce(out.gateway,
                [&] { return write_gateway_capture(timeline, out.gateway, cmd->config.seed); }) &&
        ok;
   const ChunkedReads reads{cmd->config.seed, out.read_delay_ms};
   ok = produce(out.chunked, [&] { return write_chunked_capture(timeline, out.chunked, reads); }) &&
        ok;
-  ok = produce(out.truth, [&] { return write_ground_truth(timeline, cmd->config, out.truth); }) &&
+  ok = produce(out.truth,
+               [&] {
+                 return write_ground_truth(timeline, cmd->config, out.truth,
+                                           lan ? &lan->truth : nullptr);
+               }) &&
        ok;
   ok = produce(out.device,
                [&] { return pace_onto_device(timeline, out.device, cmd->config.baud); }) &&

@@ -82,6 +82,7 @@ std::optional<SimCommand> parse_sim_command(int argc, char** argv, int& exit_cod
       ->check(CLI::Range(0, 100));
   app.add_option("--truth", cmd.outputs.truth, "write the ground truth as JSON");
   app.add_option("--device", cmd.outputs.device, "play the bus onto a serial device or pty");
+  add_lan_options(app, cmd.outputs.lan);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -95,6 +96,7 @@ std::optional<SimCommand> parse_sim_command(int argc, char** argv, int& exit_cod
     exit_code = 2;
     return std::nullopt;
   }
+  c.faults = *plan;
   // The ASCII dialect's station field holds 0x00-0x1F.
   const bool ascii =
       std::find(c.dialects.begin(), c.dialects.end(), Dialect::Ascii) != c.dialects.end();
@@ -104,12 +106,15 @@ std::optional<SimCommand> parse_sim_command(int argc, char** argv, int& exit_cod
     return std::nullopt;
   }
   error = station_problem(c, first_station);
+  const SimOutputs& o = cmd.outputs;
+  const bool bus_outputs =
+      !o.pdu.empty() || !o.gateway.empty() || !o.chunked.empty() || !o.device.empty();
+  if (error.empty()) error = finish_lan_options(cmd.outputs.lan, c, bus_outputs);
   if (!error.empty()) {
     std::cerr << "pvtap-sim: " << error << "\n";
     exit_code = 2;
     return std::nullopt;
   }
-  c.faults = *plan;
   c.first_station = static_cast<std::uint8_t>(first_station);
   c.start = static_cast<Micros>(start_s * 1e6);
   return cmd;

@@ -4,6 +4,7 @@
 #include <optional>
 #include <string>
 
+#include "command/lan_options.h"
 #include "command/sim_config.h"
 
 namespace pvtap::sim {
@@ -12,6 +13,7 @@ namespace pvtap::sim {
 struct SimOutputs {
   std::string pdu, gateway, chunked, truth, device;
   unsigned read_delay_ms = 0;  // --chunked: how late the sniffer may read a USB transfer
+  LanOutputs lan;
 };
 
 struct SimCommand {

@@ -1,34 +1,12 @@
 #include "outputs/ground_truth.h"
 
-#include <cstdio>
 #include <fstream>
 #include <sstream>
 
+#include "outputs/json_text.h"
+
 namespace pvtap::sim {
 namespace {
-
-std::string seconds(Micros t) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%lld.%06lld", static_cast<long long>(t / 1'000'000),
-                static_cast<long long>(t % 1'000'000));
-  return buf;
-}
-
-std::string number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.10g", v);
-  return buf;
-}
-
-std::string hex(const std::vector<std::uint8_t>& bytes) {
-  static constexpr char kDigits[] = "0123456789abcdef";
-  std::string out;
-  for (auto b : bytes) {
-    out += kDigits[b >> 4];
-    out += kDigits[b & 15];
-  }
-  return out;
-}
 
 void write_values(std::ostream& o, const std::vector<RegisterTruth>& values) {
   o << ",\"values\":[";
@@ -117,6 +95,17 @@ void write_devices(std::ostream& o, const std::vector<DeviceTruth>& devices) {
   o << "]";
 }
 
+// A LAN carrier: "v5":{counts} and "v5_frames":[one object per carrier frame].
+void write_lan(std::ostream& o, const LanTruth* lan) {
+  if (!lan) return;
+  o << ",\n\"" << lan->carrier << "\":{";
+  for (std::size_t i = 0; i < lan->counts.size(); ++i)
+    o << (i ? "," : "") << "\"" << lan->counts[i].first << "\":" << lan->counts[i].second;
+  o << "},\n\"" << lan->carrier << "_frames\":[";
+  for (std::size_t i = 0; i < lan->frames.size(); ++i) o << (i ? ",\n" : "\n") << lan->frames[i];
+  o << "]";
+}
+
 void write_requests(std::ostream& o, const char* name, const std::vector<TimeoutTruth>& list) {
   o << "],\n\"" << name << "\":[";
   for (std::size_t i = 0; i < list.size(); ++i) {
@@ -129,11 +118,12 @@ void write_requests(std::ostream& o, const char* name, const std::vector<Timeout
 }  // namespace
 
 std::string write_ground_truth(const BusTimeline& timeline, const SimConfig& config,
-                               const std::string& path) {
+                               const std::string& path, const LanTruth* lan) {
   std::ostringstream o;
   o << "{";
   write_config(o, config);
   write_devices(o, timeline.devices);
+  write_lan(o, lan);
   o << ",\n\"events\":[\n";
   for (std::size_t i = 0; i < timeline.events.size(); ++i) {
     write_event(o, timeline.events[i]);

@@ -6,11 +6,13 @@
 
 #include "bus/bus_event.h"
 #include "command/sim_config.h"
+#include "lan/lan_exchanges.h"
 
 namespace pvtap::sim {
 
-// Returns an error text, empty on success.
+// Returns an error text, empty on success. `lan`: the LAN carrier the run was written as (its
+// counts and frames go in beside the bus's), or none.
 std::string write_ground_truth(const BusTimeline& timeline, const SimConfig& config,
-                               const std::string& path);
+                               const std::string& path, const LanTruth* lan = nullptr);
 
 }  // namespace pvtap::sim
