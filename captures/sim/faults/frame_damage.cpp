@@ -4,6 +4,7 @@
 
 #include "pvtap/codec/frame_codec.h"
 #include "pvtap/codec/function_codes.h"
+#include "pvtap/matching/request_rules.h"
 
 namespace pvtap::sim {
 namespace {
@@ -31,24 +32,6 @@ bool good_crc_prefix(std::span<const std::uint8_t> damaged) {
   return false;
 }
 
-// The request quantity limits of the Modbus specification (PROTOCOLS.md section 6).
-std::uint16_t max_quantity(std::uint8_t function) {
-  switch (function) {
-    case fc::kReadCoils:
-    case fc::kReadDiscreteInputs:
-      return 2000;
-    case fc::kGslReadHolding:
-    case fc::kGslReadInput:
-      return 125;
-    case fc::kWriteMultipleCoils:
-      return 1968;
-    case fc::kGslWriteMultiple:
-      return 123;
-    default:
-      return 0;  // no quantity field
-  }
-}
-
 // A plain Modbus frame's length follows from its function (and a request's quantity is
 // bounded): damage to the function byte, or a request quantity the specification rules out,
 // leaves a run that reads as a frame of another length or as noise as well as a damaged frame.
@@ -58,17 +41,17 @@ bool modbus_shape_kept(std::span<const std::uint8_t> original,
   // A byte count (a read's reply, a block write's request) gives the length too.
   const bool counted =
       request ? original[1] == fc::kWriteMultipleCoils || original[1] == fc::kGslWriteMultiple
-              : max_quantity(original[1]) > 0 && original[1] <= 0x04;
+              : max_quantity(original[1]).has_value() && original[1] <= 0x04;
   if (counted && damaged[request ? 6 : 2] != original[request ? 6 : 2]) return false;
   // A single coil is written with FF00 or 0000 and nothing else.
   if (original[1] == fc::kWriteSingleCoil) {
     const unsigned value = static_cast<unsigned>(damaged[4] << 8 | damaged[5]);
     if (value != 0xFF00 && value != 0x0000) return false;
   }
-  const std::uint16_t limit = max_quantity(original[1]);
-  if (!request || limit == 0) return true;
+  const std::optional<unsigned> limit = max_quantity(original[1]);
+  if (!request || !limit) return true;
   const unsigned quantity = static_cast<unsigned>(damaged[4] << 8 | damaged[5]);
-  if (quantity < 1 || quantity > limit) return false;
+  if (quantity < 1 || quantity > *limit) return false;
   // A block write's byte count is fixed by its quantity.
   if (original[1] == fc::kWriteMultipleCoils) return damaged[6] == (quantity + 7) / 8;
   if (original[1] == fc::kGslWriteMultiple) return damaged[6] == 2 * quantity;

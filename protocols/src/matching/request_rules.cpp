@@ -5,6 +5,13 @@
 namespace pvtap {
 namespace {
 
+std::optional<QuantityProblem> outside(unsigned found, unsigned max, bool write_part) {
+  if (found >= 1 && found <= max) return std::nullopt;
+  return QuantityProblem{found, 1, max, write_part};
+}
+
+}  // namespace
+
 std::optional<unsigned> max_quantity(std::uint8_t f) {
   switch (f) {
     case fc::kReadCoils:
@@ -22,13 +29,6 @@ std::optional<unsigned> max_quantity(std::uint8_t f) {
       return std::nullopt;
   }
 }
-
-std::optional<QuantityProblem> outside(unsigned found, unsigned max, bool write_part) {
-  if (found >= 1 && found <= max) return std::nullopt;
-  return QuantityProblem{found, 1, max, write_part};
-}
-
-}  // namespace
 
 std::optional<QuantityProblem> quantity_problem(const Frame& request) {
   if (!modbus_family(request.dialect) || request.role != Role::Request || !request.count) {

@@ -1,7 +1,7 @@
 #include "session/station_tally.h"
 
-#include "pvtap/codec/device_identification.h"
 #include "pvtap/codec/function_codes.h"
+#include "pvtap/session/device_naming.h"
 #include "pvtap/session/event_tally.h"
 #include "pvtap/session/station_rule.h"
 
@@ -9,25 +9,6 @@ namespace pvtap::detail {
 namespace {
 
 constexpr std::uint8_t kBroadcastAddress = 0xFF;
-
-// Copies only what changed: a logger asks the same question again and again.
-void keep(std::string& kept, std::string_view said) {
-  if (!said.empty() && kept != said) kept.assign(said);
-}
-
-// A good reply in which the station names itself.
-void note_device_name(StationSummary& s, const SessionFrame& f) {
-  if (!f.check.ok || f.frame == nullptr || f.role != Role::Response) return;
-  const std::uint8_t function = f.frame->function;
-  if (function != fc::kEncapsulatedInterface && function != fc::kReportServerId) return;
-  if (const auto id = read_device_identification(*f.frame)) {
-    keep(s.device.vendor, id->vendor());
-    keep(s.device.product, id->product());
-    keep(s.device.revision, id->revision());
-  } else if (const auto server = read_server_id(*f.frame)) {
-    keep(s.device.server_id, server->text);
-  }
-}
 
 }  // namespace
 
@@ -64,7 +45,7 @@ void StationTally::count_frame(StationSummary& s, const SessionFrame& f) {
   if (f.frame != nullptr && modbus_family(f.dialect) &&
       (f.frame->function == fc::kEncapsulatedInterface ||
        f.frame->function == fc::kReportServerId)) {
-    note_device_name(s, f);
+    learn_device_name(s.device, f);
   }
   if (exception_code(f)) ++s.exceptions;
 }

@@ -2,6 +2,7 @@
 // writes.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 
 #include "pvtap/codec/frame.h"
@@ -15,6 +16,10 @@ struct QuantityProblem {
   unsigned max = 0;
   bool write_part = false;  // 0x17: the quantity written, not the one read
 };
+
+// The largest quantity a request of `function` may ask for (the read part of 0x17), or
+// nullopt for a function without a quantity field; the smallest is always 1.
+std::optional<unsigned> max_quantity(std::uint8_t function);
 
 // The quantity rule a GSL or plain Modbus request breaks, if any (section 6 of PROTOCOLS.md):
 //   0x01 0x02  1-2000     0x03 0x04  1-125     0x0F  1-1968
