@@ -1,0 +1,31 @@
+// How well a stretch of samples reads in one character format: characters, line errors, and
+// the frames whose check holds when the characters are framed as the bus would frame them.
+#pragma once
+
+#include <cstdint>
+#include <span>
+
+#include "pvtap/codec/dialect.h"
+#include "pvtap/uart/uart_decoder.h"
+
+namespace pvtap {
+
+// FormatTrial: what reading the stretch in one format gave.
+struct FormatTrial {
+  UartFormat format;
+  std::uint64_t characters = 0;
+  std::uint64_t line_errors = 0;  // framing and parity errors
+  std::uint64_t good_frames = 0;  // frames of any dialect whose check holds
+  unsigned distinct_values = 0;   // how many byte values the characters took
+
+  // More good frames first; then fewer line errors.
+  bool better_than(const FormatTrial& other) const {
+    if (good_frames != other.good_frames) return good_frames > other.good_frames;
+    return line_errors < other.line_errors;
+  }
+};
+
+FormatTrial try_format(const UartLine& line, std::span<const SampleRun> runs,
+                       DialectSet dialects = DialectSet::all());
+
+}  // namespace pvtap

@@ -1,0 +1,77 @@
+// estimate_baud: the shortest common pulse, refined by its multiples, snapped to a standard.
+#include "pvtap/uart/baud_estimate.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+namespace pvtap {
+namespace {
+
+constexpr std::array<std::uint32_t, 9> kStandard = {1200,  2400,  4800,  9600,  14400,
+                                                    19200, 38400, 57600, 115200};
+
+// A bit's width is common when this share of the pulses (or at least kMinPulses) lies between
+// it and a quarter more: a few glitches are shorter, and are not a bit.
+constexpr std::size_t kCommonShareDivisor = 50;  // 2 %
+constexpr std::size_t kMinPulses = 4;
+constexpr double kBand = 1.25;
+constexpr unsigned kMaxMultiple = 10;  // the longest pulse inside a character
+
+double shortest_common(const std::vector<std::uint64_t>& sorted) {
+  const std::size_t need = std::max(kMinPulses, sorted.size() / kCommonShareDivisor);
+  std::size_t hi = 0;
+  for (std::size_t lo = 0; lo < sorted.size(); ++lo) {
+    const double top = kBand * static_cast<double>(sorted[lo]);
+    hi = std::max(hi, lo);
+    while (hi < sorted.size() && static_cast<double>(sorted[hi]) < top) ++hi;
+    if (hi - lo >= need) return static_cast<double>(sorted[lo]);
+  }
+  return 0;
+}
+
+// Every pulse of k bits (k <= kMaxMultiple) counts as k bits of its length: the mean bit is
+// exact to a fraction of a sample where one pulse's edges are only exact to a sample.
+double refined_bit(const std::vector<std::uint64_t>& sorted, double first) {
+  double samples = 0;
+  double bits = 0;
+  for (std::uint64_t w : sorted) {
+    const double k = std::round(static_cast<double>(w) / first);
+    if (k < 1 || k > kMaxMultiple) continue;
+    if (std::abs(static_cast<double>(w) - k * first) > 0.25 * first) continue;
+    samples += static_cast<double>(w);
+    bits += k;
+  }
+  return bits > 0 ? samples / bits : first;
+}
+
+}  // namespace
+
+std::span<const std::uint32_t> standard_bauds() {
+  return kStandard;
+}
+
+BaudEstimate snap_baud(double measured) {
+  BaudEstimate e;
+  e.measured = measured;
+  std::uint32_t nearest = kStandard.front();
+  for (std::uint32_t b : kStandard) {
+    if (std::abs(measured / b - 1) < std::abs(measured / nearest - 1)) nearest = b;
+  }
+  e.deviation = measured / nearest - 1;
+  e.snapped = std::abs(e.deviation) <= BaudEstimate::kSnapTolerance;
+  e.baud = e.snapped ? nearest : static_cast<std::uint32_t>(std::lround(measured));
+  return e;
+}
+
+std::optional<BaudEstimate> estimate_baud(std::span<const std::uint64_t> widths,
+                                          double sample_rate) {
+  std::vector<std::uint64_t> sorted(widths.begin(), widths.end());
+  std::sort(sorted.begin(), sorted.end());
+  const double first = shortest_common(sorted);
+  if (first < 1) return std::nullopt;
+  return snap_baud(sample_rate / refined_bit(sorted, first));
+}
+
+}  // namespace pvtap

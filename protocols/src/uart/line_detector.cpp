@@ -1,0 +1,80 @@
+// LineDetector: the idle level from where the samples lie, the rate from the pulses, the
+// format from which reading makes frames check.
+#include "pvtap/uart/line_detector.h"
+
+#include <array>
+
+namespace pvtap {
+namespace {
+
+constexpr std::array<UartFormat, 4> kCandidates = {
+    UartFormat{8, Parity::None, 2, false}, UartFormat{8, Parity::Even, 1, false},
+    UartFormat{8, Parity::Odd, 1, false}, UartFormat{8, Parity::None, 1, false}};
+
+// A channel talks when it gives frames that check, or mostly clean characters of more than
+// one value (a clock reads as clean 0x55 characters in 8N1: a square wave is exactly that).
+constexpr std::uint64_t kMinCharacters = 4;
+
+bool talks(const FormatTrial& t) {
+  if (t.good_frames > 0) return true;
+  return t.characters >= kMinCharacters && t.line_errors * 4 <= t.characters &&
+         t.distinct_values > 1;
+}
+
+// An idle line rests at mark: the level most samples are at.
+bool idles_low(std::span<const SampleRun> runs) {
+  std::uint64_t high = 0;
+  std::uint64_t low = 0;
+  for (const SampleRun& r : runs) (r.level ? high : low) += r.count;
+  return low > high;
+}
+
+// The first and last runs are cut by the session's edges: their widths are not pulses.
+std::vector<std::uint64_t> pulse_widths(std::span<const SampleRun> runs) {
+  std::vector<std::uint64_t> widths;
+  if (runs.size() < 3) return widths;
+  widths.reserve(runs.size() - 2);
+  for (std::size_t i = 1; i + 1 < runs.size(); ++i) widths.push_back(runs[i].count);
+  return widths;
+}
+
+}  // namespace
+
+bool LineDetector::add(SampleRun run) {
+  if (!runs_.empty() && runs_.back().level == run.level) {
+    runs_.back().count += run.count;
+  } else {
+    runs_.push_back(run);
+  }
+  return runs_.size() < kStretchRuns;
+}
+
+std::span<const UartFormat> LineDetector::candidates() {
+  return kCandidates;
+}
+
+std::optional<DetectedLine> LineDetector::decide(double sample_rate, DialectSet dialects) const {
+  const std::optional<BaudEstimate> baud = estimate_baud(pulse_widths(runs_), sample_rate);
+  if (!baud) return std::nullopt;
+  DetectedLine d;
+  d.baud = *baud;
+  d.line.sample_rate = sample_rate;
+  d.line.baud = baud->measured;
+  const bool inverted = idles_low(runs_);
+  bool first = true;
+  for (UartFormat format : kCandidates) {
+    format.inverted = inverted;
+    UartLine line = d.line;
+    line.format = format;
+    const FormatTrial trial = try_format(line, runs_, dialects);
+    if (first || trial.better_than(d.trial)) {
+      d.trial = trial;
+      d.line.format = format;
+      first = false;
+    }
+  }
+  d.has_traffic = talks(d.trial);
+  return d;
+}
+
+}  // namespace pvtap

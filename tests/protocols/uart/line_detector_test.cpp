@@ -1,0 +1,153 @@
+// Line settings found from synthesised samples of a Modbus conversation: rate (exact, 1.5 %
+// and 3 % off), idle level, parity and stop bits; and what is not a UART.
+#include "pvtap/uart/line_detector.h"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "pvtap/codec/checksums.h"
+#include "uart_runs.h"
+
+namespace pvtap {
+namespace {
+
+using test::UartRuns;
+
+constexpr double kRate = 4e6;
+
+std::vector<std::uint8_t> with_crc(std::vector<std::uint8_t> body) {
+  const std::uint16_t crc = Crc16Modbus::compute(body);
+  body.push_back(static_cast<std::uint8_t>(crc & 0xFF));
+  body.push_back(static_cast<std::uint8_t>(crc >> 8));
+  return body;
+}
+
+// A master reading two registers from station 247 and its reply, `polls` times over.
+std::vector<SampleRun> conversation(double baud, UartFormat format, int polls = 6,
+                                    double gap_bits = 0) {
+  const auto request = with_crc({0xF7, 0x03, 0x00, 0x10, 0x00, 0x02});
+  UartRuns line(kRate / baud, format);
+  line.idle(50);
+  for (int i = 0; i < polls; ++i) {
+    const auto reply = with_crc({0xF7, 0x03, 0x04, 0x12, static_cast<std::uint8_t>(i), 0x00,
+                                 static_cast<std::uint8_t>(0x80 | i)});
+    line.bytes(request, gap_bits).idle(60).bytes(reply, gap_bits).idle(200);
+  }
+  return line.runs();
+}
+
+DetectedLine detect(const std::vector<SampleRun>& runs) {
+  LineDetector detector;
+  for (const SampleRun& r : runs) detector.add(r);
+  const std::optional<DetectedLine> d = detector.decide(kRate);
+  EXPECT_TRUE(d.has_value());
+  return d.value_or(DetectedLine{});
+}
+
+void expect_format(const DetectedLine& d, UartFormat format) {
+  EXPECT_EQ(format_name(d.line.format), format_name(format));
+  EXPECT_EQ(d.line.format.inverted, format.inverted);
+  EXPECT_TRUE(d.has_traffic);
+  EXPECT_EQ(d.trial.good_frames, 12u);
+  EXPECT_EQ(d.trial.line_errors, 0u);
+}
+
+TEST(LineDetector, ModbusDefaultEightNoneTwoAt9600) {
+  const UartFormat format{8, Parity::None, 2, false};
+  const DetectedLine d = detect(conversation(9600, format));
+  EXPECT_EQ(d.baud.baud, 9600u);
+  EXPECT_TRUE(d.baud.snapped);
+  EXPECT_NEAR(d.baud.measured, 9600, 9600 * 0.002);
+  expect_format(d, format);
+}
+
+TEST(LineDetector, EvenParityAt19200) {
+  const UartFormat format{8, Parity::Even, 1, false};
+  const DetectedLine d = detect(conversation(19200, format));
+  EXPECT_EQ(d.baud.baud, 19200u);
+  expect_format(d, format);
+}
+
+TEST(LineDetector, OddParityAt4800) {
+  const UartFormat format{8, Parity::Odd, 1, false};
+  const DetectedLine d = detect(conversation(4800, format));
+  EXPECT_EQ(d.baud.baud, 4800u);
+  expect_format(d, format);
+}
+
+TEST(LineDetector, OneStopBitBackToBackIsNotReadAsTwo) {
+  const UartFormat format{8, Parity::None, 1, false};
+  const DetectedLine d = detect(conversation(9600, format));
+  expect_format(d, format);
+}
+
+TEST(LineDetector, LineIdlingLowIsInverted) {
+  const UartFormat format{8, Parity::Even, 1, true};
+  const DetectedLine d = detect(conversation(38400, format));
+  EXPECT_EQ(d.baud.baud, 38400u);
+  expect_format(d, format);
+}
+
+TEST(LineDetector, ClockOnePointFivePercentFastSnapsTo9600) {
+  const UartFormat format{8, Parity::None, 2, false};
+  const DetectedLine d = detect(conversation(9600 * 1.015, format));
+  EXPECT_EQ(d.baud.baud, 9600u);
+  EXPECT_TRUE(d.baud.snapped);
+  EXPECT_NEAR(d.baud.deviation, 0.015, 0.002);
+  EXPECT_NEAR(d.baud.measured, 9744, 15);
+  expect_format(d, format);
+}
+
+TEST(LineDetector, ClockThreePercentSlowKeepsTheMeasuredRate) {
+  const UartFormat format{8, Parity::Even, 1, false};
+  const DetectedLine d = detect(conversation(9600 * 0.97, format));
+  EXPECT_FALSE(d.baud.snapped);
+  EXPECT_NEAR(d.baud.deviation, -0.03, 0.002);
+  EXPECT_NEAR(d.baud.baud, 9312, 15);
+  // Decoded at the measured rate, every frame still checks.
+  expect_format(d, format);
+}
+
+TEST(LineDetector, IdleLineHasNoBit) {
+  LineDetector detector;
+  detector.add(SampleRun{true, 1'000'000});
+  EXPECT_FALSE(detector.decide(kRate).has_value());
+}
+
+TEST(LineDetector, SquareWaveIsNoUartTraffic) {
+  // A clock: every pulse one width, high and low alike. It reads as clean 0x55 characters in
+  // 8N1 (a square wave is exactly that), one value over and over, and no frame checks.
+  LineDetector detector;
+  for (int i = 0; i < 2000; ++i) {
+    detector.add(SampleRun{true, 37});
+    detector.add(SampleRun{false, 37});
+  }
+  const std::optional<DetectedLine> d = detector.decide(kRate);
+  ASSERT_TRUE(d.has_value());
+  EXPECT_EQ(d->trial.good_frames, 0u);
+  EXPECT_FALSE(d->has_traffic);
+}
+
+TEST(LineDetector, TooFewSamplesPerBitAreReported) {
+  // 115200 baud at 400 kS/s: 3.5 samples per bit, below what a reader can trust.
+  const UartFormat format{8, Parity::None, 1, false};
+  UartRuns line(400e3 / 115200, format);
+  line.idle(50).bytes(with_crc({0x01, 0x03, 0x00, 0x00, 0x00, 0x0A}), 0).idle(50);
+  LineDetector detector;
+  for (const SampleRun& r : line.runs()) detector.add(r);
+  const std::optional<DetectedLine> d = detector.decide(400e3);
+  ASSERT_TRUE(d.has_value());
+  EXPECT_LT(d->samples_per_bit(), 4.0);
+}
+
+TEST(LineDetector, SnapKeepsRatesFarFromAStandardOne) {
+  const BaudEstimate e = snap_baud(10000);
+  EXPECT_FALSE(e.snapped);
+  EXPECT_EQ(e.baud, 10000u);
+  EXPECT_NEAR(e.deviation, 10000.0 / 9600 - 1, 1e-9);
+  EXPECT_TRUE(snap_baud(115200 * 0.985).snapped);
+}
+
+}  // namespace
+}  // namespace pvtap
