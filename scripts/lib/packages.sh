@@ -58,6 +58,10 @@ PVTAP_PACKAGES=(
   mosquitto-clients
   openssl
   python3-paho-mqtt
+  # pvtap audit SESSION.sr reads logic-analyzer recordings with libsigrok; its tests and the
+  # bench compare with sigrok-cli's own UART and Modbus decoders.
+  libsigrok-dev
+  sigrok-cli
 )
 
 # The system's os-release file (PVTAP_OS_RELEASE lets the tests name another).

@@ -33,7 +33,7 @@ SIZED = ("protocols", "capture", "dissector", "analyzer", os.path.join("captures
 # feed a run, the commands, Wireshark's extcap calls. A folder may include only those before
 # it, so that nothing reaches up and no two folders need each other.
 ANALYZER_FLOORS = ("formatting", "report", "events", "writers", "console", "html", "broker",
-                   "mqtt", "serial", "gateway", "pipeline", "run", "sources", "cli", "extcap")
+                   "mqtt", "serial", "gateway", "pipeline", "run", "sources", "logic", "cli", "extcap")
 
 
 def crowded_folders(repo):

@@ -12,6 +12,8 @@
 #include "cli/exit_status.h"
 #include "cli/mqtt_command_options.h"
 #include "console/progress_bar.h"
+#include "logic/logic_plan.h"
+#include "logic/logic_run.h"
 #include "pipeline/pipeline.h"
 #include "pvtap/capture/link_types.h"
 #include "run/run_output.h"
@@ -34,6 +36,11 @@ std::string footer_text() {
          "  serial captures    USER0-USER15 and RTAC serial: raw bus bytes in chunks.\n"
          "  exported PDUs      link type 252 as written by --write.\n"
          "  --raw FILE         a plain dump of bus bytes (cat /dev/ttyUSB0 > FILE), no time.\n"
+         "  logic recordings   a sigrok session (.sr) or a VCD file (.vcd), read with libsigrok:\n"
+         "                     each channel with UART traffic is a bus; its baud, parity, stop\n"
+         "                     bits and idle level are found from the samples (--channels\n"
+         "                     names the channels), and t1.5/t3.5 are judged at the sample\n"
+         "                     clock. One recording at a time.\n"
          "  Several FILEs are read in the order given as one capture (e.g. a ring buffer).\n"
          "\nOutput on stdout: frames (and timeouts, noise, gaps) in the chosen format, then the\n"
          "report. jsonl ends with a {\"type\":\"summary\",...} line; csv holds rows only (use\n"
@@ -71,6 +78,13 @@ void add_input_options(CLI::App& audit, AuditOptions& o) {
       ->delimiter(',')
       ->allow_extra_args(false);
   audit
+      .add_option("--channels", o.logic_channels,
+                  "logic recordings: the channels to decode, by name (comma-separated). "
+                  "Default: every channel with UART traffic")
+      ->type_name("NAME")
+      ->delimiter(',')
+      ->allow_extra_args(false);
+  audit
       .add_option("--threads", o.threads,
                   "1: read and analyse on one thread; 2: read capture files ahead on a second "
                   "thread (output is the same). Default: 2 when more than one CPU is available")
@@ -98,6 +112,46 @@ CLI::App* add_audit_command(CLI::App& app, AuditOptions& options) {
   return audit;
 }
 
+namespace {
+
+// Checks a logic recording's audit can run: it comes alone, and --channels comes with it.
+bool logic_inputs_fit(const AuditOptions& options, bool logic) {
+  const char* why = nullptr;
+  if (logic && (options.captures.size() != 1 || !options.raw_dumps.empty())) {
+    why = "a logic recording is audited alone (one FILE, no --raw)";
+  } else if (!logic && !options.logic_channels.empty()) {
+    why = "--channels names the channels of a logic recording (.sr, .vcd)";
+  }
+  if (why != nullptr) std::fprintf(stderr, "pvtap: %s\n", why);
+  return why == nullptr;
+}
+
+int audit_logic(const AuditOptions& options, const RegisterDecoder& decoder, OutputStream& out) {
+  const LogicPlan plan = plan_logic_audit(options.captures.front(), options.logic_channels);
+  if (!plan.error.empty()) {
+    std::fprintf(stderr, "pvtap: %s\n", plan.error.c_str());
+    return kExitBadInput;
+  }
+  RunOutput output(output_settings(options), out);
+  if (!output.open()) return kExitBadInput;
+  Pipeline pipeline(pipeline_settings(options), decoder, output.events());
+  const LogicRun run = run_logic_audit(plan, pipeline);
+  output.end_of_input(run.end_time);
+  AuditReport report = pipeline.report();
+  add_serial_lines(run, report);
+  report.written_records = output.written_records();
+  output.write_summary(report);
+  out.flush();
+  if (!output.close(report)) return kExitBadInput;
+  if (!run.error.empty()) {
+    std::fprintf(stderr, "pvtap: %s: %s\n", plan.path.c_str(), run.error.c_str());
+    return kExitBadInput;
+  }
+  return options.fail_on_errors && has_findings(report) ? kExitFindings : kExitOk;
+}
+
+}  // namespace
+
 int run_audit(AuditOptions& options) {
   apply_choices(options);
   if (options.captures.empty() && options.raw_dumps.empty()) {
@@ -107,6 +161,17 @@ int run_audit(AuditOptions& options) {
   if (!options.captures.empty() && !options.raw_dumps.empty()) {
     std::fprintf(stderr, "pvtap: give either capture FILEs or --raw dumps, not both\n");
     return kExitBadInput;
+  }
+  const bool logic = std::any_of(options.captures.begin(), options.captures.end(),
+                                 [](const std::string& path) { return is_logic_recording(path); });
+  if (!logic_inputs_fit(options, logic)) return kExitBadInput;
+  if (logic) {
+    RegisterDecoder decoder(DecoderOptions{options.gsl_ids, PairRule::Binary});
+    if (!load_maps(options, decoder)) return kExitBadInput;
+    OutputStream out(stdout);
+    const int status = audit_logic(options, decoder, out);
+    out.flush();
+    return out.failed() ? kExitBadInput : status;
   }
   if (const auto error = check_inputs(options.captures, options.raw_dumps)) {
     std::fprintf(stderr, "pvtap: %s\n", error->c_str());

@@ -49,7 +49,10 @@ struct CommonOptions {
 struct AuditOptions : CommonOptions {
   std::vector<std::string> captures;   // pcap/pcapng files, read in order as one capture
   std::vector<std::string> raw_dumps;  // plain bus byte dumps (--raw)
-  bool progress = false;               // draw a progress bar on stderr
+  // --channels: a logic recording's channels to decode, by name; empty for every channel
+  // with UART traffic.
+  std::vector<std::string> logic_channels;
+  bool progress = false;  // draw a progress bar on stderr
   // --threads: 2 reads capture files ahead on a second thread, 1 reads and analyses on one;
   // 0 (the default) picks 2 when this process may run on more than one CPU.
   unsigned threads = 0;

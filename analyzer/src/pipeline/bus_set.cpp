@@ -81,7 +81,7 @@ std::optional<double> BusSet::next_deadline() const {
 std::vector<BusFindings> BusSet::findings() const {
   std::vector<BusFindings> out;
   for (const auto& bus : buses_)
-    out.push_back(BusFindings{bus->output.name(), bus->session.report()});
+    out.push_back(BusFindings{bus->output.name(), bus->session.report(), std::nullopt});
   return out;
 }
 

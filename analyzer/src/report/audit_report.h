@@ -11,6 +11,7 @@
 #include "pvtap/statistics/distribution_summary.h"
 #include "report/live_report.h"
 #include "report/network_stats.h"
+#include "report/serial_line_report.h"
 
 namespace pvtap::analyzer {
 
@@ -29,6 +30,8 @@ struct InputReport {
 struct BusFindings {
   std::string name;  // the gateway's endpoint; empty for the one bus of a serial capture
   BusReport report;
+  // A bus decoded from a logic analyzer's samples: its serial line.
+  std::optional<SerialLineReport> serial;
 };
 
 // SkippedRecords: records that carried no bus bytes, by reason.

@@ -120,6 +120,11 @@ void timing(std::string& o, const BusReport& r, const AuditSettings& settings) {
   } else {
     append_json_string(o, bus.not_measurable_reason);
   }
+  // Only where a source vouches for the times, so that other reports keep their shape.
+  if (!bus.timestamp_source.empty()) {
+    append_json_key(o, "timed_by");
+    append_json_string(o, bus.timestamp_source);
+  }
   append_json_count(o, "baud", settings.baud);
   append_json_key(o, "t15_ms");
   milliseconds(o, bus.t15);
@@ -187,6 +192,7 @@ void buses(std::string& o, const AuditReport& report) {
     }
     append_json_count(o, "bytes", bus.report.bytes.bytes_in);
     append_json_count(o, "frames", bus.report.bytes.frames);
+    if (bus.serial) append_serial_line_json(*bus.serial, o);
     append_json_key(o, "timing");
     timing(o, bus.report, report.settings);
     append_json_key(o, "polls");

@@ -256,6 +256,7 @@ void bus_timing(const AuditReport& r, const BusReport& b, std::string& o) {
     o += report_line("  not judged: %s", g.not_measurable_reason.c_str());
     return;
   }
+  if (!g.timestamp_source.empty()) o += report_line("  timed by: %s", g.timestamp_source.c_str());
   o += report_line("  silence between frames (ms): %s", distribution_text(g.gaps).c_str());
   o += report_line("  RTU frames with a silence over t1.5 inside: %llu", u(g.inner_gap_t15.count));
   o += report_line("  RTU frames starting less than t3.5 after the previous one: %llu",
@@ -316,6 +317,7 @@ void write_text_report(const AuditReport& report, OutputStream& out) {
     if (report.buses.size() > 1 || !bus.name.empty()) {
       o += report_line("-- bus %s --", bus.name.empty() ? "serial" : bus.name.c_str());
     }
+    if (bus.serial) append_serial_line_text(*bus.serial, o);
     station_table(report, bus.report, o);
     findings(report, bus.report, o);
     latency(report, bus.report, o);

@@ -262,16 +262,17 @@ ReassemblerTotals BusSession::Impl::totals() const {
 }
 
 TimestampQuality BusSession::Impl::timestamp_quality() const {
-  if (!options.has_timestamps) return {false, "the input has no timestamps (a plain byte dump)"};
+  if (!options.has_timestamps)
+    return {false, "the input has no timestamps (a plain byte dump)", ""};
   for (const auto& s : streams) {
     if (!s || s->reassembler.timing_trusted()) continue;
     const bool declared = options.reassembler.timestamps == TimestampTrust::Untrusted;
     if (declared && !options.timestamp_note.empty()) {
-      return {false, std::string(options.timestamp_note)};
+      return {false, std::string(options.timestamp_note), ""};
     }
-    return {false, std::string(s->reassembler.timing_reason())};
+    return {false, std::string(s->reassembler.timing_reason()), ""};
   }
-  return {true, ""};
+  return {true, "", options.timestamp_source};
 }
 
 const EventTally& BusSession::tally() const {

@@ -1,6 +1,7 @@
 // apply_carrier_timing: which silences a carrier's timestamps can prove.
 #include "pvtap/session/carrier_timing.h"
 
+#include <charconv>
 #include <string>
 #include <utility>
 
@@ -52,6 +53,15 @@ void apply_carrier_timing(const CarrierTiming& c, BusSessionOptions& o) {
       apply_latency_timer(c.latency_timer_ms, o);
       return;
   }
+}
+
+// The sample clock vouches for every character's time, whatever the reassembler would guess
+// from their pace.
+void apply_sample_clock(double sample_rate, BusSessionOptions& o) {
+  o.reassembler.timestamps = TimestampTrust::Trusted;
+  char rate[32];
+  const auto end = std::to_chars(rate, rate + sizeof rate, sample_rate / 1e6).ptr;
+  o.timestamp_source = "logic analyzer at " + std::string(rate, end) + " MS/s";
 }
 
 }  // namespace pvtap

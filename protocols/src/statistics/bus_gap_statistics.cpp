@@ -33,6 +33,7 @@ BusGapReport BusGapStatistics::report(const TimestampQuality& quality) const {
     return r;
   }
   r.measurable = true;
+  r.timestamp_source = quality.source;
   r.gaps = gaps_.summary();
   r.inner_gap_t15 = inner_gap_t15_;
   r.spacing_t35 = spacing_t35_;

@@ -81,5 +81,16 @@ TEST(CarrierTiming, TheLatencyTimerIsJudgedAtTheSessionsOwnLineSpeed) {
   EXPECT_EQ(o.reassembler.timestamps, TimestampTrust::Untrusted);
 }
 
+TEST(CarrierTiming, LogicSamplesAreTrustedAndNameTheirClock) {
+  BusSessionOptions o;
+  apply_sample_clock(4e6, o);
+  EXPECT_EQ(o.reassembler.timestamps, TimestampTrust::Trusted);
+  EXPECT_TRUE(o.has_timestamps);
+  EXPECT_TRUE(o.timestamp_note.empty());
+  EXPECT_EQ(o.timestamp_source, "logic analyzer at 4 MS/s");
+  apply_sample_clock(24e6, o);
+  EXPECT_EQ(o.timestamp_source, "logic analyzer at 24 MS/s");
+}
+
 }  // namespace
 }  // namespace pvtap

@@ -30,6 +30,9 @@ struct BusSessionOptions {
   // Why the source's timestamps cannot time the bus, when the caller knows better than the
   // reassembler (set reassembler.timestamps = Untrusted with it).
   std::string timestamp_note;
+  // What vouches for the timestamps when the caller knows (a logic analyzer's sample clock),
+  // for the report's timing section.
+  std::string timestamp_source;
   // Decode register values of every frame for the sink (output); the latest-value table of
   // the report is kept either way.
   bool decode_values = true;

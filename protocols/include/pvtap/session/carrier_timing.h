@@ -32,4 +32,9 @@ struct CarrierTiming {
 // rate and bits per character already set in options.reassembler; leaves the rest alone.
 void apply_carrier_timing(const CarrierTiming& carrier, BusSessionOptions& options);
 
+// Characters decoded from a logic analyzer's samples, each timed to a sample: t1.5 and t3.5 are
+// judged on them (reassembler.timestamps = Trusted) and timestamp_source names the clock
+// ("logic analyzer at 4 MS/s"). `sample_rate` in samples per second.
+void apply_sample_clock(double sample_rate, BusSessionOptions& options);
+
 }  // namespace pvtap

@@ -24,7 +24,8 @@ struct RuleViolations {
 struct BusGapReport {
   bool measurable = false;
   std::string not_measurable_reason;
-  double t15 = 0;  // seconds, for the configured baud
+  std::string timestamp_source;  // when measurable and known: what stamped the characters
+  double t15 = 0;                // seconds, for the configured baud
   double t35 = 0;
   DistributionSummary gaps;      // silence from one frame's end to the next frame's start
   RuleViolations inner_gap_t15;  // RTU frames with a gap inside longer than t1.5

@@ -31,6 +31,7 @@ struct FrameTiming {
 struct TimestampQuality {
   bool fine = true;
   std::string reason;
+  std::string source;  // what stamped them, when known ("logic analyzer at 4 MS/s")
 };
 
 }  // namespace pvtap

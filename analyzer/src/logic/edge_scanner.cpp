@@ -1,0 +1,83 @@
+// EdgeScanner: edges found by comparing samples, runs given out per channel.
+#include "logic/edge_scanner.h"
+
+#include <cstring>
+
+namespace pvtap::analyzer {
+namespace {
+
+constexpr std::uint64_t kEveryByte = 0x0101010101010101ull;
+
+std::uint64_t sample_at(const std::uint8_t* p, unsigned unitsize) {
+  std::uint64_t s = 0;
+  std::memcpy(&s, p, unitsize < 8 ? unitsize : 8);
+  return s;
+}
+
+}  // namespace
+
+EdgeScanner::EdgeScanner(std::vector<unsigned> bits)
+    : bits_(std::move(bits)), run_start_(bits_.size(), 0) {
+  for (unsigned b : bits_) mask_ |= 1ull << b;
+}
+
+// `sample` (masked) differs from the last one at position_: the channels that changed end
+// their runs there.
+void EdgeScanner::edge(std::uint64_t sample, RunConsumer& out) {
+  const std::uint64_t changed = sample ^ last_;
+  for (std::size_t i = 0; i < bits_.size(); ++i) {
+    if ((changed >> bits_[i] & 1u) == 0) continue;
+    out.run(i, SampleRun{(last_ >> bits_[i] & 1u) != 0, position_ - run_start_[i]});
+    run_start_[i] = position_;
+  }
+  last_ = sample;
+}
+
+// One byte a sample: where eight samples in a row equal the last one, they are passed over
+// in one comparison.
+void EdgeScanner::scan_bytes(std::span<const std::uint8_t> data, RunConsumer& out) {
+  const std::uint64_t mask8 = (mask_ & 0xFF) * kEveryByte;
+  std::size_t i = 0;
+  while (i < data.size()) {
+    if (i + 8 <= data.size()) {
+      std::uint64_t word = 0;
+      std::memcpy(&word, data.data() + i, 8);
+      if ((word & mask8) == last_ * kEveryByte) {
+        i += 8;
+        position_ += 8;
+        continue;
+      }
+    }
+    const std::uint64_t s = data[i] & mask_;
+    if (s != last_) edge(s, out);
+    ++i;
+    ++position_;
+  }
+}
+
+void EdgeScanner::scan(std::span<const std::uint8_t> data, unsigned unitsize, RunConsumer& out) {
+  if (unitsize == 0 || data.size() < unitsize) return;
+  if (!started_) {
+    last_ = sample_at(data.data(), unitsize) & mask_;
+    started_ = true;
+  }
+  if (unitsize == 1) {
+    scan_bytes(data, out);
+    return;
+  }
+  for (std::size_t i = 0; i + unitsize <= data.size(); i += unitsize, ++position_) {
+    const std::uint64_t s = sample_at(data.data() + i, unitsize) & mask_;
+    if (s != last_) edge(s, out);
+  }
+}
+
+void EdgeScanner::finish(RunConsumer& out) {
+  for (std::size_t i = 0; i < bits_.size(); ++i) {
+    if (position_ > run_start_[i]) {
+      out.run(i, SampleRun{(last_ >> bits_[i] & 1u) != 0, position_ - run_start_[i]});
+    }
+    run_start_[i] = position_;
+  }
+}
+
+}  // namespace pvtap::analyzer

@@ -1,0 +1,80 @@
+// plan_logic_audit: probe the recording, keep the channels that talk, refuse what cannot be
+// read well.
+#include "logic/logic_plan.h"
+
+#include <cstdio>
+#include <filesystem>
+
+namespace pvtap::analyzer {
+namespace {
+
+bool ends_with(const std::string& s, const std::string& tail) {
+  return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
+}
+
+std::string channel_list(const std::vector<LogicChannel>& channels) {
+  std::string out;
+  for (const LogicChannel& c : channels) out += (out.empty() ? "" : ", ") + c.name;
+  return out.empty() ? "none" : out;
+}
+
+// Too few samples per bit to read a UART: the reason, naming the channel and its rate.
+std::string too_slow(const ProbedChannel& p, double sample_rate) {
+  char text[200];
+  std::snprintf(text, sizeof text,
+                "channel %s: %.0f baud at %.0f samples/s is %.1f samples per bit; at least %.0f "
+                "are needed",
+                p.channel.name.c_str(), p.line->baud.measured, sample_rate,
+                p.line->samples_per_bit(), kMinSamplesPerBit);
+  return text;
+}
+
+// The channels asked for must all talk; without --channels, those that do are kept.
+std::string keep_talking(LogicPlan& plan, const std::vector<ProbedChannel>& probed, bool asked) {
+  for (const ProbedChannel& p : probed) {
+    const bool talks = p.line && p.line->has_traffic;
+    if (p.line && p.line->samples_per_bit() < kMinSamplesPerBit && (talks || asked)) {
+      return too_slow(p, plan.sample_rate);
+    }
+    if (talks) {
+      plan.channels.push_back(p);
+    } else if (asked) {
+      return "channel " + p.channel.name + " carries no UART traffic";
+    }
+  }
+  return plan.channels.empty() ? "no channel carries UART traffic" : "";
+}
+
+}  // namespace
+
+bool is_logic_recording(const std::string& path) {
+  return ends_with(path, ".sr") || ends_with(path, ".vcd");
+}
+
+LogicPlan plan_logic_audit(const std::string& path, const std::vector<std::string>& names) {
+  LogicPlan plan;
+  plan.path = path;
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) {
+    plan.error = path + ": no such file";
+    return plan;
+  }
+  LineProbe probe(names);
+  const std::string error = read_logic_file(path, probe);
+  probe.finish();
+  plan.sample_rate = probe.sample_rate();
+  if (!error.empty()) {
+    plan.error = path + ": " + error;
+  } else if (!probe.missing().empty()) {
+    plan.error = path + ": no channel " + probe.missing().front() +
+                 " (the recording has: " + channel_list(probe.available()) + ")";
+  } else if (plan.sample_rate <= 0) {
+    plan.error = path + ": the recording does not give its sample rate";
+  } else if (const std::string why = keep_talking(plan, probe.channels(), !names.empty());
+             !why.empty()) {
+    plan.error = path + ": " + why;
+  }
+  return plan;
+}
+
+}  // namespace pvtap::analyzer

@@ -1,0 +1,30 @@
+// What a logic recording will be audited as: its UART channels and their settings, found by
+// a first pass, or the one-line reason it cannot be audited (decided before any output).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "logic/line_probe.h"
+
+namespace pvtap::analyzer {
+
+// A file pvtap reads as a logic recording rather than as a capture: a sigrok session (.sr) or
+// a Value Change Dump (.vcd), both through libsigrok.
+bool is_logic_recording(const std::string& path);
+
+// LogicPlan: the channels with UART traffic (each with its line), or why there are none.
+struct LogicPlan {
+  std::string path;
+  double sample_rate = 0;
+  std::vector<ProbedChannel> channels;  // every one has a line with traffic
+  std::string error;                    // empty when the plan can run
+};
+
+// A decoder needs this many samples per bit to find a start bit's middle.
+inline constexpr double kMinSamplesPerBit = 4.0;
+
+// `names`: --channels, empty for every channel with UART traffic.
+LogicPlan plan_logic_audit(const std::string& path, const std::vector<std::string>& names);
+
+}  // namespace pvtap::analyzer

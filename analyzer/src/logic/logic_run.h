@@ -1,0 +1,27 @@
+// The second pass of a logic recording's audit: every UART channel a bus of its own, fed its
+// characters with their own times, judged on t1.5/t3.5 at the sample clock's precision.
+#pragma once
+
+#include <string>
+
+#include "logic/logic_plan.h"
+#include "pipeline/pipeline.h"
+
+namespace pvtap::analyzer {
+
+// LogicRun: what reading the recording gave the pipeline.
+struct LogicRun {
+  std::string error;    // reading failed part way (what came before was fed)
+  double end_time = 0;  // seconds from the recording's start
+  InputReport input;
+  std::vector<SerialLineReport> lines;  // per bus, in plan order; the bus is the channel name
+};
+
+// Feeds `pipeline` a bus per planned channel (named after the channel) and reads the
+// recording into them; finishes the pipeline.
+LogicRun run_logic_audit(const LogicPlan& plan, Pipeline& pipeline);
+
+// The report's buses get their serial lines, and the report its rate (the first bus's).
+void add_serial_lines(const LogicRun& run, AuditReport& report);
+
+}  // namespace pvtap::analyzer

@@ -1,0 +1,137 @@
+// read_logic_file: libsigrok's session loading or its input modules, one datafeed for both.
+#include "logic/sigrok_file.h"
+
+#include <libsigrok/libsigrok.h>
+
+#include <cstdio>
+#include <memory>
+
+namespace pvtap::analyzer {
+namespace {
+
+constexpr std::size_t kReadChunk = 1 << 20;
+
+// Feed: what the datafeed callback needs to reach the sink.
+struct Feed {
+  explicit Feed(LogicSink& s) : sink(s) {}
+  LogicSink& sink;
+  sr_session* session = nullptr;
+  bool begun = false;
+  double sample_rate = 0;
+  std::vector<LogicChannel> channels;
+};
+
+double configured_rate(const sr_dev_inst* sdi) {
+  GVariant* value = nullptr;
+  sr_dev_driver* driver = sr_dev_inst_driver_get(sdi);
+  if (driver == nullptr || sr_config_get(driver, sdi, nullptr, SR_CONF_SAMPLERATE, &value) != SR_OK)
+    return 0;
+  const double rate = static_cast<double>(g_variant_get_uint64(value));
+  g_variant_unref(value);
+  return rate;
+}
+
+void learn_channels(Feed& f, const sr_dev_inst* sdi) {
+  f.channels.clear();
+  for (GSList* l = sr_dev_inst_channels_get(sdi); l != nullptr; l = l->next) {
+    const auto* ch = static_cast<const sr_channel*>(l->data);
+    if (ch->type != SR_CHANNEL_LOGIC || !ch->enabled) continue;
+    f.channels.push_back(LogicChannel{ch->name, static_cast<unsigned>(ch->index)});
+  }
+  if (f.sample_rate == 0) f.sample_rate = configured_rate(sdi);
+}
+
+void meta(Feed& f, const sr_datafeed_meta* m) {
+  for (GSList* l = m->config; l != nullptr; l = l->next) {
+    const auto* c = static_cast<const sr_config*>(l->data);
+    if (c->key == SR_CONF_SAMPLERATE)
+      f.sample_rate = static_cast<double>(g_variant_get_uint64(c->data));
+  }
+}
+
+void on_packet(const sr_dev_inst* sdi, const sr_datafeed_packet* packet, void* data) {
+  Feed& f = *static_cast<Feed*>(data);
+  if (packet->type == SR_DF_META) meta(f, static_cast<const sr_datafeed_meta*>(packet->payload));
+  if (packet->type != SR_DF_LOGIC || !f.sink.wants_more()) return;
+  if (!f.begun) {
+    learn_channels(f, sdi);
+    f.sink.begin(f.channels, f.sample_rate);
+    f.begun = true;
+  }
+  const auto* logic = static_cast<const sr_datafeed_logic*>(packet->payload);
+  f.sink.samples({static_cast<const std::uint8_t*>(logic->data), logic->length}, logic->unitsize);
+  if (!f.sink.wants_more() && f.session != nullptr) sr_session_stop(f.session);
+}
+
+struct Context {
+  sr_context* ctx = nullptr;
+  Context() {
+    sr_log_loglevel_set(SR_LOG_NONE);
+    if (sr_init(&ctx) != SR_OK) ctx = nullptr;
+  }
+  ~Context() {
+    if (ctx != nullptr) sr_exit(ctx);
+  }
+};
+
+std::string read_session_file(sr_session* session, Feed& feed) {
+  feed.session = session;
+  sr_session_datafeed_callback_add(session, on_packet, &feed);
+  std::string error;
+  if (sr_session_start(session) != SR_OK || sr_session_run(session) != SR_OK) {
+    error = "libsigrok could not read the session";
+  }
+  sr_session_destroy(session);
+  return error;
+}
+
+// An input module reads the file as it is handed chunks; its device exists once it has read
+// the file's header, and only then can the session carry its packets.
+std::string read_with_input(const std::string& path, const sr_input* in, sr_context* ctx,
+                            Feed& feed) {
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), std::fclose);
+  sr_session* session = nullptr;
+  if (!file || sr_session_new(ctx, &session) != SR_OK) return "cannot open the file";
+  sr_session_datafeed_callback_add(session, on_packet, &feed);
+  GString* buffer = g_string_sized_new(kReadChunk);
+  std::vector<char> chunk(kReadChunk);
+  bool added = false;
+  std::string error;
+  while (error.empty() && feed.sink.wants_more()) {
+    const std::size_t n = std::fread(chunk.data(), 1, chunk.size(), file.get());
+    if (n == 0) break;
+    g_string_truncate(buffer, 0);
+    g_string_append_len(buffer, chunk.data(), static_cast<gssize>(n));
+    if (sr_input_send(in, buffer) != SR_OK) error = "libsigrok could not read the file";
+    sr_dev_inst* sdi = sr_input_dev_inst_get(in);
+    if (!added && sdi != nullptr) added = sr_session_dev_add(session, sdi) == SR_OK;
+  }
+  if (error.empty() && sr_input_end(in) != SR_OK) error = "libsigrok could not read the file";
+  g_string_free(buffer, TRUE);
+  sr_session_destroy(session);
+  return error;
+}
+
+}  // namespace
+
+std::string read_logic_file(const std::string& path, LogicSink& sink) {
+  Context context;
+  if (context.ctx == nullptr) return "libsigrok did not start";
+  Feed feed(sink);
+  sr_session* session = nullptr;
+  std::string error;
+  if (sr_session_load(context.ctx, path.c_str(), &session) == SR_OK) {
+    error = read_session_file(session, feed);
+  } else {
+    const sr_input* in = nullptr;
+    if (sr_input_scan_file(path.c_str(), &in) != SR_OK || in == nullptr) {
+      return "not a sigrok session or a logic recording libsigrok reads";
+    }
+    error = read_with_input(path, in, context.ctx, feed);
+    sr_input_free(in);
+  }
+  if (error.empty() && !feed.begun) error = "the recording holds no logic samples";
+  return error;
+}
+
+}  // namespace pvtap::analyzer

@@ -1,0 +1,87 @@
+// UartTap: runs to characters to bus chunks, one character a chunk, stamped with its end.
+#include "logic/uart_tap.h"
+
+namespace pvtap::analyzer {
+
+namespace {
+
+std::vector<unsigned> bits_of(const std::vector<TappedChannel>& channels) {
+  std::vector<unsigned> bits;
+  for (const TappedChannel& c : channels) bits.push_back(c.channel.index);
+  return bits;
+}
+
+SerialLineReport settings_of(const TappedChannel& c) {
+  SerialLineReport r;
+  const DetectedLine& d = c.line;
+  r.baud = d.baud.baud;
+  r.measured_baud = d.baud.measured;
+  r.deviation = d.baud.deviation;
+  r.parity = parity_name(d.line.format.parity);
+  r.data_bits = d.line.format.data_bits;
+  r.stop_bits = d.line.format.stop_bits;
+  r.inverted = d.line.format.inverted;
+  r.channel = c.channel.name;
+  return r;
+}
+
+}  // namespace
+
+UartTap::UartTap(std::vector<TappedChannel> channels, double sample_rate)
+    : sample_rate_(sample_rate), scanner_(bits_of(channels)) {
+  slots_.reserve(channels.size());
+  for (TappedChannel& c : channels) {
+    SerialLineReport report = settings_of(c);
+    UartDecoder decoder(c.line.line);
+    slots_.push_back(Slot{std::move(c), decoder, std::move(report)});
+  }
+}
+
+void UartTap::begin(const std::vector<LogicChannel>&, double) {}
+
+void UartTap::samples(std::span<const std::uint8_t> data, unsigned unitsize) {
+  scanner_.scan(data, unitsize, *this);
+}
+
+void UartTap::run(std::size_t slot, SampleRun run) {
+  slots_[slot].decoder.feed(run, characters_);
+  if (!characters_.empty()) deliver(slots_[slot]);
+}
+
+// A break carries no byte; a character with a line error still does (the frame around it
+// then fails its check, as it would for a receiver).
+void UartTap::deliver(Slot& s) {
+  for (const UartCharacter& c : characters_) {
+    if (c.is_break) {
+      ++s.report.breaks;
+      continue;
+    }
+    s.report.framing_errors += c.framing_error ? 1 : 0;
+    s.report.parity_errors += c.parity_error ? 1 : 0;
+    const auto byte = static_cast<std::uint8_t>(c.value);
+    const double end = static_cast<double>(c.end) / sample_rate_;
+    s.tapped.bus->feed(BusChunk{std::span(&byte, 1), end, Direction::Unknown});
+  }
+  characters_.clear();
+}
+
+void UartTap::finish() {
+  scanner_.finish(*this);
+  for (Slot& s : slots_) {
+    s.decoder.finish(characters_);
+    deliver(s);
+  }
+}
+
+double UartTap::end_time() const {
+  return slots_.empty() ? 0.0
+                        : static_cast<double>(slots_.front().decoder.position()) / sample_rate_;
+}
+
+std::vector<SerialLineReport> UartTap::lines() const {
+  std::vector<SerialLineReport> out;
+  for (const Slot& s : slots_) out.push_back(s.report);
+  return out;
+}
+
+}  // namespace pvtap::analyzer

@@ -1,0 +1,52 @@
+// The second pass over a logic recording: each UART channel decoded with its settings, every
+// character fed to its bus with its own time, and the line's errors counted.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "logic/edge_scanner.h"
+#include "logic/sigrok_file.h"
+#include "pvtap/session/bus_session.h"
+#include "pvtap/uart/line_detector.h"
+#include "report/serial_line_report.h"
+
+namespace pvtap::analyzer {
+
+// TappedChannel: a channel, how to read it, and the bus its characters go to.
+struct TappedChannel {
+  LogicChannel channel;
+  DetectedLine line;
+  BusSession* bus = nullptr;
+};
+
+class UartTap final : public LogicSink, private RunConsumer {
+ public:
+  UartTap(std::vector<TappedChannel> channels, double sample_rate);
+
+  void begin(const std::vector<LogicChannel>& channels, double sample_rate) override;
+  void samples(std::span<const std::uint8_t> data, unsigned unitsize) override;
+  // After reading: the last characters decided and fed.
+  void finish();
+
+  // The time of the last sample read, in seconds from the recording's start.
+  double end_time() const;
+  // Each channel's line, in the order given.
+  std::vector<SerialLineReport> lines() const;
+
+ private:
+  struct Slot {
+    TappedChannel tapped;
+    UartDecoder decoder;
+    SerialLineReport report;
+  };
+  void run(std::size_t slot, SampleRun run) override;
+  void deliver(Slot& s);
+
+  std::vector<Slot> slots_;
+  double sample_rate_;
+  EdgeScanner scanner_;
+  std::vector<UartCharacter> characters_;  // scratch, reused for every run
+};
+
+}  // namespace pvtap::analyzer

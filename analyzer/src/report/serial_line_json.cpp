@@ -1,0 +1,35 @@
+// A logic-analyzer bus's serial line in the summary: "serial":{...},"line":{...}.
+#include "formatting/json_text.h"
+#include "formatting/number_text.h"
+#include "report/serial_line_report.h"
+
+namespace pvtap::analyzer {
+
+void append_serial_line_json(const SerialLineReport& s, std::string& o) {
+  append_json_key(o, "serial");
+  o += "{\"baud\":";
+  append_uint(o, s.baud);
+  append_json_key(o, "measured_baud");
+  append_fixed(o, s.measured_baud, 1);
+  append_json_key(o, "deviation_percent");
+  append_fixed(o, s.deviation * 100, 2);
+  append_json_key(o, "parity");
+  append_json_string(o, s.parity);
+  append_json_count(o, "data_bits", s.data_bits);
+  append_json_count(o, "stop_bits", s.stop_bits);
+  append_json_key(o, "inverted");
+  o += s.inverted ? "true" : "false";
+  append_json_key(o, "detected");
+  o += s.detected ? "true" : "false";
+  append_json_key(o, "channel");
+  append_json_string(o, s.channel);
+  o += '}';
+  append_json_key(o, "line");
+  o += "{\"framing_errors\":";
+  append_uint(o, s.framing_errors);
+  append_json_count(o, "parity_errors", s.parity_errors);
+  append_json_count(o, "breaks", s.breaks);
+  o += '}';
+}
+
+}  // namespace pvtap::analyzer
