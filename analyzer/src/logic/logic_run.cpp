@@ -44,6 +44,7 @@ LogicRun run_logic_audit(const LogicPlan& plan, Pipeline& pipeline) {
   run.lines = tap.lines();
   run.input.path = plan.path;
   run.input.link_type = link_text(plan);
+  run.input.records = tap.chunks();
   run.input.truncated = !run.error.empty();
   run.input.error = run.error;
   return run;

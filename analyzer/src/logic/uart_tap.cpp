@@ -40,6 +40,7 @@ UartTap::UartTap(std::vector<TappedChannel> channels, double sample_rate)
 void UartTap::begin(const std::vector<LogicChannel>&, double) {}
 
 void UartTap::samples(std::span<const std::uint8_t> data, unsigned unitsize) {
+  ++chunks_;
   scanner_.scan(data, unitsize, *this);
 }
 

@@ -31,6 +31,7 @@ class UartTap final : public LogicSink, private RunConsumer {
 
   // The time of the last sample read, in seconds from the recording's start.
   double end_time() const;
+  std::uint64_t chunks() const { return chunks_; }  // of samples, as libsigrok handed them
   // Each channel's line, in the order given.
   std::vector<SerialLineReport> lines() const;
 
@@ -47,6 +48,7 @@ class UartTap final : public LogicSink, private RunConsumer {
   double sample_rate_;
   EdgeScanner scanner_;
   std::vector<UartCharacter> characters_;  // scratch, reused for every run
+  std::uint64_t chunks_ = 0;
 };
 
 }  // namespace pvtap::analyzer
