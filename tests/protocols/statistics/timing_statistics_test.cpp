@@ -55,7 +55,7 @@ FrameTiming rtu_frame(std::uint64_t id, double start, double end, double inner_g
   return f;
 }
 
-const TimestampQuality kFine{true, ""};
+const TimestampQuality kFine{true, "", ""};
 
 TEST(TimingHistogramTest, EmptyHistogramAndSummaryAreZero) {
   LogHistogram h;
@@ -359,7 +359,7 @@ TEST(TimingStatisticsTest, CoarseTimestampsMakeGapsNotMeasurable) {
   stats.add_frame(rtu_frame(1, 0.000, 0.008, 0.004));
   stats.add_frame(rtu_frame(2, 0.009, 0.017, 0.004));
   stats.add_latency(1, 0.016);
-  const TimingReport r = stats.report({false, "chunked timestamps from a USB adapter"});
+  const TimingReport r = stats.report({false, "chunked timestamps from a USB adapter", ""});
   EXPECT_FALSE(r.bus.measurable);
   EXPECT_EQ(r.bus.not_measurable_reason, "chunked timestamps from a USB adapter");
   EXPECT_EQ(r.bus.inner_gap_t15.count, 0u);
