@@ -6,7 +6,9 @@
 sessions: each real flow-meter session gives the frames its source counts, requests = replies,
 every check good, no noise, 9600 baud found, timing judged at the sample clock. channels:
 --channels picks a channel, names one that is not there or one without traffic. vcd: the
-session exported by sigrok-cli reads the same through libsigrok's VCD input. bad_inputs: a file
+session exported by sigrok-cli reads the same through libsigrok's VCD input. synthetic: a VCD
+written here of an inverted 19200 8E1 line with one reply too early (t3.5) and one request with
+a pause inside (t1.5) gives its settings and exactly those violations. bad_inputs: a file
 that is no recording, a recording without UART traffic, a sample rate under 4 per bit.
 Exit 0 when every check holds, 1 with the failures listed, 77 when a needed input is missing.
 """
@@ -140,14 +142,15 @@ def vcd(checks, args):
     check_session(checks, args.pvtap, out, 18)
 
 
-def write_vcd(path, timescale_us, edges, end):
-    """A one-wire VCD: `edges` are (time in timescale units, level), the line starts high."""
+def write_vcd(path, timescale_us, edges, end, idle_high=True):
+    """A one-wire VCD: `edges` are (time in timescale units, level) after the idle level."""
+    idle = 1 if idle_high else 0
     with open(path, "w") as f:
         f.write(f"$timescale {timescale_us} us $end\n$scope module t $end\n")
-        f.write("$var wire 1 ! TX $end\n$upscope $end\n$enddefinitions $end\n#0 1!\n")
+        f.write(f"$var wire 1 ! TX $end\n$upscope $end\n$enddefinitions $end\n#0 {idle}!\n")
         for time, level in edges:
             f.write(f"#{time} {level}!\n")
-        f.write(f"#{end} 1!\n")
+        f.write(f"#{end} {idle}!\n")
 
 
 def uart_edges(values, baud, timescale_us, start_bits=20):
@@ -162,6 +165,77 @@ def uart_edges(values, baud, timescale_us, start_bits=20):
                 level = b
             t += bit
     return edges, round(t + start_bits * bit)
+
+
+def crc16(data):
+    crc = 0xFFFF
+    for byte in data:
+        crc ^= byte
+        for _ in range(8):
+            crc = (crc >> 1) ^ 0xA001 if crc & 1 else crc >> 1
+    return bytes(data) + bytes([crc & 0xFF, crc >> 8])
+
+
+class Line:
+    """A UART line written bit by bit into VCD edges at 1 us: 8E1, idle low (inverted)."""
+
+    def __init__(self, baud):
+        self.bit = 1e6 / baud
+        self.t = 100 * self.bit
+        self.level = 0  # the line idles low
+        self.edges = []
+
+    def hold(self, mark, bits):
+        level = 0 if mark else 1
+        if level != self.level:
+            self.edges.append((round(self.t), level))
+            self.level = level
+        self.t += bits * self.bit
+
+    def frame(self, data, pause_after=None, pause_chars=0.0):
+        for i, v in enumerate(data):
+            data_bits = [(v >> k) & 1 for k in range(8)]
+            for b in [0] + data_bits + [sum(data_bits) % 2, 1]:
+                self.hold(b == 1, 1)
+            if i == pause_after:
+                self.hold(True, 11 * pause_chars)
+
+    def idle(self, chars):
+        self.hold(True, 11 * chars)
+
+
+def synthetic(checks, args):
+    line = Line(19200)
+    line.idle(10)
+    for i in range(5):
+        request = crc16([0x11, 0x03, 0x00, 0x20 + i, 0x00, 0x02])
+        reply = crc16([0x11, 0x03, 0x04, 0x00, i, 0x12, 0x34])
+        # The third request pauses 2 characters after its function code (over t1.5).
+        line.frame(request, pause_after=1 if i == 2 else None, pause_chars=2.0)
+        # The fourth reply comes 2.5 characters after its request (under t3.5).
+        line.idle(2.5 if i == 3 else 5)
+        line.frame(reply)
+        line.idle(500)
+    path = os.path.join(args.scratch, "inverted_8e1.vcd")
+    write_vcd(path, 1, line.edges, round(line.t), idle_high=False)
+    result = audit(args.pvtap, "--format", "jsonl", path)
+    checks.equal("synthetic: exit status", result.returncode, 0)
+    s = summary(result)
+    if s is None:
+        checks.true(f"synthetic: a summary line (stderr: {result.stderr.strip()})", False)
+        return
+    checks.equal("synthetic: frames", (s["frames"], s["requests"], s["responses"], s["bad_checks"]),
+                 (10, 5, 5, 0))
+    bus = s["buses"][0]
+    serial = bus["serial"]
+    checks.equal("synthetic: settings",
+                 (serial["baud"], serial["parity"], serial["stop_bits"], serial["inverted"]),
+                 (19200, "even", 1, True))
+    checks.equal("synthetic: line errors", bus["line"],
+                 {"framing_errors": 0, "parity_errors": 0, "breaks": 0})
+    checks.equal("synthetic: t3.5 violations", bus["timing"]["t35_violations"], 1)
+    checks.equal("synthetic: t1.5 violations", bus["timing"]["t15_violations"], 1)
+    checks.equal("synthetic: timed by", bus["timing"].get("timed_by"), "logic analyzer at 1 MS/s")
 
 
 def bad_inputs(checks, args):
@@ -189,16 +263,17 @@ def main():
     parser.add_argument("--pvtap", required=True)
     parser.add_argument("--real", required=True)
     parser.add_argument("--scratch", required=True)
-    parser.add_argument("mode", choices=["sessions", "channels", "vcd", "bad_inputs"])
+    parser.add_argument("mode", choices=["sessions", "channels", "vcd", "synthetic", "bad_inputs"])
     args = parser.parse_args()
     args.sigrok = os.path.join(args.real, "sigrok")
-    if args.mode != "bad_inputs" and not os.path.isfile(os.path.join(args.sigrok, GRAPH)):
+    if args.mode in ("sessions", "channels", "vcd") and not os.path.isfile(os.path.join(args.sigrok, GRAPH)):
         print(f"the real recordings are not in {args.sigrok}")
         return SKIP
     os.makedirs(args.scratch, exist_ok=True)
     checks = Checks()
-    {"sessions": sessions, "channels": channels, "vcd": vcd, "bad_inputs": bad_inputs}[
-        args.mode](checks, args)
+    modes = {"sessions": sessions, "channels": channels, "vcd": vcd, "synthetic": synthetic,
+             "bad_inputs": bad_inputs}
+    modes[args.mode](checks, args)
     return checks.finish()
 
 
