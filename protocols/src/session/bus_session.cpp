@@ -5,6 +5,7 @@
 #include <limits>
 #include <vector>
 
+#include "pvtap/codec/checksums.h"
 #include "pvtap/matching/reply_rules.h"
 #include "pvtap/session/event_tally.h"
 #include "pvtap/session/station_rule.h"
@@ -47,7 +48,10 @@ struct BusSession::Impl {
     return *slot;
   }
 
-  void on_frame(Direction direction, const FrameEvent& e);
+  void on_frame(Direction direction, const FrameEvent& e) { on_frame(direction, e, e.bytes); }
+  // `wire` is what the codec parses: the frame's bytes, with a check appended when the
+  // carrier took it away.
+  void on_frame(Direction direction, const FrameEvent& e, std::span<const std::uint8_t> wire);
   void handle_parsed(SessionFrame& out, const FrameEvent& e);
   // Timeouts come before the frame that made them due.
   void report(std::span<const Timeout> timeouts) {
@@ -66,7 +70,9 @@ struct BusSession::Impl {
   detail::BusTally tally;
   detail::StationDialects station_dialects;
   const RegisterDecoder& decoder;
-  Frame frame;  // the frame being handled; SessionFrame::frame points here
+  Frame frame;                // the frame being handled; SessionFrame::frame points here
+  ReassemblerTotals carried;  // frames delivered whole by a carrier (carried_frame)
+  std::vector<std::uint8_t> carried_wire;  // a carried frame with the CRC the codec expects
   std::uint64_t next_id = 0;
   std::uint64_t loss_boundary_id = 0;  // requests before this id were waiting during a loss
   Direction last_direction = Direction::Unknown;  // of the last chunk fed
@@ -120,7 +126,8 @@ void BusSession::Impl::report(const Timeout& t) {
   sink.on_timeout(out);
 }
 
-void BusSession::Impl::on_frame(Direction direction, const FrameEvent& e) {
+void BusSession::Impl::on_frame(Direction direction, const FrameEvent& e,
+                                std::span<const std::uint8_t> wire) {
   SessionFrame out;
   out.id = next_id++;
   out.offset = e.offset;
@@ -132,12 +139,12 @@ void BusSession::Impl::on_frame(Direction direction, const FrameEvent& e) {
   out.dialect = e.dialect;
   out.role = e.role;
   out.check = e.check;
-  out.parse_error = parse_frame_into(e.bytes, e.dialect, e.role, frame);
+  out.parse_error = parse_frame_into(wire, e.dialect, e.role, frame);
   const bool parsed = out.parse_error.empty();
   // A damaged frame whose byte count lies does not parse, but it was sent: its header is
-  // enough to pair it and count it.
-  if (parsed || !e.check.ok) {
-    if (!parsed) frame = frame_header(e.bytes, e.dialect, e.role);
+  // enough to pair it and count it. So is a carried frame (TCP vouches it was sent so).
+  if (parsed || !e.check.ok || e.check.carried) {
+    if (!parsed) frame = frame_header(wire, e.dialect, e.role);
     const auto label = station_dialects.label(frame, e.check.ok);
     frame.dialect = label.dialect;
     out.dialect = label.dialect;
@@ -194,6 +201,31 @@ void BusSession::feed(const BusChunk& chunk) {
   Impl::DirectionStream& s = impl_->stream(chunk.direction);
   s.last_feed_time = chunk.time;
   s.reassembler.feed(chunk);
+}
+
+void BusSession::carried_frame(Direction direction, std::uint64_t offset,
+                               std::span<const std::uint8_t> frame, double time) {
+  Impl& m = *impl_;
+  m.times.seen(time);
+  // The codec reads RTU frames: the CRC a serial line would carry is appended for it alone;
+  // the frame's bytes, its check verdict and the byte counts are the wire's.
+  m.carried_wire.assign(frame.begin(), frame.end());
+  const std::uint16_t crc = Crc16Modbus::compute(frame);
+  m.carried_wire.push_back(static_cast<std::uint8_t>(crc & 0xFFu));
+  m.carried_wire.push_back(static_cast<std::uint8_t>(crc >> 8));
+  FrameEvent e;
+  e.offset = offset;
+  e.bytes = frame;
+  e.start_time = time;
+  e.end_time = time;
+  e.dialect =
+      m.options.reassembler.dialects.contains(Dialect::Modbus) ? Dialect::Modbus : Dialect::Gsl;
+  e.role = direction == Direction::FromSlave ? Role::Response : Role::Request;
+  e.check = FrameCheck{true, 0, 0, true};
+  ++m.carried.frames;
+  m.carried.bytes_in += frame.size();
+  m.carried.frame_bytes += frame.size();
+  m.on_frame(direction, e, m.carried_wire);
 }
 
 void BusSession::end_turn(Direction direction) {
@@ -254,7 +286,7 @@ void BusSession::finish() {
 }
 
 ReassemblerTotals BusSession::Impl::totals() const {
-  ReassemblerTotals sum;
+  ReassemblerTotals sum = carried;
   for (const auto& s : streams) {
     if (s) sum += s->reassembler.totals();
   }

@@ -18,6 +18,9 @@ struct FrameCheck {
   bool ok = false;
   std::uint16_t found = 0;
   std::uint16_t expected = 0;
+  // No check on the wire: the carrier (TCP, for Modbus/TCP) vouches for the bytes. ok is
+  // true and found/expected are 0; outputs say "tcp", never "ok".
+  bool carried = false;
 };
 
 // ParseOutcome: a parsed frame, or a short static description of why it is malformed.

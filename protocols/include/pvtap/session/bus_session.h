@@ -144,6 +144,11 @@ class BusSession {
   // Half duplex: a chunk of known direction after one of the other known direction ends the
   // other's turn (end_turn), unless the chunk says that turn is not complete.
   void feed(const BusChunk& chunk);
+  // A frame a carrier delivered whole and without a check of its own (a Modbus/TCP ADU):
+  // `frame` is its station byte and PDU, at `offset` in `direction`'s stream, sent at `time`.
+  // It bypasses the reassembler; its check says the carrier vouched for it (FrameCheck).
+  void carried_frame(Direction direction, std::uint64_t offset, std::span<const std::uint8_t> frame,
+                     double time);
   // The sender in `direction` has finished its turn: on a half-duplex bus the other side
   // started talking, so its pending bytes are complete. Call it only when no data of that
   // direction is still on its way (e.g. no TCP segment missing).
