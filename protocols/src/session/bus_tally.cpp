@@ -88,6 +88,7 @@ void BusTally::fill(BusReport& r) const {
   r.unanswered_after_loss = e.unanswered_after_loss;
   r.unsolicited = e.unsolicited;
   r.exceptions = e.exceptions;
+  r.gateway_timeouts = e.gateway_timeouts;
   r.gaps = e.gaps;
   r.exception_codes.clear();
   for (const auto& [key, count] : exception_codes_) {

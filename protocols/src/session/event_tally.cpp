@@ -10,6 +10,7 @@ EventCounts& EventCounts::operator+=(const EventCounts& o) {
   exceptions += o.exceptions;
   unsolicited += o.unsolicited;
   timeouts += o.timeouts;
+  gateway_timeouts += o.gateway_timeouts;
   unanswered_damaged_requests += o.unanswered_damaged_requests;
   unanswered_at_end += o.unanswered_at_end;
   unanswered_after_loss += o.unanswered_after_loss;
@@ -30,7 +31,12 @@ std::optional<std::uint8_t> exception_code(const SessionFrame& f) {
 void EventTally::add(const SessionFrame& f) {
   ++counts_.frames;
   if (!f.check.ok) ++counts_.damaged_frames;
-  if (exception_code(f)) ++counts_.exceptions;
+  if (const auto code = exception_code(f)) {
+    ++counts_.exceptions;
+    if (*code == fc::kGatewayTargetNoResponse && modbus_family(f.dialect)) {
+      ++counts_.gateway_timeouts;
+    }
+  }
   if (f.unsolicited) ++counts_.unsolicited;
   if (f.latency) {
     latency_.add(*f.latency);

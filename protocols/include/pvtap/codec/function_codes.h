@@ -41,6 +41,9 @@ inline constexpr std::uint8_t kReadFifoQueue = 0x18;
 inline constexpr std::uint8_t kEncapsulatedInterface = 0x2B;
 inline constexpr std::uint8_t kMeiDeviceIdentification = 0x0E;
 inline constexpr std::uint8_t kExceptionFlag = 0x80;
+// The gateway exception codes: no path to the target, and a target that did not answer.
+inline constexpr std::uint8_t kGatewayPathUnavailable = 0x0A;
+inline constexpr std::uint8_t kGatewayTargetNoResponse = 0x0B;
 
 inline constexpr std::uint8_t kHybridBroadcast = 0xFF;
 inline constexpr std::uint8_t kModbusBroadcast = 0x00;

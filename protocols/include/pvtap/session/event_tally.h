@@ -18,6 +18,9 @@ struct EventCounts {
   std::uint64_t exceptions = 0;      // exception and error replies whose check holds
   std::uint64_t unsolicited = 0;
   std::uint64_t timeouts = 0;
+  // Exceptions 0x0B: a gateway's timeout on the serial bus behind it (the request reached
+  // the gateway, the device behind it did not answer).
+  std::uint64_t gateway_timeouts = 0;
   std::uint64_t unanswered_damaged_requests = 0;
   std::uint64_t unanswered_at_end = 0;
   std::uint64_t unanswered_after_loss = 0;
