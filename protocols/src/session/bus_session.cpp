@@ -296,6 +296,12 @@ ReassemblerTotals BusSession::Impl::totals() const {
 TimestampQuality BusSession::Impl::timestamp_quality() const {
   if (!options.has_timestamps)
     return {false, "the input has no timestamps (a plain byte dump)", ""};
+  if (carried.frames > 0) {
+    return {false,
+            "the frames came whole in Modbus/TCP ADUs: their times are the LAN side's (client "
+            "and gateway), not the serial bus's; latency is the gateway's answer time",
+            ""};
+  }
   for (const auto& s : streams) {
     if (!s || s->reassembler.timing_trusted()) continue;
     const bool declared = options.reassembler.timestamps == TimestampTrust::Untrusted;
