@@ -37,7 +37,7 @@ class CsvEventWriter : public EventWriter {
     }
     o += ',';
     append_uint(o, f.bytes.size());
-    o += f.check.ok ? ",ok," : ",bad,";
+    o += f.check.carried ? ",tcp," : f.check.ok ? ",ok," : ",bad,";
     if (!f.check.ok) append_hex(o, check_wire_bytes(f.dialect, f.check.expected));
     o += ',';
     if (f.latency) append_fixed(o, *f.latency * 1e3, 3);

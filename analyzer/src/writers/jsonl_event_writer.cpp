@@ -47,7 +47,9 @@ class JsonlEventWriter : public EventWriter {
     append_station_and_function(o, f);
     o += ",\"length\":";
     append_uint(o, f.bytes.size());
-    if (f.check.ok) {
+    if (f.check.carried) {
+      o += ",\"check\":\"tcp\",\"raw\":\"";  // no check on the wire: TCP's vouched
+    } else if (f.check.ok) {
       o += ",\"check\":\"ok\",\"raw\":\"";
     } else {
       o += ",\"check\":\"bad\",\"check_expected\":\"";
