@@ -1,5 +1,7 @@
 #include "gateway/flow_probe.h"
 
+#include "pvtap/carriers/mbap_structure.h"
+
 namespace pvtap::analyzer {
 
 FlowProbe::FlowProbe(DialectSet dialects) : dialects_(dialects) {}
@@ -24,6 +26,8 @@ FlowProbe::Verdict FlowProbe::add_data(Direction d, std::span<const std::uint8_t
                                        double time) {
   items_.push_back(Item{d, time, false, 0, {bytes.begin(), bytes.end()}});
   bytes_ += bytes.size();
+  if (whole_mbap_adus(bytes)) ++mbap_pieces_;
+  if (mbap_pieces_ >= kGoodFramesNeeded) return Verdict::Mbap;
   stream(d).feed(BusChunk{bytes, time, d});
   if (good_.count >= kGoodFramesNeeded) return Verdict::Bus;
   return bytes_ > kMaxBytes ? Verdict::NotBus : Verdict::Undecided;
@@ -39,6 +43,7 @@ FlowProbe::Verdict FlowProbe::final_verdict() {
   for (auto& s : streams_) {
     if (s) s->finish();
   }
+  if (mbap_pieces_ > good_.count) return Verdict::Mbap;
   return good_.count > 0 ? Verdict::Bus : Verdict::NotBus;
 }
 

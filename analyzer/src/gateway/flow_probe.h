@@ -1,5 +1,5 @@
-// FlowProbe: holds the first bytes of a TCP or UDP flow until they show inverter frames, so
-// that a capture with other traffic (SSH, HTTP, DNS) needs no port to be given.
+// FlowProbe: holds the first bytes of a TCP or UDP flow until they show inverter frames or
+// Modbus/TCP ADUs, so that a capture with other traffic (SSH, HTTP, DNS) needs no port.
 #pragma once
 
 #include <array>
@@ -16,9 +16,10 @@ namespace pvtap::analyzer {
 
 class FlowProbe {
  public:
-  enum class Verdict { Undecided, Bus, NotBus };
+  enum class Verdict { Undecided, Bus, Mbap, NotBus };
   // Two good frames make a bus: one CRC that matches by chance in random data is plausible
-  // within 16 KiB, two are not.
+  // within 16 KiB, two are not. Two pieces that are each whole MBAP ADUs (whole_mbap_adus)
+  // make a Modbus/TCP flow, by the same reasoning.
   static constexpr unsigned kGoodFramesNeeded = 2;
   static constexpr std::size_t kMaxBytes = 16 * 1024;
 
@@ -38,7 +39,8 @@ class FlowProbe {
 
   Verdict add_data(Direction d, std::span<const std::uint8_t> bytes, double time);
   void add_gap(Direction d, std::uint64_t lost, double time);
-  // At the end of the input a single good frame is enough (a short capture of one poll).
+  // At the end of the input a single good frame (or MBAP piece) is enough (a short capture
+  // of one poll); the one with more evidence wins.
   Verdict final_verdict();
 
   const std::vector<Item>& items() const { return items_; }
@@ -59,6 +61,7 @@ class FlowProbe {
   GoodFrames good_;
   std::array<std::unique_ptr<StreamReassembler>, kDirections> streams_;
   std::uint64_t bytes_ = 0;
+  unsigned mbap_pieces_ = 0;
 };
 
 }  // namespace pvtap::analyzer

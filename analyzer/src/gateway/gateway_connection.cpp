@@ -1,5 +1,7 @@
 #include "gateway/gateway_connection.h"
 
+#include "pvtap/carriers/mbap_structure.h"
+
 namespace pvtap::analyzer {
 
 GatewayTraffic::Connection::Connection(Transport t, const Endpoint& slave_side, State initial,
@@ -7,7 +9,8 @@ GatewayTraffic::Connection::Connection(Transport t, const Endpoint& slave_side, 
     : state(initial),
       buses(bus_provider),
       probe(o.dialects),
-      streams(t, slave_side, o.hole_wait, *this) {
+      streams(t, slave_side, o.hole_wait, *this),
+      reply_timeout(o.reply_timeout) {
   if (state == State::Bus) become_bus();
 }
 
@@ -20,6 +23,10 @@ void GatewayTraffic::Connection::data(Direction d, std::span<const std::uint8_t>
                                       double time) {
   switch (state) {
     case State::Bus:
+      if (bus_bytes == 0 && whole_mbap_adus(bytes)) start_mbap();
+      feed_bus(d, bytes, time);
+      return;
+    case State::Mbap:
       feed_bus(d, bytes, time);
       return;
     case State::Ignored:
@@ -30,11 +37,13 @@ void GatewayTraffic::Connection::data(Direction d, std::span<const std::uint8_t>
   }
   const FlowProbe::Verdict v = probe.add_data(d, bytes, time);
   if (v == FlowProbe::Verdict::Bus) become_bus();
+  if (v == FlowProbe::Verdict::Mbap) become_mbap();
   if (v == FlowProbe::Verdict::NotBus) become_ignored();
 }
 
 void GatewayTraffic::Connection::gap(Direction d, std::uint64_t lost, double time) {
-  if (state == State::Bus) {
+  if (state == State::Bus || state == State::Mbap) {
+    if (mbap) mbap->data_lost(d, time);
     bus->data_lost(d, time, lost);
   } else if (state == State::Probing) {
     probe.add_gap(d, lost, time);
@@ -43,6 +52,11 @@ void GatewayTraffic::Connection::gap(Direction d, std::uint64_t lost, double tim
 
 void GatewayTraffic::Connection::feed_bus(Direction d, std::span<const std::uint8_t> bytes,
                                           double time) {
+  bus_bytes += bytes.size();
+  if (mbap) {
+    mbap->feed(d, bytes, time);
+    return;
+  }
   // The other side's turn is not over while some of its bytes are still missing (a hole
   // waiting for a retransmission).
   bus->feed(BusChunk{bytes, time, d, streams.other_complete(d)});
@@ -54,9 +68,25 @@ void GatewayTraffic::Connection::become_bus() {
   // A new connection starts new streams: nothing of the previous one may join its bytes.
   bus->restart(Direction::ToSlave);
   bus->restart(Direction::FromSlave);
+  replay_probe();
+}
+
+void GatewayTraffic::Connection::become_mbap() {
+  // The bus is named after the gateway endpoint, as a serial gateway's is.
+  bus = &buses.gateway_bus(streams.slave().to_string());
+  start_mbap();
+  replay_probe();
+}
+
+void GatewayTraffic::Connection::start_mbap() {
+  state = State::Mbap;
+  mbap = std::make_unique<MbapFlow>(*bus, reply_timeout);
+}
+
+void GatewayTraffic::Connection::replay_probe() {
   for (const FlowProbe::Item& item : probe.items()) {
     if (item.gap) {
-      bus->data_lost(item.direction, item.time, item.lost);
+      gap(item.direction, item.lost, item.time);
     } else {
       feed_bus(item.direction, item.bytes, item.time);
     }
@@ -73,12 +103,18 @@ void GatewayTraffic::Connection::become_ignored() {
 void GatewayTraffic::Connection::finish(double time) {
   streams.flush(time);
   if (state == State::Probing) {
-    if (probe.final_verdict() == FlowProbe::Verdict::Bus) {
-      become_bus();
-    } else {
-      become_ignored();
+    switch (probe.final_verdict()) {
+      case FlowProbe::Verdict::Bus:
+        become_bus();
+        break;
+      case FlowProbe::Verdict::Mbap:
+        become_mbap();
+        break;
+      default:
+        become_ignored();
     }
   }
+  if (state == State::Mbap) mbap->finish(time);
   if (state == State::Bus) {
     bus->end_turn(Direction::ToSlave);
     bus->end_turn(Direction::FromSlave);
@@ -86,10 +122,21 @@ void GatewayTraffic::Connection::finish(double time) {
 }
 
 void GatewayTraffic::Connection::add_stats(NetworkStats& into) const {
-  if (state == State::Bus) ++into.flows_analyzed;
+  if (state == State::Bus || state == State::Mbap) ++into.flows_analyzed;
   if (state == State::Ignored) ++into.flows_ignored;
   into.ignored_bytes += ignored_bytes;
-  streams.add_stats(into, state == State::Bus);
+  streams.add_stats(into, state != State::Ignored && state != State::Probing);
+  if (!mbap) return;
+  const MbapTotals t = mbap->totals();
+  ++into.mbap_flows;
+  into.mbap_adus += t.adus;
+  into.mbap_carrier_bytes += t.carrier_bytes;
+  into.mbap_findings += t.findings;
+  into.mbap_skipped_bytes += t.skipped_bytes;
+  for (const MbapFinding& f : mbap->finding_examples()) {
+    if (into.mbap_finding_examples.size() >= NetworkStats::kMaxExamples) break;
+    into.mbap_finding_examples.push_back(streams.slave().to_string() + ": " + describe(f));
+  }
 }
 
 }  // namespace pvtap::analyzer

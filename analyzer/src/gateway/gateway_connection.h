@@ -1,18 +1,23 @@
 // One TCP or UDP flow between a master and a gateway: its two directions, the probe that
-// decides whether it carries inverter traffic, and the feeding of its bus.
+// decides whether it carries inverter traffic (serial frames or Modbus/TCP ADUs), and the
+// feeding of its bus.
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <span>
 
 #include "gateway/flow_probe.h"
 #include "gateway/flow_streams.h"
 #include "gateway/gateway_traffic.h"
+#include "pvtap/carriers/mbap_flow.h"
 
 namespace pvtap::analyzer {
 
 struct GatewayTraffic::Connection final : FlowBytes {
-  enum class State { Probing, Bus, Ignored };
+  // Bus: serial frames as the gateway passes them on; Mbap: Modbus/TCP ADUs, whose unit id
+  // and PDU are the frames.
+  enum class State { Probing, Bus, Mbap, Ignored };
 
   Connection(Transport t, const Endpoint& slave_side, State initial, const GatewayOptions& o,
              BusProvider& bus_provider);
@@ -24,13 +29,21 @@ struct GatewayTraffic::Connection final : FlowBytes {
   void add_stats(NetworkStats& into) const;
   void feed_bus(Direction d, std::span<const std::uint8_t> bytes, double time);
   void become_bus();
+  void become_mbap();
   void become_ignored();
+  // A flow on --port is a bus from its first byte: one whose first piece is whole MBAP ADUs
+  // is read as Modbus/TCP all the same.
+  void start_mbap();
+  void replay_probe();
 
   State state;
   BusProvider& buses;  // where the flow gets its bus once it is found to be a gateway's
   BusSession* bus = nullptr;
   FlowProbe probe;
   FlowStreams streams;
+  std::unique_ptr<MbapFlow> mbap;
+  double reply_timeout;
+  std::uint64_t bus_bytes = 0;  // fed to the bus (or the MBAP reader) so far
   std::uint64_t ignored_bytes = 0;
   double last_seen = 0;
 };

@@ -19,7 +19,8 @@ namespace pvtap::analyzer {
 struct GatewayOptions {
   std::vector<std::uint16_t> ports;  // empty: recognize the protocol on any port
   DialectSet dialects = DialectSet::all();
-  double hole_wait = 2.0;  // seconds a TCP hole may stay open before it counts as lost
+  double hole_wait = 2.0;      // seconds a TCP hole may stay open before it counts as lost
+  double reply_timeout = 1.0;  // seconds a Modbus/TCP request waits for its reply (--timeout)
 };
 
 class GatewayTraffic {

@@ -18,7 +18,7 @@ Pipeline::Pipeline(const PipelineSettings& settings, const RegisterDecoder& deco
                    EventWriter& events)
     : settings_(settings),
       buses_(decoder, events),
-      gateway_(GatewayOptions{settings.ports, settings.dialects, 2.0}, *this) {}
+      gateway_(GatewayOptions{settings.ports, settings.dialects, 2.0, settings.timeout}, *this) {}
 
 void Pipeline::begin_input(int link_type, bool batched_serial) {
   input_.begin(link_type, batched_serial, serial_timing_open());

@@ -33,6 +33,22 @@ TEST(FlowProbe, FramesSplitAcrossSegmentsAreFoundAndCountedOnce) {
   EXPECT_EQ(probe.final_verdict(), FlowProbe::Verdict::Bus);  // one frame at the end suffices
 }
 
+// MBAP: transaction 1, protocol 0, length 6, unit 1, read holding 0x0000 x 10; its reply.
+const Bytes kMbapRequest = {0x00, 0x01, 0x00, 0x00, 0x00, 0x06, 0x01, 0x03, 0x00, 0x00, 0x00, 0x0A};
+const Bytes kMbapException = {0x00, 0x01, 0x00, 0x00, 0x00, 0x03, 0x01, 0x83, 0x0B};
+
+TEST(FlowProbe, TwoPiecesOfWholeMbapAdusMakeAModbusTcpFlow) {
+  FlowProbe probe(DialectSet::all());
+  EXPECT_EQ(probe.add_data(Direction::ToSlave, kMbapRequest, 1.0), FlowProbe::Verdict::Undecided);
+  EXPECT_EQ(probe.add_data(Direction::FromSlave, kMbapException, 1.1), FlowProbe::Verdict::Mbap);
+  FlowProbe one(DialectSet::all());
+  one.add_data(Direction::ToSlave, kMbapRequest, 1.0);
+  EXPECT_EQ(one.final_verdict(), FlowProbe::Verdict::Mbap);  // one at the end suffices
+  FlowProbe cut(DialectSet::all());
+  cut.add_data(Direction::ToSlave, Bytes(kMbapRequest.begin(), kMbapRequest.end() - 1), 1.0);
+  EXPECT_EQ(cut.final_verdict(), FlowProbe::Verdict::NotBus);
+}
+
 TEST(FlowProbe, TextTrafficIsNotABus) {
   FlowProbe probe(DialectSet::all());
   const std::string line = "GET /index.html HTTP/1.1\r\nHost: portal\r\n\r\n";
