@@ -46,6 +46,9 @@ void add_exception(const SessionFrame& f, std::vector<std::string>& out) {
   append_hex_byte(text, *f.frame->exception_code);
   text += ": ";
   text += fc::exception_name(f.dialect, *f.frame->exception_code);
+  if (*f.frame->exception_code == fc::kGatewayTargetNoResponse) {
+    text += " (a timeout on the serial bus behind the gateway)";
+  }
   out.push_back(std::move(text));
 }
 

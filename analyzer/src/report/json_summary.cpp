@@ -203,6 +203,18 @@ void buses(std::string& o, const AuditReport& report) {
   o += ']';
 }
 
+// Modbus/TCP flows, only where there are some, so that a report of serial gateways keeps
+// its shape.
+void mbap(std::string& o, const NetworkStats& n) {
+  o += ",\"mbap\":{\"flows\":";
+  append_uint(o, n.mbap_flows);
+  append_json_count(o, "adus", n.mbap_adus);
+  append_json_count(o, "carrier_bytes", n.mbap_carrier_bytes);
+  append_json_count(o, "findings", n.mbap_findings);
+  append_json_count(o, "skipped_bytes", n.mbap_skipped_bytes);
+  o += '}';
+}
+
 void details(std::string& o, const AuditReport& report, const BusReport& t) {
   append_json_count(o, "frame_bytes", t.bytes.frame_bytes);
   append_json_count(o, "noise_runs", t.bytes.noise_runs);
@@ -217,6 +229,7 @@ void details(std::string& o, const AuditReport& report, const BusReport& t) {
   // inverters alone keeps its shape.
   if (t.quantity_problems > 0) append_json_count(o, "quantity_problems", t.quantity_problems);
   if (t.dialect_changes > 0) append_json_count(o, "dialect_changes", t.dialect_changes);
+  if (t.gateway_timeouts > 0) append_json_count(o, "gateway_timeouts", t.gateway_timeouts);
   append_json_count(o, "unanswered_at_end", t.unanswered_at_end);
   append_json_count(o, "unanswered_after_loss", t.unanswered_after_loss);
   append_json_key(o, "exception_codes");
@@ -239,6 +252,7 @@ void details(std::string& o, const AuditReport& report, const BusReport& t) {
     append_json_count(o, "ignored_bytes", report.flows.ignored_bytes);
     append_json_count(o, "retransmitted_bytes", report.flows.retransmitted_bytes);
     append_json_count(o, "out_of_order_segments", report.flows.out_of_order_segments);
+    if (report.flows.mbap_flows > 0) mbap(o, report.flows);
     o += '}';
   }
 }

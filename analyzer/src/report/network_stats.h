@@ -3,6 +3,8 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
+#include <vector>
 
 namespace pvtap::analyzer {
 
@@ -14,6 +16,15 @@ struct NetworkStats {
   std::uint64_t out_of_order_segments = 0;
   std::uint64_t lost_bytes = 0;
   std::uint64_t gaps = 0;
+  // Modbus/TCP flows: their ADUs, the MBAP header bytes (the carrier's, never noise), and
+  // the headers that lied with the bytes given up for them.
+  std::uint64_t mbap_flows = 0;
+  std::uint64_t mbap_adus = 0;
+  std::uint64_t mbap_carrier_bytes = 0;
+  std::uint64_t mbap_findings = 0;
+  std::uint64_t mbap_skipped_bytes = 0;
+  static constexpr std::size_t kMaxExamples = 5;
+  std::vector<std::string> mbap_finding_examples;  // "bus: what the header said", the first few
 };
 
 }  // namespace pvtap::analyzer

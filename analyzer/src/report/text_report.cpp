@@ -73,6 +73,14 @@ void network(const AuditReport& r, std::string& o) {
       "%llu bytes retransmitted, %llu segments out of order",
       u(n.flows_analyzed), u(n.flows_ignored), u(n.ignored_bytes), u(n.retransmitted_bytes),
       u(n.out_of_order_segments));
+  if (n.mbap_flows > 0) {
+    o += report_line(
+        "Modbus/TCP: %llu flows, %llu ADUs, %llu carrier bytes (MBAP headers); %llu headers "
+        "that lied (%llu bytes skipped)",
+        u(n.mbap_flows), u(n.mbap_adus), u(n.mbap_carrier_bytes), u(n.mbap_findings),
+        u(n.mbap_skipped_bytes));
+    for (const std::string& e : n.mbap_finding_examples) o += report_line("  %s", e.c_str());
+  }
   const SkippedRecords& s = r.skipped;
   if (s.not_ip + s.other_ip + s.fragments + s.malformed > 0) {
     o += report_line(
@@ -205,6 +213,12 @@ void findings(const AuditReport& r, const BusReport& b, std::string& o) {
                        std::string(to_string(e.dialect)).c_str(), e.code,
                        std::string(fc::exception_name(e.dialect, e.code)).c_str(), u(e.count));
     }
+  }
+  if (b.gateway_timeouts > 0) {
+    o += report_line(
+        "gateway timeouts: %llu (exception 0x0B: the gateway got no reply from the device "
+        "behind it, a timeout on its serial bus)",
+        u(b.gateway_timeouts));
   }
   o += report_line("noise: %llu bytes in %llu runs", u(b.bytes.noise_bytes), u(b.bytes.noise_runs));
   o += report_line("data-loss gaps: %llu (%llu bytes lost%s)", u(b.gaps.gaps), u(b.gaps.lost_bytes),
