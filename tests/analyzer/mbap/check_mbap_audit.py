@@ -13,7 +13,8 @@ import subprocess
 import sys
 import unittest
 
-sys.path.insert(0, os.path.dirname(__file__))
+# The capture is built by the helper the plugin's tests share.
+sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "dissector"))
 import mbap_capture  # noqa: E402
 
 ARGS = None

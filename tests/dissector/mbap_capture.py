@@ -2,12 +2,10 @@
 pipelined, answered out of order, an exception, a 0x0B, a length that lies, an ADU split over
 two segments and two ADUs in one segment. EXPECTED holds what pvtap must count in it."""
 
-import os
 import struct
 import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "dissector"))
-from pcap_writer import Pcap, TcpFlow  # noqa: E402
+from pcap_writer import Pcap, TcpFlow
 
 GATEWAY = ("10.0.0.9", 502)
 
@@ -26,7 +24,7 @@ def read_reply(words, function=3):
         struct.pack("!H", w) for w in words)
 
 
-def build(path, port=502, client_port=50200):
+def build(path, port=502, client_port=50200, lying_length=True):
     pcap = Pcap()
     flow = TcpFlow(pcap, client=("10.0.0.1", client_port), server=(GATEWAY[0], port), time=100.0)
     # Pipelined: three requests to unit 3 before any reply; the replies come 2, 1, 3.
@@ -43,7 +41,8 @@ def build(path, port=502, client_port=50200):
     flow.request(adu(5, 7, read_request(0, 1)), after=0.2)
     flow.reply(adu(5, 7, bytes([0x83, 0x0B])), after=0.5)
     # A length that lies: says 30, carries 6; the next request is whole and gets its reply.
-    flow.request(adu(6, 3, read_request(0, 1), length=30), after=0.2)
+    if lying_length:
+        flow.request(adu(6, 3, read_request(0, 1), length=30), after=0.2)
     flow.request(adu(7, 3, read_request(0, 1)), after=0.01)
     flow.reply(adu(7, 3, read_reply([5])), after=0.02)
     # An ADU split over two segments.
