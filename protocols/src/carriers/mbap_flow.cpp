@@ -38,6 +38,10 @@ void MbapFlow::finish(double time) {
   pairing_.finish();
 }
 
+std::uint64_t MbapFlow::position(Direction d) const {
+  return (d == Direction::FromSlave ? replies_ : requests_).reader.totals().bytes_in;
+}
+
 MbapTotals MbapFlow::totals() const {
   MbapTotals t = requests_.reader.totals();
   t += replies_.reader.totals();

@@ -28,6 +28,8 @@ class MbapFlow final : MbapReleaseSink {
   void finish(double time);
 
   MbapTotals totals() const;  // of both directions
+  // Stream position of the next byte of `d`: the offset its next ADU's frame will have.
+  std::uint64_t position(Direction d) const;
   const std::vector<MbapFinding>& finding_examples() const { return examples_; }
 
  private:
