@@ -1,10 +1,12 @@
 #include "plan/frame_analysis.h"
 
+#include <algorithm>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "plan/modbus_analysis.h"
+#include "pvtap/codec/checksums.h"
 #include "pvtap/codec/function_codes.h"
 #include "pvtap/matching/frame_summary.h"
 #include "pvtap/registers/register_format.h"
@@ -55,11 +57,25 @@ void plan_device(const Frame& f, const AnalysisContext& ctx, FramePlan& plan) {
   plan.device_text = ctx.arena.copy(format_value(v));
 }
 
+// What the codec reads: a carried frame (Modbus/TCP: station and PDU) gets the CRC a serial
+// line would carry appended, for parsing alone; its check is said to be not present.
+std::span<const std::uint8_t> codec_bytes(std::span<const std::uint8_t> bytes, bool carried,
+                                          const Arena& arena) {
+  if (!carried) return bytes;
+  auto* wire = arena.make_array<std::uint8_t>(bytes.size() + 2);
+  std::copy(bytes.begin(), bytes.end(), wire);
+  const std::uint16_t crc = Crc16Modbus::compute(bytes);
+  wire[bytes.size()] = static_cast<std::uint8_t>(crc & 0xFFu);
+  wire[bytes.size() + 1] = static_cast<std::uint8_t>(crc >> 8);
+  return {wire, bytes.size() + 2};
+}
+
 // The request whose start places the reply's words, as the bus session chose it.
-std::optional<Frame> placing_request(const FrameRecord& r) {
+std::optional<Frame> placing_request(const FrameRecord& r, const Arena& arena) {
   const FrameRecord* q = r.placed_by;
   if (r.role != Role::Response || q == nullptr || q->bytes == nullptr) return std::nullopt;
-  ParseOutcome parsed = parse_frame({q->bytes, q->length}, q->dialect, Role::Request);
+  ParseOutcome parsed =
+      parse_frame(codec_bytes({q->bytes, q->length}, q->carried, arena), q->dialect, Role::Request);
   if (!parsed) return std::nullopt;
   return std::move(parsed).value();
 }
@@ -155,20 +171,23 @@ void analyze(std::span<const std::uint8_t> bytes, const AnalysisContext& ctx, Fr
   plan.dialect = r.dialect;
   plan.station_name = r.station_name;
   plan.role = r.role;
-  plan.check = verify_check(bytes, r.dialect);
-  plan.check_verified = ctx.verify_check;
-  ParseOutcome parsed = parse_frame(bytes, r.dialect, r.role);
+  const std::span<const std::uint8_t> wire = codec_bytes(bytes, r.carried, ctx.arena);
+  plan.check = r.carried ? FrameCheck{true, 0, 0, true} : verify_check(bytes, r.dialect);
+  plan.check_verified = ctx.verify_check && !r.carried;
+  ParseOutcome parsed = parse_frame(wire, r.dialect, r.role);
   if (!parsed) {
-    plan_unparsed_header(bytes.size(), r, plan);
+    plan_unparsed_header(wire.size(), r, plan);
+    if (r.carried) plan.layout.check = FieldSpan{};
     plan.parse_error = ctx.arena.copy(parsed.diagnostics());
     plan.summary = ctx.arena.copy("malformed frame: " + parsed.error_text());
     return;
   }
   Frame& f = parsed.value();
-  plan_header(f, bytes.size(), ctx, plan);
+  plan_header(f, wire.size(), ctx, plan);
+  if (r.carried) plan.layout.check = FieldSpan{};
   // Values only from a good check, placed only by a request with one (as pvtap audit).
   const std::optional<Frame> request =
-      r.values_trusted ? placing_request(r) : std::optional<Frame>();
+      r.values_trusted ? placing_request(r, ctx.arena) : std::optional<Frame>();
   if (ctx.with_values) {
     plan_device(f, ctx, plan);
     if (r.values_trusted) plan_values(f, request ? &*request : nullptr, ctx, plan);

@@ -27,6 +27,7 @@ struct FrameRecord {
   std::uint8_t function = 0;
   bool matched = false;  // the session paired it (its header could be read)
   bool check_ok = true;
+  bool carried = false;  // no check on the wire: TCP carried it whole (Modbus/TCP)
   bool role_corrected = false;
   bool timed_out = false;
   bool unsolicited = false;

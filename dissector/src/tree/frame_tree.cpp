@@ -11,6 +11,7 @@ namespace {
 static_assert(static_cast<int>(CheckStatus::Bad) == PROTO_CHECKSUM_E_BAD);
 static_assert(static_cast<int>(CheckStatus::Good) == PROTO_CHECKSUM_E_GOOD);
 static_assert(static_cast<int>(CheckStatus::Unverified) == PROTO_CHECKSUM_E_UNVERIFIED);
+static_assert(static_cast<int>(CheckStatus::NotPresent) == PROTO_CHECKSUM_E_NOT_PRESENT);
 
 constexpr std::size_t kDepths = 4;
 

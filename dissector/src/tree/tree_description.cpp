@@ -272,6 +272,10 @@ void add_values(Builder& b, const FramePlan& plan) {
 }
 
 void add_check(Builder& b, const FramePlan& plan) {
+  if (plan.check.carried) {
+    b.generated_uint(TreeField::CheckStatus, static_cast<std::uint32_t>(CheckStatus::NotPresent));
+    return;
+  }
   const FieldSpan s = plan.layout.check;
   if (!s.present()) return;
   const auto item = b.uint(TreeField::Check, s, plan.check.found);

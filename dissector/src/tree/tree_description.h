@@ -107,7 +107,8 @@ enum class Subtree : std::uint8_t {
 };
 
 // CheckStatus: the value of the check status field, Wireshark's PROTO_CHECKSUM_E_* values.
-enum class CheckStatus : std::uint32_t { Bad = 0, Good = 1, Unverified = 2 };
+// As Wireshark's proto_checksum_vals; NotPresent: a carried frame (Modbus/TCP) has none.
+enum class CheckStatus : std::uint32_t { Bad = 0, Good = 1, Unverified = 2, NotPresent = 3 };
 
 // RelativeTime: a time difference, as Wireshark's nstime_t holds it.
 struct RelativeTime {
