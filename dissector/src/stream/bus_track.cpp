@@ -12,16 +12,17 @@ namespace {
 
 std::vector<std::unique_ptr<BusTrack>> g_tracks;
 
-// A new record in file scope, which frees memory without running destructors.
-FrameRecord* new_frame_record() {
-  return new (wmem_alloc(wmem_file_scope(), sizeof(FrameRecord))) FrameRecord{};
-}
-
 guint16 clamp16(unsigned value) {
   return static_cast<guint16>(value > 0xFFFF ? 0xFFFF : value);
 }
 
-BusSessionOptions session_options(const ProtocolSettings& s, Carrier carrier) {
+}  // namespace
+
+FrameRecord* new_frame_record() {
+  return new (wmem_alloc(wmem_file_scope(), sizeof(FrameRecord))) FrameRecord{};
+}
+
+BusSessionOptions bus_session_options(const ProtocolSettings& s, Carrier carrier) {
   BusSessionOptions o;
   o.reassembler.dialects = DialectSet::all();  // a gateway may carry ASCII and RTU stations
   o.reassembler.baud = s.baud >= 300 ? s.baud : 9600;
@@ -32,10 +33,8 @@ BusSessionOptions session_options(const ProtocolSettings& s, Carrier carrier) {
   return o;
 }
 
-}  // namespace
-
 BusTrack::BusTrack(const ProtocolSettings& settings, Carrier carrier)
-    : bus_(session_options(settings, carrier), register_decoder(), *this) {}
+    : bus_(bus_session_options(settings, carrier), register_decoder(), *this) {}
 
 std::uint64_t BusTrack::stream_offset(Direction d, guint32 seq) {
   const std::size_t i = index_of(d);
@@ -52,7 +51,8 @@ std::uint64_t BusTrack::next_datagram(Direction d, std::size_t length) {
   return start;
 }
 
-void BusTrack::link(FrameRecord& r, const SessionFrame& f) const {
+void link_frame_record(FrameRecord& r, const SessionFrame& f, std::span<FrameRecord* const> by_id) {
+  const auto record = [by_id](std::uint64_t id) { return id < by_id.size() ? by_id[id] : nullptr; };
   if (f.request_id) {
     r.request = record(*f.request_id);
     if (r.request != nullptr && r.request->response == nullptr) r.request->response = &r;
@@ -60,6 +60,10 @@ void BusTrack::link(FrameRecord& r, const SessionFrame& f) const {
   if (f.duplicate_of) r.request = record(*f.duplicate_of);
   if (f.late_for) r.late_for = record(*f.late_for);
   if (f.placed_by) r.placed_by = record(*f.placed_by);
+}
+
+void BusTrack::link(FrameRecord& r, const SessionFrame& f) const {
+  link_frame_record(r, f, records_);
 }
 
 // What the session found of the frame's station: a quantity out of range, a change of
@@ -79,14 +83,15 @@ void BusTrack::note_findings(FrameRecord& r, const SessionFrame& f) {
   r.station_name = names_.note(f);
 }
 
-void BusTrack::on_frame(const SessionFrame& f) {
-  FrameRecord* r = new_frame_record();
+void fill_frame_record(FrameRecord& rec, const SessionFrame& f) {
+  FrameRecord* r = &rec;
   r->dialect = f.dialect;
   r->role = f.role;
   r->station = f.frame != nullptr ? f.frame->station : 0;
   r->function = f.frame != nullptr ? f.frame->function : 0;
   r->matched = f.frame != nullptr;
   r->check_ok = f.check.ok;
+  r->carried = f.check.carried;
   r->role_corrected = f.role_corrected;
   r->unsolicited = f.unsolicited;
   r->duplicate = f.duplicate;
@@ -101,13 +106,18 @@ void BusTrack::on_frame(const SessionFrame& f) {
     r->count_expected = clamp16(f.count_mismatch->expected);
     r->count_found = clamp16(f.count_mismatch->found);
   }
-  link(*r, f);
-  note_findings(*r, f);
   if (r->role == Role::Request) {
     r->bytes =
         static_cast<const guint8*>(wmem_memdup(wmem_file_scope(), f.bytes.data(), f.bytes.size()));
     r->length = static_cast<guint16>(f.bytes.size());
   }
+}
+
+void BusTrack::on_frame(const SessionFrame& f) {
+  FrameRecord* r = new_frame_record();
+  fill_frame_record(*r, f);
+  link(*r, f);
+  note_findings(*r, f);
   if (records_.size() <= f.id) records_.resize(f.id + 1, nullptr);
   records_[f.id] = r;
 }

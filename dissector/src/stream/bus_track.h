@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "plan/frame_record.h"
@@ -55,6 +56,15 @@ class BusTrack final : public BusSessionSink {
   HeldBytes held_;
   StationNames names_;
 };
+
+// What the session found of a frame, into its record (links aside).
+void fill_frame_record(FrameRecord& r, const SessionFrame& f);
+// The records a frame's links point to, from the records of its session by frame id.
+void link_frame_record(FrameRecord& r, const SessionFrame& f, std::span<FrameRecord* const> by_id);
+// A session as pvtap audit runs one for `carrier`, with the plugin's preferences.
+BusSessionOptions bus_session_options(const ProtocolSettings& settings, Carrier carrier);
+// A new record in file scope, which frees memory without running destructors.
+FrameRecord* new_frame_record();
 
 // A track that lives until the capture file is closed.
 BusTrack* new_bus_track(const ProtocolSettings& settings,

@@ -111,6 +111,11 @@ void show_piece(const PieceTarget& t, const BusPiece& piece, std::span<const std
   }
 }
 
+void show_frame(const TreeTarget& target, std::span<const std::uint8_t> bytes,
+                FrameRecord& record) {
+  dissect_frame(target, bytes, record);
+}
+
 void show_timeout(const FrameRecord& request, tvbuff_t* tvb, packet_info* pinfo, proto_tree* tree) {
   InverterProtocol& p = protocol_of(request.dialect);
   const DescriptionContext dctx{.arena = packet_arena(pinfo),

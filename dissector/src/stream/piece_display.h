@@ -7,6 +7,7 @@
 #include <span>
 
 #include "stream/bus_track.h"
+#include "tree/frame_tree.h"
 
 namespace pvtap::dissector {
 
@@ -23,6 +24,10 @@ struct PieceTarget {
 // of its dialect, noise under the protocol whose frames it resembles.
 void show_piece(const PieceTarget& target, const BusPiece& piece,
                 std::span<const std::uint8_t> bytes, int offset);
+
+// Shows a frame whose record the bus decided, at target.offset of target.tvb, under
+// target.protocol (a Modbus/TCP ADU's station byte and PDU).
+void show_frame(const TreeTarget& target, std::span<const std::uint8_t> bytes, FrameRecord& record);
 
 // Shows the announcement that `request` got no reply, under the protocol of its dialect.
 void show_timeout(const FrameRecord& request, tvbuff_t* tvb, packet_info* pinfo, proto_tree* tree);
