@@ -6,6 +6,7 @@
 #include "fields/modbus_fields.h"
 #include "fields/register_fields.h"
 #include "registration/inverter_protocol.h"
+#include "registration/mbap_entry.h"
 #include "registration/record_dissector.h"
 #include "registration/serial_link_types.h"
 #include "registration/transport_entry.h"
@@ -38,6 +39,7 @@ void register_protocols() {
   register_register_fields(rtu_protocol().proto, Dialect::Modbus);
   register_register_fields(ascii_protocol().proto, Dialect::Ascii);
   register_record_dissector();
+  register_mbap_protocol();
   register_serial_link_types();
   apply_preferences();
   register_cleanup_routine(release_bus_tracks);
@@ -46,6 +48,7 @@ void register_protocols() {
 void register_handoffs() {
   register_transport_handoffs(rtu_protocol());
   register_transport_handoffs(ascii_protocol());
+  register_mbap_handoff();
   claim_serial_link_types();
 }
 
