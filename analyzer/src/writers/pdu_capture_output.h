@@ -1,5 +1,5 @@
-// PduCaptureOutput: --write: every frame and noise run of every bus into a pcap of link type
-// 252 (exported PDUs) for Wireshark with pvtap's plugin.
+// PduCaptureOutput: --write: every serial frame and noise run of every bus into a pcap of link
+// type 252 (exported PDUs) for Wireshark with pvtap's plugin.
 #pragma once
 
 #include <cstdint>
@@ -20,6 +20,9 @@ class PduCaptureOutput : public EventWriter {
   std::uint64_t records() const { return file_.records(); }
 
   void frame(const EventContext&, const SessionFrame& f) override {
+    // A Modbus/TCP frame has no CRC: as a serial record it would read back as noise, and a
+    // CRC added here was never on the wire. The capture itself is its record (invmbap).
+    if (f.check.carried) return;
     file_.write_frame(f.end_time, f.role, f.bytes);
   }
   void noise(const EventContext&, const SessionNoise& n) override {

@@ -90,6 +90,13 @@ class MbapAudit(unittest.TestCase):
                 tcp = ip[ip_len:]
                 total += len(tcp) - (tcp[12] >> 4) * 4
 
+    def test_write_leaves_out_frames_that_have_no_crc(self):
+        written = os.path.join(ARGS.scratch, "written.pcap")
+        subprocess.run([ARGS.pvtap, "audit", "--summary-only", "--write", written, self.on_502],
+                       check=True, capture_output=True, timeout=60)
+        with open(written, "rb") as f:
+            self.assertEqual(len(f.read()), 24)  # the file header alone: no record
+
     def test_checks_are_said_to_be_tcps(self):
         checks = {ev["check"] for ev in self.events if ev["type"] == "frame"}
         self.assertEqual(checks, {"tcp"})
