@@ -37,6 +37,7 @@ TransactionMatcher::TransactionMatcher(MatcherConfig config) : config_(config) {
 
 FrameMatch TransactionMatcher::on_frame(const ObservedFrame& in) {
   timeouts_.clear();
+  if (in.answers_pending && in.frame.role == Role::Response) keep_waiting_for(in);
   move_time_to(in.start_time);
   FrameMatch out;
   out.role = in.frame.role;
@@ -62,6 +63,13 @@ std::span<const Timeout> TransactionMatcher::advance(double now) {
   timeouts_.clear();
   move_time_to(now);
   return timeouts_.view();
+}
+
+// A deadline only moves later: next_deadline_ stays a lower bound.
+void TransactionMatcher::keep_waiting_for(const ObservedFrame& reply) {
+  Slot& own = slots_[reply.frame.station];
+  if (own.state != SlotState::Pending) return;
+  own.request.deadline = std::max(own.request.deadline, reply.start_time);
 }
 
 void TransactionMatcher::move_time_to(double now) {

@@ -29,6 +29,9 @@ struct ObservedFrame {
   // The caller knows who sent the frame (e.g. separate taps per direction), so its role is
   // never corrected.
   bool role_known = false;
+  // The carrier paired this reply with its station's pending request (Modbus/TCP, by
+  // transaction id): however late it comes, time does not give that request up first.
+  bool answers_pending = false;
 };
 
 // TransactionMatcher: pairs requests with replies and returns, as values, the timeouts,
@@ -84,6 +87,7 @@ class TransactionMatcher {
   void give_up(Slot& slot, TimeoutReason reason, double waited,
                std::optional<std::uint64_t> next_request_id);
   void move_time_to(double now);
+  void keep_waiting_for(const ObservedFrame& reply);
   void expire_overdue();
 
   MatcherConfig config_;
