@@ -151,10 +151,22 @@ bool encode_body(const Frame& f, std::vector<std::uint8_t>& out) {
 
 }  // namespace
 
+namespace {
+
+// A gateway's own exception (0x0A, 0x0B) answers whatever it forwarded, a function of another
+// dialect included (a Hybrid read through a Modbus/TCP gateway): station, fc|0x80, code, CRC.
+bool gateway_exception(std::span<const std::uint8_t> b, Dialect dialect, Role role) {
+  return modbus_family(dialect) && role == Role::Response && b.size() == 5 &&
+         fc::is_gsl_exception(b[1]) &&
+         (b[2] == fc::kGatewayPathUnavailable || b[2] == fc::kGatewayTargetNoResponse);
+}
+
+}  // namespace
+
 ParseStatus parse_rtu(std::span<const std::uint8_t> b, Dialect dialect, Role role, Frame& f) {
   if (b.size() < 4) return fail("RTU frame shorter than 4 bytes");
   f = make_frame(dialect, role, b[0], b[1]);
-  if (!fc::dialect_has_function(dialect, f.function)) {
+  if (!fc::dialect_has_function(dialect, f.function) && !gateway_exception(b, dialect, role)) {
     return fail("function code of another dialect");
   }
   if (dialect == Dialect::Hybrid) {

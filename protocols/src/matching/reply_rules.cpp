@@ -74,6 +74,10 @@ bool same_dialect(Dialect a, Dialect b) {
 }
 
 bool answers(const FrameSummary& request, const FrameSummary& reply) {
+  // A gateway answers a Hybrid request it could not forward with a Modbus exception.
+  if (request.dialect == Dialect::Hybrid && reply_kind(reply) == ReplyKind::GslException) {
+    return (reply.function & ~fc::kExceptionFlag) == request.function;
+  }
   if (!same_dialect(request.dialect, reply.dialect)) return false;
   switch (reply_kind(reply)) {
     case ReplyKind::HybridError:
