@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "pvtap/codec/checksums.h"
+#include "pvtap/framing/framing_probe.h"
 #include "pvtap/matching/reply_rules.h"
 #include "pvtap/session/event_tally.h"
 #include "pvtap/session/station_rule.h"
@@ -73,6 +74,7 @@ struct BusSession::Impl {
   Frame frame;                // the frame being handled; SessionFrame::frame points here
   ReassemblerTotals carried;  // frames delivered whole by a carrier (carried_frame)
   std::vector<std::uint8_t> carried_wire;  // a carried frame with the CRC the codec expects
+  bool answers_pending = false;            // the carried reply being handled was paired
   std::uint64_t next_id = 0;
   std::uint64_t loss_boundary_id = 0;  // requests before this id were waiting during a loss
   Direction last_direction = Direction::Unknown;  // of the last chunk fed
@@ -161,8 +163,8 @@ void BusSession::Impl::on_frame(Direction direction, const FrameEvent& e,
 void BusSession::Impl::handle_parsed(SessionFrame& out, const FrameEvent& e) {
   const bool role_known = out.direction != Direction::Unknown;
   FrameSummary summary = summarize(frame);
-  const FrameMatch match = matcher.on_frame(
-      ObservedFrame{out.id, summary, out.start_time, out.end_time, e.check.ok, role_known});
+  const FrameMatch match = matcher.on_frame(ObservedFrame{
+      out.id, summary, out.start_time, out.end_time, e.check.ok, role_known, answers_pending});
   // Before the request is remembered: a request it gave up is looked up by its slot.
   report(match.timeouts);
   if (match.transaction) tally.add_transaction(*match.transaction);
@@ -203,8 +205,26 @@ void BusSession::feed(const BusChunk& chunk) {
   s.reassembler.feed(chunk);
 }
 
+namespace {
+
+// The dialect whose length rules a carried frame's bytes (with the CRC appended) fit exactly;
+// failing any, the Modbus family's reading, which names what is wrong with it.
+Dialect carried_dialect(std::span<const std::uint8_t> wire, Role role, DialectSet enabled) {
+  const RoleHint hint = role == Role::Request ? RoleHint::Request : RoleHint::Response;
+  const CandidateList readings = frame_candidates(wire, hint, enabled, Plausibility::Ignore);
+  for (std::size_t i = 0; i < readings.size; ++i) {
+    const FrameCandidate& c = readings.items[i];
+    if (c.length == wire.size() && c.role == role && c.dialect != Dialect::Ascii) return c.dialect;
+  }
+  return enabled.contains(Dialect::Modbus) || !enabled.contains(Dialect::Gsl) ? Dialect::Modbus
+                                                                              : Dialect::Gsl;
+}
+
+}  // namespace
+
 void BusSession::carried_frame(Direction direction, std::uint64_t offset,
-                               std::span<const std::uint8_t> frame, double time) {
+                               std::span<const std::uint8_t> frame, double time,
+                               bool answers_request) {
   Impl& m = *impl_;
   m.times.seen(time);
   // The codec reads RTU frames: the CRC a serial line would carry is appended for it alone;
@@ -218,14 +238,15 @@ void BusSession::carried_frame(Direction direction, std::uint64_t offset,
   e.bytes = frame;
   e.start_time = time;
   e.end_time = time;
-  e.dialect =
-      m.options.reassembler.dialects.contains(Dialect::Modbus) ? Dialect::Modbus : Dialect::Gsl;
   e.role = direction == Direction::FromSlave ? Role::Response : Role::Request;
+  e.dialect = carried_dialect(m.carried_wire, e.role, m.options.reassembler.dialects);
   e.check = FrameCheck{true, 0, 0, true};
   ++m.carried.frames;
   m.carried.bytes_in += frame.size();
   m.carried.frame_bytes += frame.size();
+  m.answers_pending = answers_request;
   m.on_frame(direction, e, m.carried_wire);
+  m.answers_pending = false;
 }
 
 void BusSession::end_turn(Direction direction) {

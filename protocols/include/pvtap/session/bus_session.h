@@ -146,9 +146,12 @@ class BusSession {
   void feed(const BusChunk& chunk);
   // A frame a carrier delivered whole and without a check of its own (a Modbus/TCP ADU):
   // `frame` is its station byte and PDU, at `offset` in `direction`'s stream, sent at `time`.
-  // It bypasses the reassembler; its check says the carrier vouched for it (FrameCheck).
+  // It bypasses the reassembler; its check says the carrier vouched for it (FrameCheck). Its
+  // dialect is the one whose length rules its bytes fit (Hybrid, or GSL/Modbus). A reply the
+  // carrier paired with the last request to its station (`answers_request`: Modbus/TCP's
+  // transaction id) answers it however late it comes.
   void carried_frame(Direction direction, std::uint64_t offset, std::span<const std::uint8_t> frame,
-                     double time);
+                     double time, bool answers_request = false);
   // The sender in `direction` has finished its turn: on a half-duplex bus the other side
   // started talking, so its pending bytes are complete. Call it only when no data of that
   // direction is still on its way (e.g. no TCP segment missing).
