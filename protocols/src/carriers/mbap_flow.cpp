@@ -1,10 +1,12 @@
 #include "pvtap/carriers/mbap_flow.h"
 
+#include <algorithm>
+
 namespace pvtap {
 
 MbapFlow::MbapFlow(BusSession& bus, double timeout)
     : bus_(bus),
-      pairing_(timeout, *this),
+      pairing_(std::max(10 * timeout, 10.0), *this),
       requests_(*this, Direction::ToSlave),
       replies_(*this, Direction::FromSlave) {}
 
@@ -21,7 +23,7 @@ void MbapFlow::DirectionReader::on_finding(const MbapFinding& finding) {
 }
 
 void MbapFlow::release(const MbapRelease& r) {
-  bus_.carried_frame(r.direction, r.offset, r.frame, r.time);
+  bus_.carried_frame(r.direction, r.offset, r.frame, r.time, r.answers_request);
 }
 
 void MbapFlow::feed(Direction d, std::span<const std::uint8_t> bytes, double time) {

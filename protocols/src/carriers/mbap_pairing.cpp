@@ -33,12 +33,13 @@ void MbapPairing::reply(const MbapAdu& adu) {
   advance(adu.time);
   const auto asked = std::find_if(held_.begin(), held_.end(),
                                   [&](const Held& h) { return h.transaction == adu.transaction; });
-  if (asked != held_.end()) {
+  const bool answers = asked != held_.end();
+  if (answers) {
     hand_on(*asked);
     held_.erase(asked);
   }
   sink_.release(
-      MbapRelease{Direction::FromSlave, adu.offset, adu.transaction, adu.frame, adu.time});
+      MbapRelease{Direction::FromSlave, adu.offset, adu.transaction, adu.frame, adu.time, answers});
 }
 
 void MbapPairing::advance(double now) {

@@ -19,7 +19,10 @@ class MbapFlow final : MbapReleaseSink {
  public:
   static constexpr std::size_t kMaxExamples = 5;
 
-  // `timeout`: how long a request waits for its reply (the session's matcher timeout).
+  // `timeout`: the session's matcher timeout. A gateway answers every request it got (with
+  // 0x0B at worst, after a serial timeout of its own that may be longer than pvtap's), so a
+  // request is held for its reply ten times as long (10 s at least); one handed on alone
+  // after that, or at the end of the flow, is judged by the matcher as unanswered.
   MbapFlow(BusSession& bus, double timeout);
 
   void feed(Direction d, std::span<const std::uint8_t> bytes, double time);

@@ -18,6 +18,7 @@ struct MbapRelease {
   std::uint16_t transaction = 0;
   std::span<const std::uint8_t> frame;  // unit id + PDU
   double time = 0;
+  bool answers_request = false;  // a reply handed on right after the request it answers
 };
 
 class MbapReleaseSink {
