@@ -174,13 +174,20 @@ void frame_example(const AuditReport& r, const FrameExample& e, std::string& o) 
                    function_text(e.dialect, e.function).c_str(), expected.c_str(), raw.c_str());
 }
 
+// A gateway's 0x0B replies, which the timeouts count: the device behind it did not answer.
+std::string gateway_text(const BusReport& b) {
+  return ", gateway's exception 0x0B " + std::to_string(b.gateway_timeouts) +
+         ": the device behind the gateway did not answer it, a timeout on its serial bus";
+}
+
 void findings(const AuditReport& r, const BusReport& b, std::string& o) {
   o += report_line("bad checks: %llu", u(b.bytes.bad_frames));
   for (const FrameExample& e : b.bad_check_examples) frame_example(r, e, o);
   o += report_line(
       "timeouts: %llu good requests the slave did not answer (no reply %llu, next request "
-      "first %llu)",
-      u(b.timeouts), u(b.timeouts_by_reason[0]), u(b.timeouts_by_reason[1]));
+      "first %llu%s)",
+      u(b.timeouts), u(b.timeouts_by_reason[0]), u(b.timeouts_by_reason[1]),
+      b.gateway_timeouts > 0 ? gateway_text(b).c_str() : "");
   for (const TimeoutExample& e : b.timeout_examples) {
     o += report_line("  %s  st %u  %s  %s", when(r, e.request_time).c_str(), e.timeout.station,
                      std::string(to_string(e.timeout.dialect)).c_str(),
@@ -213,12 +220,6 @@ void findings(const AuditReport& r, const BusReport& b, std::string& o) {
                        std::string(to_string(e.dialect)).c_str(), e.code,
                        std::string(fc::exception_name(e.dialect, e.code)).c_str(), u(e.count));
     }
-  }
-  if (b.gateway_timeouts > 0) {
-    o += report_line(
-        "gateway timeouts: %llu (exception 0x0B: the gateway got no reply from the device "
-        "behind it, a timeout on its serial bus)",
-        u(b.gateway_timeouts));
   }
   o += report_line("noise: %llu bytes in %llu runs", u(b.bytes.noise_bytes), u(b.bytes.noise_runs));
   o += report_line("data-loss gaps: %llu (%llu bytes lost%s)", u(b.gaps.gaps), u(b.gaps.lost_bytes),

@@ -25,7 +25,8 @@ FrameExample BusTally::example_of(const SessionFrame& f) {
 
 void BusTally::count_exception(const SessionFrame& f) {
   const std::optional<std::uint8_t> code = exception_code(f);
-  if (!code) return;
+  // A gateway's 0x0B is counted with the timeouts (gateway_timeouts), not as the device's.
+  if (!code || gateway_timeout(f)) return;
   ++exception_codes_[{f.dialect, *code}];
 }
 

@@ -28,14 +28,19 @@ std::optional<std::uint8_t> exception_code(const SessionFrame& f) {
   return std::nullopt;
 }
 
+bool gateway_timeout(const SessionFrame& f) {
+  const auto code = exception_code(f);
+  return code && *code == fc::kGatewayTargetNoResponse && modbus_family(f.dialect);
+}
+
 void EventTally::add(const SessionFrame& f) {
   ++counts_.frames;
   if (!f.check.ok) ++counts_.damaged_frames;
-  if (const auto code = exception_code(f)) {
+  if (gateway_timeout(f)) {
+    ++counts_.timeouts;
+    ++counts_.gateway_timeouts;
+  } else if (exception_code(f)) {
     ++counts_.exceptions;
-    if (*code == fc::kGatewayTargetNoResponse && modbus_family(f.dialect)) {
-      ++counts_.gateway_timeouts;
-    }
   }
   if (f.unsolicited) ++counts_.unsolicited;
   if (f.latency) {

@@ -47,7 +47,11 @@ void StationTally::count_frame(StationSummary& s, const SessionFrame& f) {
        f.frame->function == fc::kReportServerId)) {
     learn_device_name(s.device, f);
   }
-  if (exception_code(f)) ++s.exceptions;
+  if (gateway_timeout(f)) {
+    ++s.timeouts;
+  } else if (exception_code(f)) {
+    ++s.exceptions;
+  }
 }
 
 void StationTally::count_request(std::optional<std::uint8_t> owner, std::uint8_t claimed,

@@ -15,11 +15,13 @@ namespace pvtap {
 struct EventCounts {
   std::uint64_t frames = 0;          // every frame event, parsed or not
   std::uint64_t damaged_frames = 0;  // bad check
-  std::uint64_t exceptions = 0;      // exception and error replies whose check holds
+  // Exception and error replies whose check holds, but a gateway's 0x0B (gateway_timeouts).
+  std::uint64_t exceptions = 0;
   std::uint64_t unsolicited = 0;
+  // Good requests the device did not answer: no reply at all, or a gateway's 0x0B.
   std::uint64_t timeouts = 0;
   // Exceptions 0x0B: a gateway's timeout on the serial bus behind it (the request reached
-  // the gateway, the device behind it did not answer).
+  // the gateway, the device behind it did not answer): counted in timeouts, not exceptions.
   std::uint64_t gateway_timeouts = 0;
   std::uint64_t unanswered_damaged_requests = 0;
   std::uint64_t unanswered_at_end = 0;
@@ -59,5 +61,8 @@ class EventTally {
 // The code an exception reply carries (0xFF for a Hybrid error reply); nullopt for any other
 // frame, and for a reply whose check fails, whose code cannot be trusted.
 std::optional<std::uint8_t> exception_code(const SessionFrame& f);
+
+// A gateway's 0x0B: the device behind it did not answer (a timeout, not the device's exception).
+bool gateway_timeout(const SessionFrame& f);
 
 }  // namespace pvtap
