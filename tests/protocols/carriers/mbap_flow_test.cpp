@@ -31,6 +31,7 @@ Bytes adu(std::uint16_t tid, std::uint8_t unit, std::string_view pdu) {
 struct Recorder : BusSessionSink {
   void on_frame(const SessionFrame& f) override {
     frames.push_back(f.bytes.size());
+    dialects.push_back(f.dialect);
     carried += f.check.carried ? 1 : 0;
     ok += f.check.ok ? 1 : 0;
     if (f.latency) latencies.push_back(*f.latency);
@@ -39,6 +40,7 @@ struct Recorder : BusSessionSink {
   }
   void on_timeout(const SessionTimeout& t) override { timeouts.push_back(t); }
   std::vector<std::size_t> frames;
+  std::vector<Dialect> dialects;
   unsigned carried = 0;
   unsigned ok = 0;
   std::vector<double> latencies;
@@ -96,10 +98,39 @@ TEST(MbapFlow, AGatewaysTargetNoResponseIsATimeoutBehindIt) {
   f.finish(2.2);
   EXPECT_EQ(f.rec.exceptions, (std::vector<std::uint8_t>{0x0B, 0x0A}));
   const BusReport r = f.session.report();
-  EXPECT_EQ(r.exceptions, 2u);
+  // The 0x0B is the device's timeout behind the gateway, the 0x0A the gateway's exception.
+  EXPECT_EQ(r.exceptions, 1u);
   EXPECT_EQ(r.gateway_timeouts, 1u);
+  EXPECT_EQ(r.timeouts, 1u);
   EXPECT_EQ(f.session.tally().counts().gateway_timeouts, 1u);
-  EXPECT_EQ(r.timeouts, 0u);  // the gateway answered: no timeout on the TCP side
+  ASSERT_EQ(r.exception_codes.size(), 1u);
+  EXPECT_EQ(r.exception_codes[0].code, 0x0Au);
+  EXPECT_TRUE(f.rec.timeouts.empty());  // the gateway answered: no timeout on the TCP side
+}
+
+TEST(MbapFlow, AGatewayAnswerLaterThanTheTimeoutStillAnswers) {
+  Fixture f;
+  f.request(adu(1, 4, "03 00 00 00 02"), 1.0);
+  f.reply(adu(1, 4, "83 0B"), 2.5);  // the gateway's own serial timeout is 1.5 s
+  f.finish(2.6);
+  EXPECT_TRUE(f.rec.timeouts.empty());
+  ASSERT_EQ(f.rec.latencies.size(), 1u);
+  EXPECT_NEAR(f.rec.latencies[0], 1.5, 1e-9);
+  EXPECT_EQ(f.session.report().unsolicited, 0u);
+  EXPECT_EQ(f.session.report().gateway_timeouts, 1u);
+}
+
+TEST(MbapFlow, AHybridFrameIsReadAsHybrid) {
+  Fixture f;
+  // A Hybrid read of 0x11 (start 0x1000, 2 words) and its reply: device number, 2 words.
+  f.request(adu(1, 2, "11 10 00 00 02"), 1.0);
+  f.reply(adu(1, 2, "11 08 01 00 00 2A 00 05 00 06"), 1.1);
+  f.finish(1.2);
+  const BusReport r = f.session.report();
+  EXPECT_EQ(r.exceptions, 0u);
+  EXPECT_EQ(r.malformed_frames, 0u);
+  ASSERT_EQ(f.rec.latencies.size(), 1u);
+  EXPECT_EQ(f.rec.dialects, (std::vector<Dialect>{Dialect::Hybrid, Dialect::Hybrid}));
 }
 
 TEST(MbapFlow, ARequestNoReplyCameForTimesOut) {
