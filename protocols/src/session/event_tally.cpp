@@ -21,18 +21,6 @@ EventCounts& EventCounts::operator+=(const EventCounts& o) {
   return *this;
 }
 
-std::optional<std::uint8_t> exception_code(const SessionFrame& f) {
-  if (f.frame == nullptr || !f.check.ok || f.role != Role::Response) return std::nullopt;
-  if (f.reply_kind == ReplyKind::GslException) return f.frame->exception_code;
-  if (f.reply_kind == ReplyKind::HybridError) return fc::kHybridError;
-  return std::nullopt;
-}
-
-bool gateway_timeout(const SessionFrame& f) {
-  const auto code = exception_code(f);
-  return code && *code == fc::kGatewayTargetNoResponse && modbus_family(f.dialect);
-}
-
 void EventTally::add(const SessionFrame& f) {
   ++counts_.frames;
   if (!f.check.ok) ++counts_.damaged_frames;

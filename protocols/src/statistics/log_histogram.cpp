@@ -47,27 +47,31 @@ struct Geometry {
   }
 };
 
+Geometry build_geometry() {
+  Geometry r{};
+  r.gamma = (1.0 + LogHistogram::kRelativeError) / (1.0 - LogHistogram::kRelativeError);
+  r.regular = static_cast<std::size_t>(
+      std::ceil(std::log(LogHistogram::kMaxValue / LogHistogram::kMinValue) / std::log(r.gamma)));
+  r.overflow = r.regular + 1;
+  r.buckets = r.regular + 2;
+  r.bounds.resize(r.regular + 1);
+  for (std::size_t b = 0; b <= r.regular; ++b) {
+    r.bounds[b] = LogHistogram::kMinValue * std::pow(r.gamma, static_cast<double>(b));
+  }
+  r.first_slice = slice_of(LogHistogram::kMinValue);
+  const std::uint64_t last_slice = slice_of(r.bounds[r.regular]);
+  const double above_min = std::nextafter(LogHistogram::kMinValue, 1.0);
+  for (std::uint64_t slice = r.first_slice; slice <= last_slice; ++slice) {
+    const double lowest = std::max(slice_start(slice), above_min);
+    r.bucket_by_slice.push_back(static_cast<std::uint16_t>(r.search(lowest)));
+  }
+  return r;
+}
+
+// Small enough to be inlined into bucket_of: a call per value added cost as much as the
+// lookup itself (every latency and silence of an audit is added).
 const Geometry& geometry() {
-  static const Geometry g = [] {
-    Geometry r{};
-    r.gamma = (1.0 + LogHistogram::kRelativeError) / (1.0 - LogHistogram::kRelativeError);
-    r.regular = static_cast<std::size_t>(
-        std::ceil(std::log(LogHistogram::kMaxValue / LogHistogram::kMinValue) / std::log(r.gamma)));
-    r.overflow = r.regular + 1;
-    r.buckets = r.regular + 2;
-    r.bounds.resize(r.regular + 1);
-    for (std::size_t b = 0; b <= r.regular; ++b) {
-      r.bounds[b] = LogHistogram::kMinValue * std::pow(r.gamma, static_cast<double>(b));
-    }
-    r.first_slice = slice_of(LogHistogram::kMinValue);
-    const std::uint64_t last_slice = slice_of(r.bounds[r.regular]);
-    const double above_min = std::nextafter(LogHistogram::kMinValue, 1.0);
-    for (std::uint64_t slice = r.first_slice; slice <= last_slice; ++slice) {
-      const double lowest = std::max(slice_start(slice), above_min);
-      r.bucket_by_slice.push_back(static_cast<std::uint16_t>(r.search(lowest)));
-    }
-    return r;
-  }();
+  static const Geometry g = build_geometry();
   return g;
 }
 

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <optional>
 
+#include "pvtap/codec/function_codes.h"
 #include "pvtap/session/bus_report.h"
 #include "pvtap/session/bus_session.h"
 #include "pvtap/statistics/distribution_summary.h"
@@ -60,9 +61,18 @@ class EventTally {
 
 // The code an exception reply carries (0xFF for a Hybrid error reply); nullopt for any other
 // frame, and for a reply whose check fails, whose code cannot be trusted.
-std::optional<std::uint8_t> exception_code(const SessionFrame& f);
+// Inline: every tally asks it of every frame.
+inline std::optional<std::uint8_t> exception_code(const SessionFrame& f) {
+  if (f.frame == nullptr || !f.check.ok || f.role != Role::Response) return std::nullopt;
+  if (f.reply_kind == ReplyKind::GslException) return f.frame->exception_code;
+  if (f.reply_kind == ReplyKind::HybridError) return fc::kHybridError;
+  return std::nullopt;
+}
 
 // A gateway's 0x0B: the device behind it did not answer (a timeout, not the device's exception).
-bool gateway_timeout(const SessionFrame& f);
+inline bool gateway_timeout(const SessionFrame& f) {
+  const auto code = exception_code(f);
+  return code && *code == fc::kGatewayTargetNoResponse && modbus_family(f.dialect);
+}
 
 }  // namespace pvtap
