@@ -45,6 +45,13 @@ void apply_carrier_timing(const CarrierTiming& c, BusSessionOptions& o) {
       o.reassembler.boundary_gap = c.gateway_gap;
       o.reassembler.segment_ends_pin = true;
       return;
+    case Carrier::LoggerStickFrames:
+      // Each frame is whole (the V5 frame pins its ends): nothing is left to prove by time.
+      declare_batched(o,
+                      "latency is measured at the LAN side: the timestamps are those of the "
+                      "logger stick's Solarman V5 frames on TCP, not of bus characters");
+      o.reassembler.boundary_gap = 0;
+      return;
     case Carrier::PlainDump:
       o.has_timestamps = false;
       o.reassembler.timestamps = TimestampTrust::Untrusted;

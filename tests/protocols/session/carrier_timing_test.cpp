@@ -39,6 +39,16 @@ TEST(CarrierTiming, BatchedSerialRecordsAreUntrustedWithoutABoundaryGap) {
             "batched (e.g. by a USB adapter's latency timer), not per character");
 }
 
+TEST(CarrierTiming, LoggerStickFramesAreTimedAtTheLanSide) {
+  const BusSessionOptions o = applied({Carrier::LoggerStickFrames, 0.025, {}});
+  EXPECT_EQ(o.reassembler.timestamps, TimestampTrust::Untrusted);
+  EXPECT_EQ(o.reassembler.boundary_gap, 0.0);
+  EXPECT_TRUE(o.has_timestamps);
+  EXPECT_EQ(o.timestamp_note,
+            "latency is measured at the LAN side: the timestamps are those of the logger "
+            "stick's Solarman V5 frames on TCP, not of bus characters");
+}
+
 TEST(CarrierTiming, GatewaySegmentsProveBoundariesByTheirGapAndPinSegmentEnds) {
   const BusSessionOptions o = applied({Carrier::GatewaySegments, 0.025, {}});
   EXPECT_EQ(o.reassembler.timestamps, TimestampTrust::Untrusted);

@@ -7,7 +7,7 @@
 
 namespace pvtap::solarman_v5 {
 
-enum class Recognition : std::uint8_t { Yes, No, NeedMore };
+enum class Recognition : std::uint8_t { NeedMore, Yes, No };
 
 // The first bytes of one direction of a flow: Yes when they open with a whole V5 frame whose
 // end byte, checksum and control code all hold (a random start passes all three about once

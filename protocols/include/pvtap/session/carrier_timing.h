@@ -10,12 +10,13 @@ namespace pvtap {
 
 // Carrier: how a bus's bytes reach pvtap.
 enum class Carrier : std::uint8_t {
-  SerialCharacters,  // serial records stamped as the characters arrived (a fine tap)
-  SerialBatches,     // serial records that are chunks read from an adapter (batched stamps)
-  GatewaySegments,   // a serial-to-TCP gateway's TCP/UDP segments
-  PlainDump,         // a plain byte dump: no time at all
-  LiveSerial,        // a live serial tap, read by pvtap itself
-  ExportedPdus,      // exported-PDU records (pvtap audit --write), one frame each
+  SerialCharacters,   // serial records stamped as the characters arrived (a fine tap)
+  SerialBatches,      // serial records that are chunks read from an adapter (batched stamps)
+  GatewaySegments,    // a serial-to-TCP gateway's TCP/UDP segments
+  PlainDump,          // a plain byte dump: no time at all
+  LiveSerial,         // a live serial tap, read by pvtap itself
+  ExportedPdus,       // exported-PDU records (pvtap audit --write), one frame each
+  LoggerStickFrames,  // RTU frames a logger stick wrapped in Solarman V5 frames, one each
 };
 
 // CarrierTiming: a carrier and what is known of its batching.
