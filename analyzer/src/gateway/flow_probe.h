@@ -1,5 +1,6 @@
-// FlowProbe: holds the first bytes of a TCP or UDP flow until they show inverter frames or
-// Modbus/TCP ADUs, so that a capture with other traffic (SSH, HTTP, DNS) needs no port.
+// FlowProbe: holds the first bytes of a TCP or UDP flow until they show inverter frames (bare,
+// or wrapped by a logger stick in Solarman V5) or Modbus/TCP ADUs, so that a capture with other
+// traffic (SSH, HTTP, DNS) needs no port.
 #pragma once
 
 #include <array>
@@ -9,6 +10,7 @@
 #include <span>
 #include <vector>
 
+#include "pvtap/carriers/solarman_v5_structure.h"
 #include "pvtap/codec/dialect.h"
 #include "pvtap/framing/stream_reassembler.h"
 
@@ -16,7 +18,9 @@ namespace pvtap::analyzer {
 
 class FlowProbe {
  public:
-  enum class Verdict { Undecided, Bus, Mbap, NotBus };
+  // SolarmanV5: the flow's first bytes are a logger stick's V5 frame (decided before bare
+  // RTU frames, which a V5 frame holds inside it).
+  enum class Verdict { Undecided, Bus, Mbap, NotBus, SolarmanV5 };
   // Two good frames make a bus: one CRC that matches by chance in random data is plausible
   // within 16 KiB, two are not. Two pieces that are each whole MBAP ADUs (whole_mbap_adus)
   // make a Modbus/TCP flow, by the same reasoning.
@@ -32,7 +36,9 @@ class FlowProbe {
     std::vector<std::uint8_t> bytes;
   };
 
-  explicit FlowProbe(DialectSet dialects);
+  // `listed`: the flow is on a --port, so it carries bus traffic: V5 when its first bytes
+  // are a V5 frame, Modbus/TCP when its first piece is whole MBAP ADUs, else bare frames.
+  explicit FlowProbe(DialectSet dialects, bool listed = false);
   ~FlowProbe();
   FlowProbe(const FlowProbe&) = delete;
   FlowProbe& operator=(const FlowProbe&) = delete;
@@ -55,6 +61,10 @@ class FlowProbe {
     unsigned count = 0;
   };
   StreamReassembler& stream(Direction d);
+  // The V5 recognition of each direction's first bytes (solarman_v5_structure.h).
+  solarman_v5::Recognition recognize_v5(Direction d, std::span<const std::uint8_t> bytes);
+  bool v5_undecided() const;
+  Verdict listed_verdict() const;
 
   DialectSet dialects_;
   std::vector<Item> items_;
@@ -62,6 +72,10 @@ class FlowProbe {
   std::array<std::unique_ptr<StreamReassembler>, kDirections> streams_;
   std::uint64_t bytes_ = 0;
   unsigned mbap_pieces_ = 0;
+  bool first_piece_mbap_ = false;
+  bool listed_;
+  std::array<std::vector<std::uint8_t>, kDirections> v5_head_;
+  std::array<solarman_v5::Recognition, kDirections> v5_{};
 };
 
 }  // namespace pvtap::analyzer

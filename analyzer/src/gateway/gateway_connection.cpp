@@ -1,14 +1,14 @@
 #include "gateway/gateway_connection.h"
 
-#include "pvtap/carriers/mbap_structure.h"
-
 namespace pvtap::analyzer {
 
 GatewayTraffic::Connection::Connection(Transport t, const Endpoint& slave_side, State initial,
-                                       const GatewayOptions& o, BusProvider& bus_provider)
+                                       bool listed, const GatewayOptions& o,
+                                       BusProvider& bus_provider)
     : state(initial),
       buses(bus_provider),
-      probe(o.dialects),
+      probe(o.dialects, listed),
+      v5(bus_provider),
       streams(t, slave_side, o.hole_wait, *this),
       reply_timeout(o.reply_timeout) {
   if (state == State::Bus) become_bus();
@@ -23,11 +23,11 @@ void GatewayTraffic::Connection::data(Direction d, std::span<const std::uint8_t>
                                       double time) {
   switch (state) {
     case State::Bus:
-      if (bus_bytes == 0 && whole_mbap_adus(bytes)) start_mbap();
-      feed_bus(d, bytes, time);
-      return;
     case State::Mbap:
       feed_bus(d, bytes, time);
+      return;
+    case State::SolarmanV5:
+      v5.data(d, bytes, time);
       return;
     case State::Ignored:
       ignored_bytes += bytes.size();
@@ -38,6 +38,7 @@ void GatewayTraffic::Connection::data(Direction d, std::span<const std::uint8_t>
   const FlowProbe::Verdict v = probe.add_data(d, bytes, time);
   if (v == FlowProbe::Verdict::Bus) become_bus();
   if (v == FlowProbe::Verdict::Mbap) become_mbap();
+  if (v == FlowProbe::Verdict::SolarmanV5) become_v5();
   if (v == FlowProbe::Verdict::NotBus) become_ignored();
 }
 
@@ -45,6 +46,8 @@ void GatewayTraffic::Connection::gap(Direction d, std::uint64_t lost, double tim
   if (state == State::Bus || state == State::Mbap) {
     if (mbap) mbap->data_lost(d, time);
     bus->data_lost(d, time, lost);
+  } else if (state == State::SolarmanV5) {
+    v5.gap(d, lost, time);
   } else if (state == State::Probing) {
     probe.add_gap(d, lost, time);
   }
@@ -94,6 +97,18 @@ void GatewayTraffic::Connection::replay_probe() {
   probe.clear();
 }
 
+void GatewayTraffic::Connection::become_v5() {
+  state = State::SolarmanV5;
+  for (const FlowProbe::Item& item : probe.items()) {
+    if (item.gap) {
+      v5.gap(item.direction, item.lost, item.time);
+    } else {
+      v5.data(item.direction, item.bytes, item.time);
+    }
+  }
+  probe.clear();
+}
+
 void GatewayTraffic::Connection::become_ignored() {
   state = State::Ignored;
   ignored_bytes += probe.bytes();
@@ -119,13 +134,19 @@ void GatewayTraffic::Connection::finish(double time) {
     bus->end_turn(Direction::ToSlave);
     bus->end_turn(Direction::FromSlave);
   }
+  if (state == State::SolarmanV5) v5.finish(time);
 }
 
 void GatewayTraffic::Connection::add_stats(NetworkStats& into) const {
-  if (state == State::Bus || state == State::Mbap) ++into.flows_analyzed;
+  const bool analyzed = state != State::Ignored && state != State::Probing;
+  if (analyzed) ++into.flows_analyzed;
   if (state == State::Ignored) ++into.flows_ignored;
   into.ignored_bytes += ignored_bytes;
-  streams.add_stats(into, state != State::Ignored && state != State::Probing);
+  streams.add_stats(into, analyzed);
+  if (state == State::SolarmanV5) {
+    ++into.v5_flows;
+    into.v5 += v5.totals();
+  }
   if (!mbap) return;
   const MbapTotals t = mbap->totals();
   ++into.mbap_flows;

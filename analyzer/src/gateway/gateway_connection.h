@@ -10,17 +10,19 @@
 #include "gateway/flow_probe.h"
 #include "gateway/flow_streams.h"
 #include "gateway/gateway_traffic.h"
+#include "gateway/solarman_v5_flow.h"
 #include "pvtap/carriers/mbap_flow.h"
 
 namespace pvtap::analyzer {
 
 struct GatewayTraffic::Connection final : FlowBytes {
   // Bus: serial frames as the gateway passes them on; Mbap: Modbus/TCP ADUs, whose unit id
-  // and PDU are the frames.
-  enum class State { Probing, Bus, Mbap, Ignored };
+  // and PDU are the frames; SolarmanV5: a logger stick's V5 frames around RTU frames.
+  enum class State { Probing, Bus, Mbap, SolarmanV5, Ignored };
 
-  Connection(Transport t, const Endpoint& slave_side, State initial, const GatewayOptions& o,
-             BusProvider& bus_provider);
+  // `listed`: the flow is on a --port (bus traffic: bare, wrapped in V5, or Modbus/TCP).
+  Connection(Transport t, const Endpoint& slave_side, State initial, bool listed,
+             const GatewayOptions& o, BusProvider& bus_provider);
 
   void on_segment(const Segment& s, double time);
   void data(Direction d, std::span<const std::uint8_t> bytes, double time) override;
@@ -30,9 +32,8 @@ struct GatewayTraffic::Connection final : FlowBytes {
   void feed_bus(Direction d, std::span<const std::uint8_t> bytes, double time);
   void become_bus();
   void become_mbap();
+  void become_v5();
   void become_ignored();
-  // A flow on --port is a bus from its first byte: one whose first piece is whole MBAP ADUs
-  // is read as Modbus/TCP all the same.
   void start_mbap();
   void replay_probe();
 
@@ -40,6 +41,7 @@ struct GatewayTraffic::Connection final : FlowBytes {
   BusProvider& buses;  // where the flow gets its bus once it is found to be a gateway's
   BusSession* bus = nullptr;
   FlowProbe probe;
+  SolarmanV5Flow v5;
   FlowStreams streams;
   std::unique_ptr<MbapFlow> mbap;
   double reply_timeout;

@@ -79,10 +79,12 @@ GatewayTraffic::Connection* GatewayTraffic::find_or_open(const Segment& s) {
   if (!opens) return nullptr;
   const std::optional<Endpoint> slave = slave_side(s, options_.ports);
   using State = Connection::State;
-  const State initial =
-      !slave ? State::Ignored : (options_.ports.empty() ? State::Probing : State::Bus);
+  // A flow on a --port is still probed: its first bytes say whether a logger stick wraps it.
+  const State initial = slave ? State::Probing : State::Ignored;
+  const bool listed = !options_.ports.empty();
   const Endpoint side = slave ? *slave : s.destination;
-  auto connection = std::make_unique<Connection>(s.transport, side, initial, options_, buses_);
+  auto connection =
+      std::make_unique<Connection>(s.transport, side, initial, listed, options_, buses_);
   last_flow_ = flows_.emplace(key, std::move(connection)).first->second.get();
   last_key_ = key;
   return last_flow_;

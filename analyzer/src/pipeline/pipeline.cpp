@@ -34,12 +34,15 @@ void Pipeline::record(const CapturedPacket& packet) {
 }
 
 BusSessionOptions Pipeline::bus_options(InputKind kind) const {
+  return carrier_options(input_.carrier_of(kind, settings_.has_timestamps));
+}
+
+BusSessionOptions Pipeline::carrier_options(Carrier carrier) const {
   BusSessionOptions o;
   o.reassembler.dialects = settings_.dialects;
   o.reassembler.baud = settings_.baud;
   o.matcher.timeout = settings_.timeout;
   o.decode_values = settings_.decode_values;
-  const Carrier carrier = input_.carrier_of(kind, settings_.has_timestamps);
   apply_carrier_timing(CarrierTiming{carrier, settings_.gateway_gap_ms / 1000.0, {}}, o);
   return o;
 }
@@ -50,6 +53,10 @@ BusSession& Pipeline::add_bus(const std::string& name, const BusSessionOptions& 
 
 BusSession& Pipeline::gateway_bus(const std::string& name) {
   return buses_.find_or_add(name, bus_options(InputKind::Network));
+}
+
+BusSession& Pipeline::logger_bus(const std::string& name) {
+  return buses_.find_or_add(name, carrier_options(Carrier::LoggerStickFrames));
 }
 
 BusSession& Pipeline::serial_bus(InputKind kind) {

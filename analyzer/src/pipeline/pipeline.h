@@ -68,7 +68,9 @@ class Pipeline : private BusProvider {
 
  private:
   BusSession& serial_bus(InputKind kind);
+  BusSessionOptions carrier_options(Carrier carrier) const;
   BusSession& gateway_bus(const std::string& name) override;
+  BusSession& logger_bus(const std::string& name) override;
 
   PipelineSettings settings_;
   BusSet buses_;

@@ -215,6 +215,30 @@ void mbap(std::string& o, const NetworkStats& n) {
   o += '}';
 }
 
+// The logger sticks' V5 frames: what they carried and their findings (latency on their buses
+// is measured at the LAN side).
+void solarman_v5_totals(std::string& o, const NetworkStats& n) {
+  const solarman_v5::Totals& v = n.v5;
+  append_json_key(o, "solarman_v5");
+  o += "{\"flows\":";
+  append_uint(o, n.v5_flows);
+  append_json_count(o, "frames", v.frames);
+  append_json_count(o, "rtu_frames", v.rtu_frames);
+  append_json_count(o, "stick_frames", v.stick_frames);
+  append_json_count(o, "heartbeats", v.heartbeats);
+  append_json_count(o, "data_reports", v.data_reports);
+  append_json_count(o, "carrier_bytes", v.carrier_bytes);
+  append_json_count(o, "rtu_bytes", v.rtu_bytes);
+  append_json_count(o, "quirk_bytes", v.quirk_bytes);
+  append_json_count(o, "quirk_frames", v.quirk_frames);
+  append_json_count(o, "bad_checksums", v.checksum_failures);
+  append_json_count(o, "truncated_frames", v.truncated);
+  append_json_count(o, "length_mismatches", v.length_mismatches);
+  append_json_count(o, "broken_bytes", v.broken_bytes);
+  append_json_count(o, "noise_bytes", v.noise_bytes);
+  o += '}';
+}
+
 void details(std::string& o, const AuditReport& report, const BusReport& t) {
   append_json_count(o, "frame_bytes", t.bytes.frame_bytes);
   append_json_count(o, "noise_runs", t.bytes.noise_runs);
@@ -253,6 +277,7 @@ void details(std::string& o, const AuditReport& report, const BusReport& t) {
     append_json_count(o, "retransmitted_bytes", report.flows.retransmitted_bytes);
     append_json_count(o, "out_of_order_segments", report.flows.out_of_order_segments);
     if (report.flows.mbap_flows > 0) mbap(o, report.flows);
+    if (report.flows.v5_flows > 0) solarman_v5_totals(o, report.flows);
     o += '}';
   }
 }

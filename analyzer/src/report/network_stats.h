@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "pvtap/carriers/solarman_v5_reader.h"
+
 namespace pvtap::analyzer {
 
 struct NetworkStats {
@@ -25,6 +27,8 @@ struct NetworkStats {
   std::uint64_t mbap_skipped_bytes = 0;
   static constexpr std::size_t kMaxExamples = 5;
   std::vector<std::string> mbap_finding_examples;  // "bus: what the header said", the first few
+  std::uint64_t v5_flows = 0;  // of the analyzed flows, those to Solarman V5 logger sticks
+  solarman_v5::Totals v5;      // what their V5 frames carried, and their findings
 };
 
 }  // namespace pvtap::analyzer

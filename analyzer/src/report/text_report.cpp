@@ -65,6 +65,24 @@ void span_of_time(const AuditReport& r, std::string& o) {
   o += report_line("time: %s .. %s UTC (%.1f s)", a.c_str(), b.c_str(), span->seconds());
 }
 
+// The logger sticks' V5 frames: what they carried and their findings.
+void solarman_v5_lines(const NetworkStats& n, std::string& o) {
+  const solarman_v5::Totals& v = n.v5;
+  o += report_line(
+      "Solarman V5 logger sticks: %llu flows, %llu V5 frames (%llu with an RTU frame, %llu of "
+      "the sticks' own: %llu heartbeats, %llu data reports); latency measured at the LAN side",
+      u(n.v5_flows), u(v.frames), u(v.rtu_frames), u(v.stick_frames), u(v.heartbeats),
+      u(v.data_reports));
+  o += report_line(
+      "  V5 bytes: %llu carrier, %llu in RTU frames, %llu quirk bytes (two zeros after the RTU "
+      "CRC) in %llu replies, %llu bytes of no V5 frame",
+      u(v.carrier_bytes), u(v.rtu_bytes), u(v.quirk_bytes), u(v.quirk_frames), u(v.noise_bytes));
+  o += report_line(
+      "  V5 findings: %llu bad checksums, %llu truncated frames, %llu lengths that do not hold "
+      "(%llu bytes in broken frames)",
+      u(v.checksum_failures), u(v.truncated), u(v.length_mismatches), u(v.broken_bytes));
+}
+
 void network(const AuditReport& r, std::string& o) {
   if (!r.network) return;
   const NetworkStats& n = r.flows;
@@ -81,6 +99,7 @@ void network(const AuditReport& r, std::string& o) {
         u(n.mbap_skipped_bytes));
     for (const std::string& e : n.mbap_finding_examples) o += report_line("  %s", e.c_str());
   }
+  if (n.v5_flows > 0) solarman_v5_lines(n, o);
   const SkippedRecords& s = r.skipped;
   if (s.not_ip + s.other_ip + s.fragments + s.malformed > 0) {
     o += report_line(

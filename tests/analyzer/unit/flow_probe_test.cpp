@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include "pvtap/carriers/solarman_v5_frame.h"
+
 #include <string>
 #include <vector>
 
@@ -76,6 +78,40 @@ TEST(FlowProbe, OnlyTheChosenDialectsCount) {
   probe.add_data(Direction::ToSlave, kRequest, 1.0);
   probe.add_data(Direction::ToSlave, kAsciiRequest, 1.0);
   EXPECT_EQ(probe.final_verdict(), FlowProbe::Verdict::NotBus);
+}
+
+// A logger stick's request around kRequest: the RTU frame inside must not make it a bare bus.
+Bytes v5_request() {
+  using namespace solarman_v5;
+  return encode_frame(Header{0, control::kRequest, 1, 2712345678u}, request_payload(kRequest));
+}
+
+TEST(FlowProbe, AWholeFirstV5FrameMakesALoggerStickFlow) {
+  FlowProbe probe(DialectSet::all());
+  const Bytes frame = v5_request();
+  const Bytes head(frame.begin(), frame.begin() + 20);
+  const Bytes rest(frame.begin() + 20, frame.end());
+  EXPECT_EQ(probe.add_data(Direction::ToSlave, head, 1.0), FlowProbe::Verdict::Undecided);
+  EXPECT_EQ(probe.add_data(Direction::ToSlave, rest, 1.0), FlowProbe::Verdict::SolarmanV5);
+  EXPECT_EQ(probe.items().size(), 2u);
+}
+
+TEST(FlowProbe, BareFramesWaitWhileAV5FrameMayBeOpening) {
+  // Two RTU frames would make a bus, but the other direction opened like a V5 frame.
+  FlowProbe probe(DialectSet::all());
+  const Bytes frame = v5_request();
+  EXPECT_EQ(probe.add_data(Direction::FromSlave, Bytes(frame.begin(), frame.begin() + 12), 1.0),
+            FlowProbe::Verdict::Undecided);
+  EXPECT_EQ(probe.add_data(Direction::ToSlave, kRequest, 1.1), FlowProbe::Verdict::Undecided);
+  EXPECT_EQ(probe.add_data(Direction::ToSlave, kAsciiRequest, 1.2), FlowProbe::Verdict::Undecided);
+  EXPECT_EQ(probe.add_data(Direction::FromSlave, Bytes(30, 0x00), 1.3), FlowProbe::Verdict::Bus);
+}
+
+TEST(FlowProbe, AFlowOnAPortIsABusUnlessItOpensWithV5) {
+  FlowProbe bare(DialectSet::all(), true);
+  EXPECT_EQ(bare.add_data(Direction::ToSlave, kRequest, 1.0), FlowProbe::Verdict::Bus);
+  FlowProbe stick(DialectSet::all(), true);
+  EXPECT_EQ(stick.add_data(Direction::ToSlave, v5_request(), 1.0), FlowProbe::Verdict::SolarmanV5);
 }
 
 }  // namespace
