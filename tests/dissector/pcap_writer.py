@@ -24,8 +24,8 @@ class Pcap:
         with open(path, "wb") as f:
             f.write(struct.pack("<IHHiIII", 0xA1B2C3D4, 2, 4, 0, 0, 65535, self.linktype))
             for time, data in self.records:
-                seconds = int(time)
-                micros = int(round((time - seconds) * 1e6))
+                # Rounded as a whole, so that a time just under a second never reads x.1000000.
+                seconds, micros = divmod(int(round(time * 1e6)), 1000000)
                 f.write(struct.pack("<IIII", seconds, micros, len(data), len(data)))
                 f.write(data)
 

@@ -9,11 +9,13 @@
 #include "registration/mbap_entry.h"
 #include "registration/record_dissector.h"
 #include "registration/serial_link_types.h"
+#include "registration/solarman_v5_protocol.h"
 #include "registration/transport_entry.h"
 #include "settings/preferences.h"
 #include "settings/register_maps.h"
 #include "statistics/response_time_stats.h"
 #include "stream/bus_track.h"
+#include "stream/solarman_v5_track.h"
 
 namespace pvtap::dissector {
 namespace {
@@ -41,8 +43,10 @@ void register_protocols() {
   register_record_dissector();
   register_mbap_protocol();
   register_serial_link_types();
+  register_v5_protocol();
   apply_preferences();
   register_cleanup_routine(release_bus_tracks);
+  register_cleanup_routine(release_v5_tracks);
 }
 
 void register_handoffs() {
@@ -50,6 +54,7 @@ void register_handoffs() {
   register_transport_handoffs(ascii_protocol());
   register_mbap_handoff();
   claim_serial_link_types();
+  register_v5_handoff();
 }
 
 }  // namespace pvtap::dissector
