@@ -2,6 +2,8 @@
 
 #include <epan/packet.h>
 
+#include "carriers/solarman_v5_protocol.h"
+#include "carriers/solarman_v5_track.h"
 #include "fields/common_fields.h"
 #include "fields/modbus_fields.h"
 #include "fields/register_fields.h"
@@ -9,13 +11,11 @@
 #include "registration/mbap_entry.h"
 #include "registration/record_dissector.h"
 #include "registration/serial_link_types.h"
-#include "registration/solarman_v5_protocol.h"
 #include "registration/transport_entry.h"
 #include "settings/preferences.h"
 #include "settings/register_maps.h"
 #include "statistics/response_time_stats.h"
 #include "stream/bus_track.h"
-#include "stream/solarman_v5_track.h"
 
 namespace pvtap::dissector {
 namespace {

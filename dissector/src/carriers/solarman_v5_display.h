@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <span>
 
-#include "stream/solarman_v5_track.h"
+#include "carriers/solarman_v5_track.h"
 
 namespace pvtap::dissector {
 

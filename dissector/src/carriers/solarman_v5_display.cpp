@@ -1,10 +1,10 @@
-#include "stream/solarman_v5_display.h"
+#include "carriers/solarman_v5_display.h"
 
 #include <epan/expert.h>
 
+#include "carriers/solarman_v5_protocol.h"
 #include "pvtap/carriers/solarman_v5_frame.h"
 #include "registration/inverter_protocol.h"
-#include "registration/solarman_v5_protocol.h"
 #include "stream/stream_dissection.h"
 
 namespace pvtap::dissector {

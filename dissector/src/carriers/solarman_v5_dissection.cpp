@@ -1,11 +1,11 @@
-#include "stream/solarman_v5_dissection.h"
+#include "carriers/solarman_v5_dissection.h"
 
 #include <epan/dissectors/packet-tcp.h>
 
-#include "registration/solarman_v5_protocol.h"
+#include "carriers/solarman_v5_display.h"
+#include "carriers/solarman_v5_protocol.h"
 #include "stream/call_view.h"
 #include "stream/piece_display.h"
-#include "stream/solarman_v5_display.h"
 
 namespace pvtap::dissector {
 namespace {

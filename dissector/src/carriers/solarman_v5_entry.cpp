@@ -1,4 +1,4 @@
-#include "registration/solarman_v5_entry.h"
+#include "carriers/solarman_v5_entry.h"
 
 #include <epan/conversation.h>
 #include <epan/dissectors/packet-tcp.h>
@@ -6,12 +6,12 @@
 #include <algorithm>
 #include <span>
 
+#include "carriers/solarman_v5_dissection.h"
+#include "carriers/solarman_v5_protocol.h"
 #include "pvtap/carriers/solarman_v5_frame.h"
 #include "pvtap/carriers/solarman_v5_structure.h"
 #include "registration/modbus_tcp_guard.h"
-#include "registration/solarman_v5_protocol.h"
 #include "stream/conversation_state.h"
-#include "stream/solarman_v5_dissection.h"
 
 namespace pvtap::dissector {
 namespace {

@@ -1,10 +1,10 @@
-#include "registration/solarman_v5_protocol.h"
+#include "carriers/solarman_v5_protocol.h"
 
 #include <epan/proto.h>
 
+#include "carriers/solarman_v5_entry.h"
 #include "fields/field_list.h"
 #include "pvtap/carriers/solarman_v5_frame.h"
-#include "registration/solarman_v5_entry.h"
 
 namespace pvtap::dissector {
 namespace {

@@ -4,7 +4,7 @@
 
 #include <epan/packet.h>
 
-#include "stream/solarman_v5_track.h"
+#include "carriers/solarman_v5_track.h"
 
 struct tcpinfo;
 

@@ -1,4 +1,4 @@
-#include "stream/solarman_v5_track.h"
+#include "carriers/solarman_v5_track.h"
 
 #include <algorithm>
 #include <memory>
