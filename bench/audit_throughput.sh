@@ -14,7 +14,9 @@
 # PVTAP, to compare two builds on a noisy machine), CAPTURE (where the capture is written,
 # default /tmp/pvtap-bench.pcap; one made earlier for the same MEGABYTES is reused), RUNS
 # (rounds, the median is reported; 3, 1 with --big), TSHARK=0 to skip the tshark comparison,
-# NO_BUILD=1 to time the binaries as they are. Figures go to stdout; record them in
+# NO_BUILD=1 to time the binaries as they are, KIND=v5 for the same poll rounds through a
+# Solarman V5 logger stick (pvtap-capture-gen bench-v5; default capture
+# /tmp/pvtap-bench-v5.pcap; no tshark run). Figures go to stdout; record them in
 # bench/README.md.
 set -euo pipefail
 
@@ -28,7 +30,13 @@ fi
 megabytes="${1:-200}"
 ((big)) && megabytes=2048
 build="${BUILD:-build}"
+kind="${KIND:-gateway}"
+generator=bench
 capture="${CAPTURE:-/tmp/pvtap-bench.pcap}"
+if [[ "$kind" == v5 ]]; then
+  generator=bench-v5
+  capture="${CAPTURE:-/tmp/pvtap-bench-v5.pcap}"
+fi
 runs="${RUNS:-3}"
 ((big)) && runs="${RUNS:-1}"
 
@@ -42,8 +50,8 @@ old="${OLD:+$(realpath "$OLD")}"
 # The generator writes at least MEGABYTES; a capture left by an earlier run of the same
 # size request is reused (its size is noted beside it).
 if [[ ! -f "$capture" || "$(cat "$capture.request" 2>/dev/null)" != "$megabytes" ]]; then
-  echo "== generating a ${megabytes} MB gateway capture: $capture"
-  "$build/tests/analyzer/pvtap-capture-gen" bench "$capture" "$megabytes"
+  echo "== generating a ${megabytes} MB $kind capture: $capture"
+  "$build/tests/analyzer/pvtap-capture-gen" "$generator" "$capture" "$megabytes"
   echo "$megabytes" >"$capture.request"
 fi
 bytes=$(stat -c %s "$capture")
@@ -143,7 +151,7 @@ if ((big)); then
   echo "peak RSS must stay under 64 MB (the figures above)"
 fi
 
-if ((!big)) && [[ "${TSHARK:-1}" != 0 ]] && command -v tshark >/dev/null; then
+if ((!big)) && [[ "$kind" != v5 && "${TSHARK:-1}" != 0 ]] && command -v tshark >/dev/null; then
   # One run: tshark takes minutes on a capture this size.
   read -r w_tshark c_tshark rss_tshark < <(time_once tshark -r "$capture" \
     -d tcp.port==4001,mbrtu -Y mbrtu -T fields -e frame.number)

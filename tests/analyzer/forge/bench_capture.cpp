@@ -4,6 +4,7 @@
 #include "gateway_render.h"
 #include "inverter_traffic.h"
 #include "pvtap/capture/capture_writer.h"
+#include "pvtap/carriers/solarman_v5_frame.h"
 #include "test_captures.h"
 
 namespace pvtap::forge {
@@ -42,7 +43,49 @@ class BenchStream {
   std::uint32_t sseq_ = 0xFFFFFF01;
 };
 
+// A logger stick's V5 frame around one transmission; every fifth reply with the two zeros.
+Bytes v5_wrapped(const BusItem& item, std::uint16_t sequence) {
+  namespace v5 = solarman_v5;
+  const bool request = item.direction == Direction::ToSlave;
+  const Bytes payload = request ? v5::request_payload(item.bytes)
+                                : v5::response_payload(item.bytes, sequence % 5 == 4);
+  return v5::encode_frame(v5::Header{0, request ? v5::control::kRequest : v5::control::kResponse,
+                                     sequence, 2712345678u},
+                          payload);
+}
+
+// The same poll rounds through a logger stick: one V5 frame per segment; noise on the line
+// never reaches the LAN.
+void write_v5_rounds(BenchStream& stream, double t, std::uint64_t target) {
+  std::uint64_t written = 24;
+  std::uint16_t sequence = 0;
+  for (unsigned round = 0; written < target; ++round) {
+    RoundFaults faults;
+    faults.gsl2_silent = round % 101 == 7;
+    faults.gsl2_exception = round % 89 == 3;
+    BusPlan plan;
+    t = poll_round(plan, t, round, faults);
+    for (const BusItem& item : plan.items()) {
+      if (!item.is_frame) continue;
+      if (item.direction == Direction::ToSlave) ++sequence;
+      const Bytes frame = v5_wrapped(item, sequence);
+      stream.send(item.direction == Direction::ToSlave, frame, item.end + 2e-4);
+      written += 2 * (16 + 54) + 6 + frame.size();
+    }
+    t += 0.2;
+  }
+}
+
 }  // namespace
+
+void write_v5_bench_capture(const std::string& path, unsigned megabytes) {
+  PcapCaptureWriter out(path, DLT_EN10MB);
+  GatewayLayout layout;
+  layout.gateway.port = 8899;
+  BenchStream stream(out, layout);
+  stream.handshake(kBenchStart - 0.01);
+  write_v5_rounds(stream, kBenchStart, std::uint64_t{megabytes} << 20);
+}
 
 void write_bench_capture(const std::string& path, unsigned megabytes) {
   PcapCaptureWriter out(path, DLT_EN10MB);
