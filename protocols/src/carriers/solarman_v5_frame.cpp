@@ -2,6 +2,7 @@
 #include "pvtap/carriers/solarman_v5_frame.h"
 
 #include "pvtap/codec/checksums.h"
+#include "pvtap/framing/framing_probe.h"
 
 namespace pvtap::solarman_v5 {
 namespace {
@@ -30,14 +31,27 @@ bool crc_holds(std::span<const std::uint8_t> rtu) {
   return rtu.size() >= 4 && Crc16Modbus::compute(rtu) == 0;
 }
 
+// Whether the structure of a response (its function code and length fields) makes it
+// exactly `length` bytes long in some dialect.
+bool response_reading_of(std::span<const std::uint8_t> rtu, std::size_t length) {
+  const CandidateList readings =
+      frame_candidates(rtu, RoleHint::Response, DialectSet::all(), Plausibility::Ignore);
+  for (std::size_t i = 0; i < readings.size; ++i) {
+    if (readings.items[i].length == length && !readings.items[i].needs_good_check) return true;
+  }
+  return false;
+}
+
 // The stick's two extra zeros: the RTU frame's CRC holds without them. Zeros after a CRC
 // leave the residue zero, so it holds with them too and cannot tell; a frame whose own CRC
-// is 00 00 and whose bytes before it also hold is read as the quirk (about 1 in 65,536).
+// is 00 00 and whose bytes before it also hold is read as the quirk (about 1 in 65,536). A
+// frame damaged on the line holds neither way; its own CRC is 00 00 as rarely, so the zeros
+// are the quirk unless its structure (function code, byte count) makes it end with them.
 bool has_quirk(std::span<const std::uint8_t> rtu) {
   if (rtu.size() < 4 + kQuirkSize) return false;
   const std::size_t n = rtu.size();
   if (rtu[n - 1] != 0 || rtu[n - 2] != 0) return false;
-  return crc_holds(rtu.first(n - kQuirkSize));
+  return crc_holds(rtu.first(n - kQuirkSize)) || !response_reading_of(rtu, n);
 }
 
 void read_times(Frame& f, std::span<const std::uint8_t> payload, std::size_t at) {

@@ -23,6 +23,7 @@ Totals& Totals::operator+=(const Totals& o) {
   rtu_frames += o.rtu_frames;
   quirk_frames += o.quirk_frames;
   stick_frames += o.stick_frames;
+  stick_answers += o.stick_answers;
   heartbeats += o.heartbeats;
   data_reports += o.data_reports;
   checksum_failures += o.checksum_failures;
@@ -161,14 +162,11 @@ void SolarmanV5Reader::count(const Event& e) {
   totals_.quirk_frames += one_if(f.quirk_bytes > 0);
   totals_.checksum_failures += one_if(!f.checksum_ok());
   totals_.length_mismatches += one_if(f.payload_short);
-  const bool stick = f.kind == FrameKind::StickFrame || f.kind == FrameKind::StickReply;
+  const bool stick = f.kind == FrameKind::StickFrame;
   totals_.stick_frames += one_if(stick);
-  const std::uint16_t own =
-      f.kind == FrameKind::StickReply
-          ? static_cast<std::uint16_t>(f.header.control + control::kReplyOffset)
-          : f.header.control;
-  totals_.heartbeats += one_if(stick && own == control::kHeartbeat);
-  totals_.data_reports += one_if(stick && own == control::kDataReport);
+  totals_.stick_answers += one_if(f.kind == FrameKind::StickReply);
+  totals_.heartbeats += one_if(stick && f.header.control == control::kHeartbeat);
+  totals_.data_reports += one_if(stick && f.header.control == control::kDataReport);
 }
 
 }  // namespace pvtap::solarman_v5

@@ -60,6 +60,33 @@ TEST(SolarmanV5Frame, ResponseWithTheTwoExtraZerosIsTheQuirk) {
   EXPECT_EQ(f.carrier_bytes() + f.rtu_length + f.quirk_bytes, bytes.size());
 }
 
+TEST(SolarmanV5Frame, AReplyDamagedOnTheLineKeepsItsQuirkApart) {
+  // 01 03 02 00 2A 39 9B with a data byte hit: no CRC holds, its byte count says 7 bytes.
+  const auto rtu = hex_bytes("01 03 02 10 2A 39 9B");
+  const Frame f =
+      parse_frame(encode_frame(Header{0, control::kResponse, 1, 7}, response_payload(rtu, true)));
+  EXPECT_EQ(f.quirk_bytes, kQuirkSize);
+  EXPECT_EQ(f.rtu_length, rtu.size());
+}
+
+TEST(SolarmanV5Frame, AReplyWhoseCountWasHitKeepsItsQuirkApart) {
+  // The byte count hit (0x02 -> 0x18): no reading ends at either length; the zeros are the
+  // quirk, not a CRC of 00 00.
+  const auto rtu = hex_bytes("01 03 18 00 2A 39 9B");
+  const Frame f =
+      parse_frame(encode_frame(Header{0, control::kResponse, 1, 7}, response_payload(rtu, true)));
+  EXPECT_EQ(f.quirk_bytes, kQuirkSize);
+}
+
+TEST(SolarmanV5Frame, ADamagedReplyWhoseStructureEndsWithTheZerosKeepsThem) {
+  // A byte count of 4: seven bytes of data and CRC follow, the last two of them zero.
+  const auto rtu = hex_bytes("01 03 04 00 2A 39 9B 00 00");
+  const Frame f =
+      parse_frame(encode_frame(Header{0, control::kResponse, 1, 7}, response_payload(rtu, false)));
+  EXPECT_EQ(f.quirk_bytes, 0u);
+  EXPECT_EQ(f.rtu_length, rtu.size());
+}
+
 TEST(SolarmanV5Frame, ZerosThatAreTheRtuFramesOwnAreNoQuirk) {
   // A reply whose last data word is zero: the CRC covers it, so nothing is stripped.
   const auto rtu = hex_bytes("01 03 02 00 00 B8 44");

@@ -85,6 +85,21 @@ TEST(SolarmanV5Reader, FramesSplitAtEveryByteComeOutWhole) {
   r.expect_accounted();
 }
 
+TEST(SolarmanV5Reader, TheSticksOwnFramesAreCountedApartFromTheAnswersToThem) {
+  const auto answer = encode_frame(Header{0, 0x1710, 0x0105, 2712345678u}, hex_bytes("00"));
+  const auto report =
+      encode_frame(Header{0, control::kDataReport, 0x0106, 2712345678u}, hex_bytes("01 02 03 04"));
+  Recorder r;
+  r.feed(join({heartbeat(), answer, report}));
+  const Totals& t = r.reader.totals();
+  EXPECT_EQ(t.stick_frames, 2u);
+  EXPECT_EQ(t.heartbeats, 1u);
+  EXPECT_EQ(t.data_reports, 1u);
+  EXPECT_EQ(t.stick_answers, 1u);
+  EXPECT_EQ(t.rtu_frames, 0u);
+  EXPECT_EQ(t.carrier_bytes, t.bytes_in);
+}
+
 TEST(SolarmanV5Reader, SeveralFramesInOneSegment) {
   Recorder r;
   r.feed(join({request(1), request(2), request(3)}));

@@ -38,9 +38,10 @@ struct Totals {
   std::uint64_t frames = 0;
   std::uint64_t rtu_frames = 0;  // frames with an RTU frame inside
   std::uint64_t quirk_frames = 0;
-  std::uint64_t stick_frames = 0;  // the stick's own frames and their replies
-  std::uint64_t heartbeats = 0;    // of them, heartbeats and their replies
-  std::uint64_t data_reports = 0;  // of them, data reports and their replies
+  std::uint64_t stick_frames = 0;   // the stick's own frames (heartbeats, data reports, ...)
+  std::uint64_t heartbeats = 0;     // of them, heartbeats
+  std::uint64_t data_reports = 0;   // of them, data reports
+  std::uint64_t stick_answers = 0;  // the client's answers to them (code less 0x3000)
   std::uint64_t checksum_failures = 0;
   std::uint64_t truncated = 0;
   std::uint64_t length_mismatches = 0;  // broken by their length, and payloads too short
