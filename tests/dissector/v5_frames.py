@@ -38,7 +38,8 @@ class StickFlow:
     """What a stick flow holds, for the counts the tests expect."""
 
     def __init__(self):
-        self.v5 = dict(frames=0, rtu_frames=0, stick_frames=0, heartbeats=0, quirk_frames=0,
+        self.v5 = dict(frames=0, rtu_frames=0, stick_frames=0, heartbeats=0, stick_answers=0,
+                       quirk_frames=0,
                        quirk_bytes=0, bad_checksums=0, carrier_bytes=0, rtu_bytes=0,
                        truncated_frames=0, length_mismatches=0, broken_bytes=0, noise_bytes=0)
         self.requests = 0
@@ -46,14 +47,15 @@ class StickFlow:
         self.timeouts = 0
         self.packets = {}  # name -> packet number (1-based, as tshark counts)
 
-    def frame(self, frame, rtu=b"", quirk=0, stick=False, bad=False):
+    def frame(self, frame, rtu=b"", quirk=0, stick=False, bad=False, answer=False):
         self.v5["frames"] += 1
         self.v5["rtu_frames"] += 1 if rtu else 0
         self.v5["rtu_bytes"] += len(rtu)
         self.v5["quirk_bytes"] += quirk
         self.v5["quirk_frames"] += 1 if quirk else 0
         self.v5["stick_frames"] += 1 if stick else 0
-        self.v5["heartbeats"] += 1 if stick else 0
+        self.v5["heartbeats"] += 1 if stick else 0  # the scripts' stick frames are heartbeats
+        self.v5["stick_answers"] += 1 if answer else 0
         self.v5["bad_checksums"] += 1 if bad else 0
         self.v5["carrier_bytes"] += len(frame) - len(rtu) - quirk
 
@@ -62,9 +64,10 @@ class Step:
     """One V5 frame of a stick script: who sends it, its bytes, what it carries."""
 
     def __init__(self, name, from_stick, frame, rtu=b"", quirk=0, stick=False, bad=False,
-                 after=0.05):
+                 after=0.05, answer=False):
         self.name, self.from_stick, self.frame = name, from_stick, frame
         self.rtu, self.quirk, self.stick, self.bad, self.after = rtu, quirk, stick, bad, after
+        self.answer = answer
 
 
 def stick_script(reads=30, drop=17, bad_checksum=23):
@@ -93,9 +96,10 @@ def stick_script(reads=30, drop=17, bad_checksum=23):
                               after=0.1))
             steps.append(Step("heartbeat_answer", False,
                               v5_frame(HEARTBEAT_REPLY, 0x0001, bytes([0x02, 0x01]) + bytes(8)),
-                              stick=True, after=0.01))
+                              answer=True, after=0.01))
     for step in steps:
-        s.frame(step.frame, step.rtu, quirk=step.quirk, stick=step.stick, bad=step.bad)
+        s.frame(step.frame, step.rtu, quirk=step.quirk, stick=step.stick, bad=step.bad,
+                answer=step.answer)
     return steps, s
 
 

@@ -227,6 +227,7 @@ void solarman_v5_totals(std::string& o, const NetworkStats& n) {
   append_json_count(o, "stick_frames", v.stick_frames);
   append_json_count(o, "heartbeats", v.heartbeats);
   append_json_count(o, "data_reports", v.data_reports);
+  append_json_count(o, "stick_answers", v.stick_answers);
   append_json_count(o, "carrier_bytes", v.carrier_bytes);
   append_json_count(o, "rtu_bytes", v.rtu_bytes);
   append_json_count(o, "quirk_bytes", v.quirk_bytes);

@@ -69,10 +69,11 @@ void span_of_time(const AuditReport& r, std::string& o) {
 void solarman_v5_lines(const NetworkStats& n, std::string& o) {
   const solarman_v5::Totals& v = n.v5;
   o += report_line(
-      "Solarman V5 logger sticks: %llu flows, %llu V5 frames (%llu with an RTU frame, %llu of "
-      "the sticks' own: %llu heartbeats, %llu data reports); latency measured at the LAN side",
+      "Solarman V5 logger sticks: %llu flows, %llu V5 frames (%llu with an RTU frame; %llu of "
+      "the sticks' own: %llu heartbeats, %llu data reports; %llu answers to them); latency "
+      "measured at the LAN side",
       u(n.v5_flows), u(v.frames), u(v.rtu_frames), u(v.stick_frames), u(v.heartbeats),
-      u(v.data_reports));
+      u(v.data_reports), u(v.stick_answers));
   o += report_line(
       "  V5 bytes: %llu carrier, %llu in RTU frames, %llu quirk bytes (two zeros after the RTU "
       "CRC) in %llu replies, %llu bytes of no V5 frame",

@@ -5,7 +5,8 @@ audit: captures written here (tests/dissector/v5_frames.py encodes V5 independen
 core): 30 reads through a stick, every fifth reply with the two extra zeros, a heartbeat and
 its answer, one reply dropped, one V5 checksum broken; the same on a --port; beside an RTU
 gateway and other traffic; a stick whose lengths lie and whose last reply is cut. The summary
-counts must be exactly the script's.
+counts must be exactly the script's. The library's V5 samples: the stick's counts must be the
+simulator's truth.
 
 sniff: the same script played over real TCP on lo between a client and a stick written here,
 while `pvtap sniff --interface lo --port P` captures it; after SIGTERM its summary must give
@@ -14,6 +15,7 @@ the same counts. Exits 77 (skipped) when not root (capturing on lo is refused).
 usage: check_solarman_v5.py --pvtap PVTAP audit|sniff
 """
 import argparse
+import glob
 import json
 import os
 import signal
@@ -106,7 +108,7 @@ def check_audit(args):
                       bad)
         text = subprocess.run([args.pvtap, "audit", "--summary-only", reads],
                               capture_output=True, text=True, timeout=RUN_GUARD_S).stdout
-        for line in ("Solarman V5 logger sticks: 1 flows, 61 V5 frames",
+        for line in ("Solarman V5 logger sticks: 1 flows, 61 V5 frames (59 with an RTU frame; 1 of the sticks",
                      "12 quirk bytes (two zeros after the RTU CRC) in 6 replies",
                      "V5 findings: 1 bad checksums", "-- bus %s --" % BUS):
             if line not in text:
@@ -127,6 +129,32 @@ def check_audit(args):
         script = broken_stick(pcap)
         expect_counts("broken", run_audit(args.pvtap, write(pcap, tmp, "broken.pcap")), script,
                       bad)
+    return bad
+
+
+# The simulator's truth of a V5 sample (captures/samples/*.truth.json, "v5") and the summary's
+# name for the same count.
+TRUTH_COUNTS = {"frames": "frames", "stick_frames": "stick_frames", "heartbeats": "heartbeats",
+                "data_reports": "data_reports", "client_answers": "stick_answers",
+                "carrier_bytes": "carrier_bytes", "rtu_bytes": "rtu_bytes",
+                "quirk_bytes": "quirk_bytes", "bad_checksums": "bad_checksums"}
+
+
+def check_samples(args):
+    """The library's V5 samples: the stick's counts are the simulator's truth."""
+    bad = []
+    samples = sorted(glob.glob(os.path.join(HERE, "..", "..", "..", "captures", "samples",
+                                            "*.v5.pcap")))
+    if not samples:
+        return ["no V5 sample in captures/samples"]
+    for sample in samples:
+        with open(sample.replace(".v5.pcap", ".truth.json")) as f:
+            truth = json.load(f)["v5"]
+        v5 = run_audit(args.pvtap, sample, "--summary-only")[-1]["network"]["solarman_v5"]
+        for theirs, ours in TRUTH_COUNTS.items():
+            if v5.get(ours) != truth[theirs]:
+                bad.append("%s: %s %s, truth %s" % (os.path.basename(sample), ours, v5.get(ours),
+                                                    truth[theirs]))
     return bad
 
 
@@ -243,7 +271,8 @@ def main():
     parser.add_argument("check", choices=["audit", "sniff"])
     args = parser.parse_args()
     try:
-        bad = check_audit(args) if args.check == "audit" else check_sniff(args)
+        bad = check_audit(args) + check_samples(args) if args.check == "audit" else \
+            check_sniff(args)
     except Failure as e:
         bad = [str(e)]
     for line in bad:
