@@ -193,7 +193,10 @@ def main():
     noise_truth = sum(e["bytes"] for e in truth["events"] if e["type"] == "noise")
     if noise_found != noise_truth:
         bad.add(f"noise bytes: audit {noise_found}, truth {noise_truth}")
-    timeouts = [(e["station"], e["function"]) for e in events if e["type"] == "timeout"]
+    # The audit says a timeout when it is decided (a later request to the station can decide
+    # it before an earlier request's timer runs out); the truth lists them by request.
+    timed_out = sorted((e for e in events if e["type"] == "timeout"), key=lambda e: e["request_ts"])
+    timeouts = [(e["station"], e["function"]) for e in timed_out]
     if timeouts != [(t["station"], t["function"]) for t in truth["timeouts"]]:
         bad.add(f"timeouts: audit {timeouts}, truth {truth['timeouts']}")
     ignored = [(e["station"], e["function"]) for e in events
