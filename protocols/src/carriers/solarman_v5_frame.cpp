@@ -42,16 +42,18 @@ bool response_reading_of(std::span<const std::uint8_t> rtu, std::size_t length) 
   return false;
 }
 
-// The stick's two extra zeros: the RTU frame's CRC holds without them. Zeros after a CRC
-// leave the residue zero, so it holds with them too and cannot tell; a frame whose own CRC
-// is 00 00 and whose bytes before it also hold is read as the quirk (about 1 in 65,536). A
-// frame damaged on the line holds neither way; its own CRC is 00 00 as rarely, so the zeros
-// are the quirk unless its structure (function code, byte count) makes it end with them.
+// The stick's two extra zeros. Zeros after a CRC leave its residue zero, so a CRC holds with
+// them as without them and cannot tell alone: the frame's structure (function code, byte
+// count) decides where it says the frame ends; else a CRC that holds without the zeros. A
+// frame damaged on the line holds neither way, and its own CRC is 00 00 only once in 65,536:
+// the zeros are the quirk unless its structure makes it end with them.
 bool has_quirk(std::span<const std::uint8_t> rtu) {
   if (rtu.size() < 4 + kQuirkSize) return false;
   const std::size_t n = rtu.size();
   if (rtu[n - 1] != 0 || rtu[n - 2] != 0) return false;
-  return crc_holds(rtu.first(n - kQuirkSize)) || !response_reading_of(rtu, n);
+  const bool whole = response_reading_of(rtu, n);
+  if (whole && !response_reading_of(rtu, n - kQuirkSize)) return false;
+  return crc_holds(rtu.first(n - kQuirkSize)) || !whole;
 }
 
 void read_times(Frame& f, std::span<const std::uint8_t> payload, std::size_t at) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "hex_bytes.h"
+#include "pvtap/codec/checksums.h"
 
 namespace pvtap::solarman_v5 {
 namespace {
@@ -81,6 +82,25 @@ TEST(SolarmanV5Frame, AReplyWhoseCountWasHitKeepsItsQuirkApart) {
 TEST(SolarmanV5Frame, ADamagedReplyWhoseStructureEndsWithTheZerosKeepsThem) {
   // A byte count of 4: seven bytes of data and CRC follow, the last two of them zero.
   const auto rtu = hex_bytes("01 03 04 00 2A 39 9B 00 00");
+  const Frame f =
+      parse_frame(encode_frame(Header{0, control::kResponse, 1, 7}, response_payload(rtu, false)));
+  EXPECT_EQ(f.quirk_bytes, 0u);
+  EXPECT_EQ(f.rtu_length, rtu.size());
+}
+
+TEST(SolarmanV5Frame, AReplyWhoseOwnCrcIsZeroKeepsItByItsByteCount) {
+  // Found in a long capture: a reply whose CRC is 00 00, so that its bytes before the CRC
+  // hold a CRC of their own. Its byte count says the zeros are its own.
+  std::vector<std::uint8_t> rtu = hex_bytes("01 03 04 00 00 00 00");
+  for (std::uint32_t v = 0; v <= 0xFFFF; ++v) {
+    rtu[5] = static_cast<std::uint8_t>(v >> 8);
+    rtu[6] = static_cast<std::uint8_t>(v & 0xFF);
+    if (Crc16Modbus::compute(rtu) == 0) break;
+  }
+  ASSERT_EQ(Crc16Modbus::compute(rtu), 0);  // data whose CRC holds inside the data
+  rtu.push_back(0);
+  rtu.push_back(0);
+  ASSERT_EQ(Crc16Modbus::compute(rtu), 0);  // and the CRC of all of it is 00 00
   const Frame f =
       parse_frame(encode_frame(Header{0, control::kResponse, 1, 7}, response_payload(rtu, false)));
   EXPECT_EQ(f.quirk_bytes, 0u);
