@@ -167,7 +167,10 @@ ParseStatus parse_rtu(std::span<const std::uint8_t> b, Dialect dialect, Role rol
   if (b.size() < 4) return fail("RTU frame shorter than 4 bytes");
   f = make_frame(dialect, role, b[0], b[1]);
   if (!fc::dialect_has_function(dialect, f.function) && !gateway_exception(b, dialect, role)) {
-    return fail("function code of another dialect");
+    // A code no dialect defines (Modbus/TCP carries any code whole) says so, not "another".
+    return fail(fc::detail::kFunctionKinds.of[f.function] == 0
+                    ? "function code without a public layout"
+                    : "function code of another dialect");
   }
   if (dialect == Dialect::Hybrid) {
     return role == Role::Request ? parse_hybrid_request(b, f) : parse_hybrid_reply(b, f);

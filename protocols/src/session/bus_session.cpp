@@ -75,6 +75,8 @@ struct BusSession::Impl {
   ReassemblerTotals carried;  // frames delivered whole by a carrier (carried_frame)
   std::vector<std::uint8_t> carried_wire;  // a carried frame with the CRC the codec expects
   bool answers_pending = false;            // the carried reply being handled was paired
+  // The dialect of the last carried request to each station, plus one (0: none yet).
+  std::array<std::uint8_t, 256> carried_requests{};
   std::uint64_t next_id = 0;
   std::uint64_t loss_boundary_id = 0;  // requests before this id were waiting during a loss
   Direction last_direction = Direction::Unknown;  // of the last chunk fed
@@ -207,15 +209,22 @@ void BusSession::feed(const BusChunk& chunk) {
 
 namespace {
 
-// The dialect whose length rules a carried frame's bytes (with the CRC appended) fit exactly;
-// failing any, the Modbus family's reading, which names what is wrong with it.
-Dialect carried_dialect(std::span<const std::uint8_t> wire, Role role, DialectSet enabled) {
+// The dialect whose length rules a carried frame's bytes (with the CRC appended) fit exactly,
+// `preferred` (the dialect of the last request to its station) first: a report server ID reply
+// fits Hybrid's 0x11 as well, and only its request tells. Failing any, the Modbus family's
+// reading, which names what is wrong with it.
+Dialect carried_dialect(std::span<const std::uint8_t> wire, Role role, DialectSet enabled,
+                        std::optional<Dialect> preferred) {
   const RoleHint hint = role == Role::Request ? RoleHint::Request : RoleHint::Response;
   const CandidateList readings = frame_candidates(wire, hint, enabled, Plausibility::Ignore);
+  std::optional<Dialect> first;
   for (std::size_t i = 0; i < readings.size; ++i) {
     const FrameCandidate& c = readings.items[i];
-    if (c.length == wire.size() && c.role == role && c.dialect != Dialect::Ascii) return c.dialect;
+    if (c.length != wire.size() || c.role != role || c.dialect == Dialect::Ascii) continue;
+    if (preferred && same_dialect(c.dialect, *preferred)) return c.dialect;
+    if (!first) first = c.dialect;
   }
+  if (first) return *first;
   return enabled.contains(Dialect::Modbus) || !enabled.contains(Dialect::Gsl) ? Dialect::Modbus
                                                                               : Dialect::Gsl;
 }
@@ -239,7 +248,15 @@ void BusSession::carried_frame(Direction direction, std::uint64_t offset,
   e.start_time = time;
   e.end_time = time;
   e.role = direction == Direction::FromSlave ? Role::Response : Role::Request;
-  e.dialect = carried_dialect(m.carried_wire, e.role, m.options.reassembler.dialects);
+  const std::uint8_t station = frame.empty() ? 0 : frame[0];
+  std::optional<Dialect> asked;
+  if (e.role == Role::Response && m.carried_requests[station] != 0) {
+    asked = static_cast<Dialect>(m.carried_requests[station] - 1);
+  }
+  e.dialect = carried_dialect(m.carried_wire, e.role, m.options.reassembler.dialects, asked);
+  if (e.role == Role::Request) {
+    m.carried_requests[station] = static_cast<std::uint8_t>(static_cast<unsigned>(e.dialect) + 1);
+  }
   e.check = FrameCheck{true, 0, 0, true};
   ++m.carried.frames;
   m.carried.bytes_in += frame.size();

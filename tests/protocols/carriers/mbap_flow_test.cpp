@@ -133,6 +133,21 @@ TEST(MbapFlow, AHybridFrameIsReadAsHybrid) {
   EXPECT_EQ(f.rec.dialects, (std::vector<Dialect>{Dialect::Hybrid, Dialect::Hybrid}));
 }
 
+TEST(MbapFlow, AReportServerIdReplyIsReadInItsRequestsDialect) {
+  Fixture f;
+  // Modbus 0x11 (no data) and its reply: byte count 8, "Wingpath"-like text, run indicator.
+  // The reply also fits Hybrid's 0x11 (a counted reply with a device number); only the request
+  // says which it is (a real gateway's reply was read as Hybrid and left unanswered).
+  f.request(adu(1, 10, "11"), 1.0);
+  f.reply(adu(1, 10, "11 08 57 69 6E 67 70 61 74 FF"), 1.1);
+  f.finish(1.2);
+  const BusReport r = f.session.report();
+  EXPECT_EQ(r.malformed_frames, 0u);
+  EXPECT_EQ(r.timeouts, 0u);
+  ASSERT_EQ(f.rec.latencies.size(), 1u);
+  EXPECT_EQ(f.rec.dialects, (std::vector<Dialect>{Dialect::Modbus, Dialect::Modbus}));
+}
+
 TEST(MbapFlow, ARequestNoReplyCameForTimesOut) {
   Fixture f;
   f.request(adu(1, 4, "03 00 00 00 02"), 1.0);
