@@ -21,6 +21,18 @@ def lying_header_flow(pcap):
     flow.request(struct.pack("!HHHB", 2, 1, 6, 1) + mbap_capture.read_request(0, 1))
 
 
+def silent_request_flow(pcap):
+    """Unit 3 never answers tid 2; the client polls on for 15 s, past the 10 s a request is
+    held for its reply, so that the silence is decided inside the capture."""
+    flow = TcpFlow(pcap, client=("10.0.0.1", 50230), server=("10.0.0.12", 502), time=300.0)
+    flow.request(mbap_capture.adu(1, 3, mbap_capture.read_request(0, 1)))
+    flow.reply(mbap_capture.adu(1, 3, mbap_capture.read_reply([1])), after=0.02)
+    flow.request(mbap_capture.adu(2, 3, mbap_capture.read_request(0, 1)), after=1.0)
+    for tid in range(3, 18):
+        flow.request(mbap_capture.adu(tid, 3, mbap_capture.read_request(0, 1)), after=1.0)
+        flow.reply(mbap_capture.adu(tid, 3, mbap_capture.read_reply([tid])), after=0.02)
+
+
 class ModbusTcpByDecodeAs(PluginTestCase, unittest.TestCase):
     @classmethod
     def setUpClass(cls):
@@ -32,6 +44,9 @@ class ModbusTcpByDecodeAs(PluginTestCase, unittest.TestCase):
         pcap = Pcap()
         lying_header_flow(pcap)
         cls.liar = cls.tshark.write("liar.pcap", pcap)
+        pcap = Pcap()
+        silent_request_flow(pcap)
+        cls.silent = cls.tshark.write("silent.pcap", pcap)
 
     def rows(self, capture, options, passes=("-2",)):
         args = ["-r", capture, *passes, "-T", "fields", "-E", "occurrence=a", "-E",
@@ -82,6 +97,20 @@ class ModbusTcpByDecodeAs(PluginTestCase, unittest.TestCase):
                                "_ws.expert.message", "-Y", "invmbap"]).stdout
         self.assertIn("MBAP header that lied (protocol id not 0, or a length that does not "
                       "fit): 12 bytes skipped", out)
+
+    def test_a_request_never_answered_is_announced_in_one_pass_and_two(self):
+        # pvtap audit counts it as one timeout; the plugin announces it in the packet whose
+        # time decided it, naming the request's packet, the same in one pass and two.
+        for passes in ((), ("-2",)):
+            out = self.tshark.run(["-r", self.silent, *passes, *DECODE_AS, "-T", "fields",
+                                   "-e", "invrtu.unanswered_request", "-e", "_ws.expert.message",
+                                   "-Y", "invrtu.unanswered_request"]).stdout.splitlines()
+            self.assertEqual(len(out), 1, passes)
+            request_packet = out[0].split("\t")[0]
+            tid = self.tshark.run(["-r", self.silent, "-T", "fields", *DECODE_AS,
+                                   "-e", "invmbap.transaction", "-Y",
+                                   "frame.number == " + request_packet]).stdout.strip()
+            self.assertEqual(tid, "2", passes)
 
 
 if __name__ == "__main__":

@@ -8,6 +8,7 @@
 #include <epan/dissectors/packet-tcp.h>
 
 #include <span>
+#include <vector>
 
 #include "fields/field_list.h"
 #include "pvtap/carriers/mbap_structure.h"
@@ -31,10 +32,18 @@ struct MbapProtocol {
 
 MbapProtocol g_mbap;
 
-// Proto data keys of a packet: its ADU count so far (packet pool), and the record of each ADU
-// (file scope) from kRecordKey on.
+// Proto data keys of a packet: its ADU count so far (packet pool), the record of each ADU
+// (file scope) from kRecordKey on, and the timeouts each ADU's call announces from
+// kAnnouncementKey on.
 constexpr guint32 kCountKey = 0;
 constexpr guint32 kRecordKey = 1;
+constexpr guint32 kAnnouncementKey = 0x10000;
+
+// The requests one ADU's call announces as unanswered (file scope, noted on the first pass).
+struct Announcements {
+  FrameRecord** requests = nullptr;
+  std::uint32_t count = 0;
+};
 
 guint32 next_adu_index(packet_info* pinfo) {
   auto* count =
@@ -61,15 +70,45 @@ Direction direction_of(const packet_info* pinfo) {
   return pinfo->destport == pinfo->match_uint ? Direction::ToSlave : Direction::FromSlave;
 }
 
-// The record of this ADU: fed to the conversation's track on the first pass, kept after.
-FrameRecord* record_of(packet_info* pinfo, std::span<const std::uint8_t> adu) {
-  const guint32 key = kRecordKey + next_adu_index(pinfo);
+// The record of this ADU (the `index`th of the packet): fed to the conversation's track on the
+// first pass, kept after.
+FrameRecord* record_of(packet_info* pinfo, guint32 index, std::span<const std::uint8_t> adu) {
+  const guint32 key = kRecordKey + index;
   auto* r =
       static_cast<FrameRecord*>(p_get_proto_data(wmem_file_scope(), pinfo, g_mbap.proto, key));
   if (r != nullptr || PINFO_FD_VISITED(pinfo)) return r;
   r = track_of(pinfo).feed(direction_of(pinfo), adu, nstime_to_sec(&pinfo->abs_ts));
   p_add_proto_data(wmem_file_scope(), pinfo, g_mbap.proto, key, r);
   return r;
+}
+
+// The track's timeouts not announced yet. noexcept: nothing may be thrown into Wireshark.
+std::vector<FrameRecord*> unannounced(MbapTrack& track) noexcept {
+  try {
+    return track.take_timeouts();
+  } catch (...) {
+    return {};  // out of memory: a later ADU announces them
+  }
+}
+
+// The timeouts this ADU's call announces: taken from the track on the first pass (the ones its
+// time made due), the same ones on every later pass.
+const Announcements* announcements_of(packet_info* pinfo, guint32 index) {
+  const guint32 key = kAnnouncementKey + index;
+  auto* a =
+      static_cast<Announcements*>(p_get_proto_data(wmem_file_scope(), pinfo, g_mbap.proto, key));
+  if (a != nullptr || PINFO_FD_VISITED(pinfo)) return a;
+  const std::vector<FrameRecord*> ready = unannounced(track_of(pinfo));
+  if (ready.empty()) return nullptr;
+  a = wmem_new0(wmem_file_scope(), Announcements);
+  a->requests = wmem_alloc_array(wmem_file_scope(), FrameRecord*, ready.size());
+  a->count = static_cast<std::uint32_t>(ready.size());
+  for (std::size_t i = 0; i < ready.size(); ++i) {
+    a->requests[i] = ready[i];
+    ready[i]->announced_in = pinfo->num;
+  }
+  p_add_proto_data(wmem_file_scope(), pinfo, g_mbap.proto, key, a);
+  return a;
 }
 
 // One ADU, whole (TCP reassembled it): the copy is parsed before any tree call may longjmp.
@@ -80,7 +119,8 @@ int dissect_adu(tvbuff_t* tvb, packet_info* pinfo, proto_tree* tree, void*) {
   const auto header = read_mbap_header(adu);
   const bool plausible =
       header && plausible_mbap_header(*header) && adu.size() == kMbapCarrierBytes + header->length;
-  FrameRecord* record = plausible ? record_of(pinfo, adu) : nullptr;
+  const guint32 index = next_adu_index(pinfo);
+  FrameRecord* record = plausible ? record_of(pinfo, index, adu) : nullptr;
   proto_item* item = proto_tree_add_item(tree, g_mbap.proto, tvb, 0, kMbapHeaderBytes - 1, ENC_NA);
   proto_tree* sub = proto_item_add_subtree(item, g_mbap.ett);
   proto_tree_add_item(sub, g_mbap.transaction, tvb, 0, 2, ENC_BIG_ENDIAN);
@@ -100,6 +140,9 @@ int dissect_adu(tvbuff_t* tvb, packet_info* pinfo, proto_tree* tree, void*) {
   show_frame(TreeTarget{tvb, pinfo, tree, static_cast<int>(kMbapCarrierBytes),
                         static_cast<int>(frame.size()), &rtu_protocol()},
              frame, *record);
+  if (const Announcements* a = announcements_of(pinfo, index)) {
+    for (std::uint32_t i = 0; i < a->count; ++i) show_timeout(*a->requests[i], tvb, pinfo, tree);
+  }
   return static_cast<int>(n);
 }
 

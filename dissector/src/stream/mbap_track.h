@@ -26,6 +26,10 @@ class MbapTrack final : public BusSessionSink {
   // The record of the ADU whose station byte and PDU are `frame`, fed now.
   FrameRecord* feed(Direction d, std::span<const std::uint8_t> adu, double time);
 
+  // The requests that timed out and were shown, not yet announced: the packet that takes
+  // them announces them, as invrtu's serial and gateway buses do.
+  std::vector<FrameRecord*> take_timeouts();
+
  private:
   void on_frame(const SessionFrame& f) override;
   void on_timeout(const SessionTimeout& t) override;
@@ -34,6 +38,7 @@ class MbapTrack final : public BusSessionSink {
   MbapFlow flow_;
   std::map<std::pair<Direction, std::uint64_t>, FrameRecord*> by_offset_;
   std::vector<FrameRecord*> by_id_;
+  std::vector<FrameRecord*> unannounced_;
   StationNames names_;
 };
 
