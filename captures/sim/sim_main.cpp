@@ -6,6 +6,8 @@
 #include "command/sim_command.h"
 #include "lan/mbap_session.h"
 #include "lan/v5_session.h"
+#include "logic/logic_truth.h"
+#include "logic/srzip_writer.h"
 #include "outputs/capture_outputs.h"
 #include "outputs/ground_truth.h"
 #include "outputs/serial_pacer.h"
@@ -33,6 +35,19 @@ std::optional<pvtap::sim::LanCapture> plan_lan(pvtap::sim::BusTimeline& timeline
   return std::nullopt;
 }
 
+// --sr: the bus laid out at the session's format, with its drivers, glitches and violations;
+// the timeline moves to the times the session shows. The truth describes it.
+std::optional<pvtap::sim::LanTruth> plan_logic(pvtap::sim::BusTimeline& timeline,
+                                               const pvtap::sim::SimCommand& cmd,
+                                               pvtap::sim::LogicSignals& signals) {
+  using namespace pvtap::sim;
+  const LogicOptions& o = cmd.outputs.logic;
+  if (o.path.empty()) return std::nullopt;
+  const LogicLayout layout = lay_out_logic(timeline, o, cmd.config.baud, cmd.config.seed);
+  signals = logic_signals(layout, o, cmd.config.seed);
+  return logic_truth(layout, signals, o, cmd.config.baud);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -43,9 +58,13 @@ int main(int argc, char** argv) {
   BusTimeline timeline = BusMaster(cmd->config).run();
   const SimOutputs& out = cmd->outputs;
   const auto lan = plan_lan(timeline, *cmd);
+  LogicSignals signals;
+  const auto logic = plan_logic(timeline, *cmd, signals);
+  const LanTruth* carrier_truth = lan ? &lan->truth : logic ? &*logic : nullptr;
   const std::string& lan_path = out.lan.v5.empty() ? out.lan.mbap : out.lan.v5;
   bool ok =
       produce(lan_path, [&] { return write_tcp_session(lan->segments, lan->ends, lan_path); });
+  ok = produce(out.logic.path, [&] { return write_srzip(signals, out.logic.path); }) && ok;
   ok = produce(out.pdu, [&] { return write_pdu_capture(timeline, out.pdu); }) && ok;
   ok = produce(out.gateway,
                [&] { return write_gateway_capture(timeline, out.gateway, cmd->config.seed); }) &&
@@ -53,11 +72,9 @@ int main(int argc, char** argv) {
   const ChunkedReads reads{cmd->config.seed, out.read_delay_ms};
   ok = produce(out.chunked, [&] { return write_chunked_capture(timeline, out.chunked, reads); }) &&
        ok;
-  ok = produce(out.truth,
-               [&] {
-                 return write_ground_truth(timeline, cmd->config, out.truth,
-                                           lan ? &lan->truth : nullptr);
-               }) &&
+  ok = produce(
+           out.truth,
+           [&] { return write_ground_truth(timeline, cmd->config, out.truth, carrier_truth); }) &&
        ok;
   ok = produce(out.device,
                [&] { return pace_onto_device(timeline, out.device, cmd->config.baud); }) &&

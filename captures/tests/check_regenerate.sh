@@ -10,7 +10,7 @@ mkdir -p "$scratch"
 "$source_dir/captures/regenerate" "$scratch" "$sim"
 committed="$source_dir/captures/samples"
 status=0
-names() { (cd "$1" && printf '%s\n' *.pcap *.json | sort); }
+names() { (cd "$1" && printf '%s\n' *.pcap *.sr *.json | sort); }
 diff <(names "$committed") <(names "$scratch") || status=1
 for f in "$scratch"/*; do
   name=$(basename "$f")

@@ -62,6 +62,8 @@ PVTAP_PACKAGES=(
   # bench compare with sigrok-cli's own UART and Modbus decoders.
   libsigrok-dev
   sigrok-cli
+  # pvtap-sim --sr writes sigrok sessions (a zip) with libzip.
+  libzip-dev
 )
 
 # The system's os-release file (PVTAP_OS_RELEASE lets the tests name another).

@@ -83,6 +83,7 @@ std::optional<SimCommand> parse_sim_command(int argc, char** argv, int& exit_cod
   app.add_option("--truth", cmd.outputs.truth, "write the ground truth as JSON");
   app.add_option("--device", cmd.outputs.device, "play the bus onto a serial device or pty");
   add_lan_options(app, cmd.outputs.lan);
+  add_logic_options(app, cmd.outputs.logic);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -107,9 +108,10 @@ std::optional<SimCommand> parse_sim_command(int argc, char** argv, int& exit_cod
   }
   error = station_problem(c, first_station);
   const SimOutputs& o = cmd.outputs;
-  const bool bus_outputs =
-      !o.pdu.empty() || !o.gateway.empty() || !o.chunked.empty() || !o.device.empty();
+  const bool bus_outputs = !o.pdu.empty() || !o.gateway.empty() || !o.chunked.empty() ||
+                           !o.device.empty() || !o.logic.path.empty();
   if (error.empty()) error = finish_lan_options(cmd.outputs.lan, c, bus_outputs);
+  if (error.empty()) error = finish_logic_options(cmd.outputs.logic, c.baud);
   if (!error.empty()) {
     std::cerr << "pvtap-sim: " << error << "\n";
     exit_code = 2;

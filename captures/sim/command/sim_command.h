@@ -6,6 +6,7 @@
 
 #include "command/lan_options.h"
 #include "command/sim_config.h"
+#include "logic/logic_options.h"
 
 namespace pvtap::sim {
 
@@ -14,6 +15,7 @@ struct SimOutputs {
   std::string pdu, gateway, chunked, truth, device;
   unsigned read_delay_ms = 0;  // --chunked: how late the sniffer may read a USB transfer
   LanOutputs lan;
+  LogicOptions logic;  // --sr: the bus as a logic analyzer samples it
 };
 
 struct SimCommand {

@@ -28,7 +28,8 @@ void drop_replies(BusTimeline& timeline, const std::vector<std::size_t>& replies
 // LanTruth: what the ground truth says of a LAN carrier: its counts, named as the readers'
 // summaries name them, and one JSON object per carrier frame.
 struct LanTruth {
-  std::string carrier;  // "v5", "mbap"
+  std::string carrier;    // "v5", "mbap", "logic"
+  std::string list_name;  // the frames' key; empty: carrier + "_frames"
   std::vector<std::pair<std::string, std::uint64_t>> counts;
   std::vector<std::string> frames;
 };

@@ -101,7 +101,7 @@ void write_lan(std::ostream& o, const LanTruth* lan) {
   o << ",\n\"" << lan->carrier << "\":{";
   for (std::size_t i = 0; i < lan->counts.size(); ++i)
     o << (i ? "," : "") << "\"" << lan->counts[i].first << "\":" << lan->counts[i].second;
-  o << "},\n\"" << lan->carrier << "_frames\":[";
+  o << "},\n\"" << (lan->list_name.empty() ? lan->carrier + "_frames" : lan->list_name) << "\":[";
   for (std::size_t i = 0; i < lan->frames.size(); ++i) o << (i ? ",\n" : "\n") << lan->frames[i];
   o << "]";
 }
