@@ -135,7 +135,7 @@ int audit_logic(const AuditOptions& options, const RegisterDecoder& decoder, Out
   RunOutput output(output_settings(options), out);
   if (!output.open()) return kExitBadInput;
   Pipeline pipeline(pipeline_settings(options), decoder, output.events());
-  const LogicRun run = run_logic_audit(plan, pipeline);
+  const LogicRun run = run_logic_audit(plan, pipeline, output.events());
   output.end_of_input(run.end_time);
   AuditReport report = pipeline.report();
   add_serial_lines(run, report);

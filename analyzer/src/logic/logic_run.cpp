@@ -28,14 +28,14 @@ std::string link_text(const LogicPlan& plan) {
 
 }  // namespace
 
-LogicRun run_logic_audit(const LogicPlan& plan, Pipeline& pipeline) {
+LogicRun run_logic_audit(const LogicPlan& plan, Pipeline& pipeline, EventWriter& events) {
   std::vector<TappedChannel> tapped;
   for (const ProbedChannel& p : plan.channels) {
     BusSession& bus =
         pipeline.add_bus(p.channel.name, logic_bus_options(pipeline, *p.line, plan.sample_rate));
     tapped.push_back(TappedChannel{p.channel, *p.line, &bus});
   }
-  UartTap tap(std::move(tapped), plan.sample_rate);
+  UartTap tap(std::move(tapped), plan.sample_rate, events);
   LogicRun run;
   run.error = read_logic_file(plan.path, tap);
   tap.finish();

@@ -18,8 +18,8 @@ struct LogicRun {
 };
 
 // Feeds `pipeline` a bus per planned channel (named after the channel) and reads the
-// recording into them; finishes the pipeline.
-LogicRun run_logic_audit(const LogicPlan& plan, Pipeline& pipeline);
+// recording into them; finishes the pipeline. Driver glitches go to `events` (the pipeline's).
+LogicRun run_logic_audit(const LogicPlan& plan, Pipeline& pipeline, EventWriter& events);
 
 // The report's buses get their serial lines, and the report its rate (the first bus's).
 void add_serial_lines(const LogicRun& run, AuditReport& report);

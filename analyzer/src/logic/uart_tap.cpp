@@ -27,13 +27,14 @@ SerialLineReport settings_of(const TappedChannel& c) {
 
 }  // namespace
 
-UartTap::UartTap(std::vector<TappedChannel> channels, double sample_rate)
-    : sample_rate_(sample_rate), scanner_(bits_of(channels)) {
+UartTap::UartTap(std::vector<TappedChannel> channels, double sample_rate, EventWriter& events)
+    : sample_rate_(sample_rate), scanner_(bits_of(channels)), events_(events) {
   slots_.reserve(channels.size());
   for (TappedChannel& c : channels) {
     SerialLineReport report = settings_of(c);
     UartDecoder decoder(c.line.line);
-    slots_.push_back(Slot{std::move(c), decoder, std::move(report)});
+    DriverGlitchFilter filter(c.line.line);
+    slots_.push_back(Slot{std::move(c), decoder, std::move(filter), std::move(report)});
   }
 }
 
@@ -50,7 +51,8 @@ void UartTap::run(std::size_t slot, SampleRun run) {
 }
 
 // A break carries no byte; a character with a line error still does (the frame around it
-// then fails its check, as it would for a receiver).
+// then fails its check, as it would for a receiver). Characters go through the glitch filter,
+// which holds each run until the line has been quiet for 3.5 characters.
 void UartTap::deliver(Slot& s) {
   for (const UartCharacter& c : characters_) {
     if (c.is_break) {
@@ -59,11 +61,28 @@ void UartTap::deliver(Slot& s) {
     }
     s.report.framing_errors += c.framing_error ? 1 : 0;
     s.report.parity_errors += c.parity_error ? 1 : 0;
+    s.glitch_filter.feed(c, bus_characters_, glitches_);
+  }
+  characters_.clear();
+  feed_bus(s);
+}
+
+void UartTap::feed_bus(Slot& s) {
+  const EventContext context{s.tapped.channel.name, true};
+  for (const DriverGlitch& g : glitches_) {
+    ++s.report.driver_glitches;
+    const UartCharacter& c = g.character;
+    events_.driver_glitch(context, DriverGlitchEvent{static_cast<double>(c.start) / sample_rate_,
+                                                     static_cast<std::uint8_t>(c.value),
+                                                     g.switch_on, c.framing_error});
+  }
+  for (const UartCharacter& c : bus_characters_) {
     const auto byte = static_cast<std::uint8_t>(c.value);
     const double end = static_cast<double>(c.end) / sample_rate_;
     s.tapped.bus->feed(BusChunk{std::span(&byte, 1), end, Direction::Unknown});
   }
-  characters_.clear();
+  glitches_.clear();
+  bus_characters_.clear();
 }
 
 void UartTap::finish() {
@@ -71,6 +90,8 @@ void UartTap::finish() {
   for (Slot& s : slots_) {
     s.decoder.finish(characters_);
     deliver(s);
+    s.glitch_filter.flush(bus_characters_, glitches_);
+    feed_bus(s);
   }
 }
 

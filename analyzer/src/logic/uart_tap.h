@@ -5,9 +5,11 @@
 #include <memory>
 #include <vector>
 
+#include "events/event_writer.h"
 #include "logic/edge_scanner.h"
 #include "logic/sigrok_file.h"
 #include "pvtap/session/bus_session.h"
+#include "pvtap/uart/driver_glitches.h"
 #include "pvtap/uart/line_detector.h"
 #include "report/serial_line_report.h"
 
@@ -22,7 +24,8 @@ struct TappedChannel {
 
 class UartTap final : public LogicSink, private RunConsumer {
  public:
-  UartTap(std::vector<TappedChannel> channels, double sample_rate);
+  // Driver glitches go to `events` (the buses' other events come from the buses).
+  UartTap(std::vector<TappedChannel> channels, double sample_rate, EventWriter& events);
 
   void begin(const std::vector<LogicChannel>& channels, double sample_rate) override;
   void samples(std::span<const std::uint8_t> data, unsigned unitsize) override;
@@ -39,15 +42,20 @@ class UartTap final : public LogicSink, private RunConsumer {
   struct Slot {
     TappedChannel tapped;
     UartDecoder decoder;
+    DriverGlitchFilter glitch_filter;
     SerialLineReport report;
   };
   void run(std::size_t slot, SampleRun run) override;
   void deliver(Slot& s);
+  void feed_bus(Slot& s);
 
   std::vector<Slot> slots_;
   double sample_rate_;
   EdgeScanner scanner_;
-  std::vector<UartCharacter> characters_;  // scratch, reused for every run
+  EventWriter& events_;
+  // Scratch, reused for every run: decoded characters, then those of ended runs and glitches.
+  std::vector<UartCharacter> characters_, bus_characters_;
+  std::vector<DriverGlitch> glitches_;
   std::uint64_t chunks_ = 0;
 };
 

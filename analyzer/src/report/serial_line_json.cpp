@@ -29,6 +29,7 @@ void append_serial_line_json(const SerialLineReport& s, std::string& o) {
   append_uint(o, s.framing_errors);
   append_json_count(o, "parity_errors", s.parity_errors);
   append_json_count(o, "breaks", s.breaks);
+  append_json_count(o, "driver_glitches", s.driver_glitches);
   o += '}';
 }
 

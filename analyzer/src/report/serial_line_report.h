@@ -20,6 +20,8 @@ struct SerialLineReport {
   std::uint64_t framing_errors = 0;
   std::uint64_t parity_errors = 0;
   std::uint64_t breaks = 0;
+  // Bytes of RS485 drivers switching on or off, kept out of the frames and the noise.
+  std::uint64_t driver_glitches = 0;
 };
 
 // The line in the text report (two lines) and in the summary's bus ("serial" and "line").

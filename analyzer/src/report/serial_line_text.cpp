@@ -16,10 +16,11 @@ void append_serial_line_text(const SerialLineReport& s, std::string& o) {
   if (std::abs(s.deviation) > 0.02) {
     o += report_line("  the rate is %.1f %% off the nearest standard rate", s.deviation * 100);
   }
-  o += report_line("  line errors: framing %llu, parity %llu, break %llu",
+  o += report_line("  line errors: framing %llu, parity %llu, break %llu; driver glitches %llu",
                    static_cast<unsigned long long>(s.framing_errors),
                    static_cast<unsigned long long>(s.parity_errors),
-                   static_cast<unsigned long long>(s.breaks));
+                   static_cast<unsigned long long>(s.breaks),
+                   static_cast<unsigned long long>(s.driver_glitches));
 }
 
 }  // namespace pvtap::analyzer

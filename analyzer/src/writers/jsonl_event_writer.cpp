@@ -113,6 +113,16 @@ class JsonlEventWriter : public EventWriter {
     end_line(o, c);
   }
 
+  void driver_glitch(const EventContext& c, const DriverGlitchEvent& g) override {
+    std::string& o = out_.buffer();
+    begin_line(o, "driver_glitch", c, g.time);
+    o += ",\"raw\":\"";
+    append_hex(o, std::span(&g.value, 1));
+    o += g.switch_on ? "\",\"switching\":\"on\"" : "\",\"switching\":\"off\"";
+    o += g.framing_error ? ",\"framing_error\":true" : ",\"framing_error\":false";
+    end_line(o, c);
+  }
+
   void gap(const EventContext& c, const SessionGap& g) override {
     std::string& o = out_.buffer();
     begin_line(o, "gap", c, g.time);

@@ -86,6 +86,18 @@ class TextEventWriter : public EventWriter {
     out_.done();
   }
 
+  void driver_glitch(const EventContext& c, const DriverGlitchEvent& g) override {
+    std::string& o = out_.buffer();
+    const std::size_t start = begin_line(o, c, g.time, 0);
+    o += "glitch";
+    pad_to(o, start, 8);
+    append_spaced_hex(o, std::span(&g.value, 1));
+    o += g.switch_on ? "  driver switching on" : "  driver switching off";
+    if (g.framing_error) o += ", framing error";
+    o += '\n';
+    out_.done();
+  }
+
   void gap(const EventContext& c, const SessionGap& g) override {
     std::string& o = out_.buffer();
     const std::size_t start = begin_line(o, c, g.time, 0);
