@@ -85,6 +85,12 @@ void add_input_options(CLI::App& audit, AuditOptions& o) {
       ->delimiter(',')
       ->allow_extra_args(false);
   audit
+      .add_option("--de", o.logic_drivers,
+                  "logic recordings: a driver-enable channel (repeatable); the report gives "
+                  "how long after each frame's last stop bit the driver was released")
+      ->type_name("NAME")
+      ->allow_extra_args(false);
+  audit
       .add_option("--threads", o.threads,
                   "1: read and analyse on one thread; 2: read capture files ahead on a second "
                   "thread (output is the same). Default: 2 when more than one CPU is available")
@@ -119,15 +125,16 @@ bool logic_inputs_fit(const AuditOptions& options, bool logic) {
   const char* why = nullptr;
   if (logic && (options.captures.size() != 1 || !options.raw_dumps.empty())) {
     why = "a logic recording is audited alone (one FILE, no --raw)";
-  } else if (!logic && !options.logic_channels.empty()) {
-    why = "--channels names the channels of a logic recording (.sr, .vcd)";
+  } else if (!logic && (!options.logic_channels.empty() || !options.logic_drivers.empty())) {
+    why = "--channels and --de name the channels of a logic recording (.sr, .vcd)";
   }
   if (why != nullptr) std::fprintf(stderr, "pvtap: %s\n", why);
   return why == nullptr;
 }
 
 int audit_logic(const AuditOptions& options, const RegisterDecoder& decoder, OutputStream& out) {
-  const LogicPlan plan = plan_logic_audit(options.captures.front(), options.logic_channels);
+  const LogicPlan plan =
+      plan_logic_audit(options.captures.front(), options.logic_channels, options.logic_drivers);
   if (!plan.error.empty()) {
     std::fprintf(stderr, "pvtap: %s\n", plan.error.c_str());
     return kExitBadInput;

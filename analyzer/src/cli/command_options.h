@@ -52,6 +52,8 @@ struct AuditOptions : CommonOptions {
   // --channels: a logic recording's channels to decode, by name; empty for every channel
   // with UART traffic.
   std::vector<std::string> logic_channels;
+  // --de: driver-enable channels of a logic recording, for the drivers' turnaround.
+  std::vector<std::string> logic_drivers;
   bool progress = false;  // draw a progress bar on stderr
   // --threads: 2 reads capture files ahead on a second thread, 1 reads and analyses on one;
   // 0 (the default) picks 2 when this process may run on more than one CPU.

@@ -2,6 +2,7 @@
 // read well.
 #include "logic/logic_plan.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 
@@ -45,13 +46,30 @@ std::string keep_talking(LogicPlan& plan, const std::vector<ProbedChannel>& prob
   return plan.channels.empty() ? "no channel carries UART traffic" : "";
 }
 
+// --de: each named channel found, and none of them read as a UART.
+std::string find_drivers(LogicPlan& plan, const LineProbe& probe,
+                         const std::vector<std::string>& drivers,
+                         std::vector<ProbedChannel>& probed) {
+  for (const std::string& name : drivers) {
+    const auto& all = probe.available();
+    const auto found =
+        std::find_if(all.begin(), all.end(), [&](const LogicChannel& c) { return c.name == name; });
+    if (found == all.end())
+      return "no channel " + name + " (the recording has: " + channel_list(all) + ")";
+    plan.drivers.push_back(*found);
+    std::erase_if(probed, [&](const ProbedChannel& p) { return p.channel.name == name; });
+  }
+  return {};
+}
+
 }  // namespace
 
 bool is_logic_recording(const std::string& path) {
   return ends_with(path, ".sr") || ends_with(path, ".vcd");
 }
 
-LogicPlan plan_logic_audit(const std::string& path, const std::vector<std::string>& names) {
+LogicPlan plan_logic_audit(const std::string& path, const std::vector<std::string>& names,
+                           const std::vector<std::string>& drivers) {
   LogicPlan plan;
   plan.path = path;
   std::error_code ec;
@@ -63,6 +81,7 @@ LogicPlan plan_logic_audit(const std::string& path, const std::vector<std::strin
   const std::string error = read_logic_file(path, probe);
   probe.finish();
   plan.sample_rate = probe.sample_rate();
+  std::vector<ProbedChannel> probed = probe.channels();
   if (!error.empty()) {
     plan.error = path + ": " + error;
   } else if (!probe.missing().empty()) {
@@ -70,8 +89,10 @@ LogicPlan plan_logic_audit(const std::string& path, const std::vector<std::strin
                  " (the recording has: " + channel_list(probe.available()) + ")";
   } else if (plan.sample_rate <= 0) {
     plan.error = path + ": the recording does not give its sample rate";
-  } else if (const std::string why = keep_talking(plan, probe.channels(), !names.empty());
-             !why.empty()) {
+  } else if (const std::string missing = find_drivers(plan, probe, drivers, probed);
+             !missing.empty()) {
+    plan.error = path + ": " + missing;
+  } else if (const std::string why = keep_talking(plan, probed, !names.empty()); !why.empty()) {
     plan.error = path + ": " + why;
   }
   return plan;

@@ -18,13 +18,15 @@ struct LogicPlan {
   std::string path;
   double sample_rate = 0;
   std::vector<ProbedChannel> channels;  // every one has a line with traffic
+  std::vector<LogicChannel> drivers;    // --de: driver-enable channels, never read as UARTs
   std::string error;                    // empty when the plan can run
 };
 
 // A decoder needs this many samples per bit to find a start bit's middle.
 inline constexpr double kMinSamplesPerBit = 4.0;
 
-// `names`: --channels, empty for every channel with UART traffic.
-LogicPlan plan_logic_audit(const std::string& path, const std::vector<std::string>& names);
+// `names`: --channels, empty for every channel with UART traffic; `drivers`: --de.
+LogicPlan plan_logic_audit(const std::string& path, const std::vector<std::string>& names,
+                           const std::vector<std::string>& drivers = {});
 
 }  // namespace pvtap::analyzer

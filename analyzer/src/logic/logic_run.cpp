@@ -35,7 +35,7 @@ LogicRun run_logic_audit(const LogicPlan& plan, Pipeline& pipeline, EventWriter&
         pipeline.add_bus(p.channel.name, logic_bus_options(pipeline, *p.line, plan.sample_rate));
     tapped.push_back(TappedChannel{p.channel, *p.line, &bus});
   }
-  UartTap tap(std::move(tapped), plan.sample_rate, events);
+  UartTap tap(std::move(tapped), plan.drivers, plan.sample_rate, events);
   LogicRun run;
   run.error = read_logic_file(plan.path, tap);
   tap.finish();

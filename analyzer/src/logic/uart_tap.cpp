@@ -5,10 +5,25 @@ namespace pvtap::analyzer {
 
 namespace {
 
-std::vector<unsigned> bits_of(const std::vector<TappedChannel>& channels) {
+// The UART channels' bits, then the DE channels'.
+std::vector<unsigned> bits_of(const std::vector<TappedChannel>& channels,
+                              const std::vector<LogicChannel>& drivers) {
   std::vector<unsigned> bits;
   for (const TappedChannel& c : channels) bits.push_back(c.channel.index);
+  for (const LogicChannel& d : drivers) bits.push_back(d.index);
   return bits;
+}
+
+std::vector<std::string> names_of(const std::vector<LogicChannel>& channels) {
+  std::vector<std::string> names;
+  for (const LogicChannel& c : channels) names.push_back(c.name);
+  return names;
+}
+
+double char_samples(const std::vector<TappedChannel>& channels, double sample_rate) {
+  if (channels.empty()) return 0;
+  const UartLine& line = channels.front().line.line;
+  return sample_rate / line.baud * line.format.bits_per_char();
 }
 
 SerialLineReport settings_of(const TappedChannel& c) {
@@ -27,8 +42,12 @@ SerialLineReport settings_of(const TappedChannel& c) {
 
 }  // namespace
 
-UartTap::UartTap(std::vector<TappedChannel> channels, double sample_rate, EventWriter& events)
-    : sample_rate_(sample_rate), scanner_(bits_of(channels)), events_(events) {
+UartTap::UartTap(std::vector<TappedChannel> channels, std::vector<LogicChannel> drivers,
+                 double sample_rate, EventWriter& events)
+    : sample_rate_(sample_rate),
+      scanner_(bits_of(channels, drivers)),
+      events_(events),
+      turnaround_(names_of(drivers), sample_rate, char_samples(channels, sample_rate)) {
   slots_.reserve(channels.size());
   for (TappedChannel& c : channels) {
     SerialLineReport report = settings_of(c);
@@ -46,6 +65,7 @@ void UartTap::samples(std::span<const std::uint8_t> data, unsigned unitsize) {
 }
 
 void UartTap::run(std::size_t slot, SampleRun run) {
+  if (slot >= slots_.size()) return turnaround_.driver_run(slot - slots_.size(), run);
   slots_[slot].decoder.feed(run, characters_);
   if (!characters_.empty()) deliver(slots_[slot]);
 }
@@ -64,10 +84,10 @@ void UartTap::deliver(Slot& s) {
     s.glitch_filter.feed(c, bus_characters_, glitches_);
   }
   characters_.clear();
-  feed_bus(s);
+  feed_bus(s, &s == &slots_.front());
 }
 
-void UartTap::feed_bus(Slot& s) {
+void UartTap::feed_bus(Slot& s, bool first) {
   const EventContext context{s.tapped.channel.name, true};
   for (const DriverGlitch& g : glitches_) {
     ++s.report.driver_glitches;
@@ -77,6 +97,7 @@ void UartTap::feed_bus(Slot& s) {
                                                      g.switch_on, c.framing_error});
   }
   for (const UartCharacter& c : bus_characters_) {
+    if (first) turnaround_.character(c);
     const auto byte = static_cast<std::uint8_t>(c.value);
     const double end = static_cast<double>(c.end) / sample_rate_;
     s.tapped.bus->feed(BusChunk{std::span(&byte, 1), end, Direction::Unknown});
@@ -91,7 +112,7 @@ void UartTap::finish() {
     s.decoder.finish(characters_);
     deliver(s);
     s.glitch_filter.flush(bus_characters_, glitches_);
-    feed_bus(s);
+    feed_bus(s, &s == &slots_.front());
   }
 }
 
@@ -103,6 +124,7 @@ double UartTap::end_time() const {
 std::vector<SerialLineReport> UartTap::lines() const {
   std::vector<SerialLineReport> out;
   for (const Slot& s : slots_) out.push_back(s.report);
+  if (!out.empty()) out.front().turnarounds = turnaround_.turnarounds();
   return out;
 }
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "events/event_writer.h"
+#include "logic/driver_turnaround.h"
 #include "logic/edge_scanner.h"
 #include "logic/sigrok_file.h"
 #include "pvtap/session/bus_session.h"
@@ -25,7 +26,9 @@ struct TappedChannel {
 class UartTap final : public LogicSink, private RunConsumer {
  public:
   // Driver glitches go to `events` (the buses' other events come from the buses).
-  UartTap(std::vector<TappedChannel> channels, double sample_rate, EventWriter& events);
+  // `drivers`: DE channels whose releases are timed against the first channel's frames.
+  UartTap(std::vector<TappedChannel> channels, std::vector<LogicChannel> drivers,
+          double sample_rate, EventWriter& events);
 
   void begin(const std::vector<LogicChannel>& channels, double sample_rate) override;
   void samples(std::span<const std::uint8_t> data, unsigned unitsize) override;
@@ -47,12 +50,13 @@ class UartTap final : public LogicSink, private RunConsumer {
   };
   void run(std::size_t slot, SampleRun run) override;
   void deliver(Slot& s);
-  void feed_bus(Slot& s);
+  void feed_bus(Slot& s, bool first);
 
   std::vector<Slot> slots_;
   double sample_rate_;
   EdgeScanner scanner_;
   EventWriter& events_;
+  TurnaroundWatch turnaround_;
   // Scratch, reused for every run: decoded characters, then those of ended runs and glitches.
   std::vector<UartCharacter> characters_, bus_characters_;
   std::vector<DriverGlitch> glitches_;

@@ -4,6 +4,33 @@
 #include "report/serial_line_report.h"
 
 namespace pvtap::analyzer {
+namespace {
+
+// "turnaround":[{"driver":"DE_1","station":1,"frames":9,"release_us":{...},"truncated":0}]
+void append_turnarounds_json(const std::vector<DriverTurnaround>& list, std::string& o) {
+  append_json_key(o, "turnaround");
+  o += '[';
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const DriverTurnaround& t = list[i];
+    o += i ? ",{\"driver\":" : "{\"driver\":";
+    append_json_string(o, t.driver);
+    append_json_count(o, "station", t.station);
+    append_json_count(o, "frames", t.frames);
+    append_json_key(o, "release_us");
+    o += "{\"min\":";
+    append_fixed(o, t.min_us, 1);
+    append_json_key(o, "mean");
+    append_fixed(o, t.mean_us, 1);
+    append_json_key(o, "max");
+    append_fixed(o, t.max_us, 1);
+    o += '}';
+    append_json_count(o, "truncated", t.truncated);
+    o += '}';
+  }
+  o += ']';
+}
+
+}  // namespace
 
 void append_serial_line_json(const SerialLineReport& s, std::string& o) {
   append_json_key(o, "serial");
@@ -31,6 +58,7 @@ void append_serial_line_json(const SerialLineReport& s, std::string& o) {
   append_json_count(o, "breaks", s.breaks);
   append_json_count(o, "driver_glitches", s.driver_glitches);
   o += '}';
+  if (!s.turnarounds.empty()) append_turnarounds_json(s.turnarounds, o);
 }
 
 }  // namespace pvtap::analyzer

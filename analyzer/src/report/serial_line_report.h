@@ -3,8 +3,19 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace pvtap::analyzer {
+
+// DriverTurnaround: how long after a frame's last stop bit a driver-enable channel fell, over
+// the frames of one station (their first byte); negative: before it ended (a truncated byte).
+struct DriverTurnaround {
+  std::string driver;  // the DE channel
+  std::uint8_t station = 0;
+  std::uint64_t frames = 0;
+  std::uint64_t truncated = 0;  // frames whose last stop bit the driver cut short
+  double min_us = 0, mean_us = 0, max_us = 0;
+};
 
 // SerialLineReport: the line's settings as found (or given) and the errors the UART saw.
 struct SerialLineReport {
@@ -22,6 +33,7 @@ struct SerialLineReport {
   std::uint64_t breaks = 0;
   // Bytes of RS485 drivers switching on or off, kept out of the frames and the noise.
   std::uint64_t driver_glitches = 0;
+  std::vector<DriverTurnaround> turnarounds;  // --de: per DE channel and station
 };
 
 // The line in the text report (two lines) and in the summary's bus ("serial" and "line").

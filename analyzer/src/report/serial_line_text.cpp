@@ -5,6 +5,24 @@
 #include "report/serial_line_report.h"
 
 namespace pvtap::analyzer {
+namespace {
+
+// A driver released before the last stop bit ended cut that byte short: a finding.
+void append_turnaround_text(const DriverTurnaround& t, std::string& o) {
+  o += report_line(
+      "  driver %s, station %u: released %.1f us after the last stop bit "
+      "(%.1f to %.1f us, %llu frames)",
+      t.driver.c_str(), unsigned{t.station}, t.mean_us, t.min_us, t.max_us,
+      static_cast<unsigned long long>(t.frames));
+  if (t.truncated > 0) {
+    o += report_line(
+        "  driver %s, station %u: released before the last stop bit ended in %llu "
+        "frames: a truncated last byte",
+        t.driver.c_str(), unsigned{t.station}, static_cast<unsigned long long>(t.truncated));
+  }
+}
+
+}  // namespace
 
 void append_serial_line_text(const SerialLineReport& s, std::string& o) {
   const char parity = s.parity == "even" ? 'E' : s.parity == "odd" ? 'O' : 'N';
@@ -21,6 +39,7 @@ void append_serial_line_text(const SerialLineReport& s, std::string& o) {
                    static_cast<unsigned long long>(s.parity_errors),
                    static_cast<unsigned long long>(s.breaks),
                    static_cast<unsigned long long>(s.driver_glitches));
+  for (const DriverTurnaround& t : s.turnarounds) append_turnaround_text(t, o);
 }
 
 }  // namespace pvtap::analyzer

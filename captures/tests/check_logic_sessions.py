@@ -1,0 +1,120 @@
+#!/usr/bin/env python3
+"""pvtap audit on sessions pvtap-sim --sr writes here, against their ground truth.
+
+    check_logic_sessions.py PVTAP PVTAP_SIM SCRATCH MODE
+
+drivers: with every DE channel named (--de), each talker's release after its frames' last stop
+bit is the truth's within 3 us, over every frame it sent (per station for the master); a
+station that releases half a bit before its last stop bit ends has every one of its frames
+truncated, in the summary and as a finding in the text report; --de naming a channel that is
+not there is refused in one line with exit 2.
+Exit 0 when every check holds, 1 with the failures listed.
+"""
+import json
+import os
+import subprocess
+import sys
+
+COMMON = ["--dialect", "gsl", "--inverters", "3", "--duration", "15", "--period", "5"]
+
+
+class Checks:
+    def __init__(self):
+        self.failures = []
+
+    def equal(self, what, actual, expected):
+        if actual != expected:
+            self.failures.append(f"{what}: got {actual!r}, expected {expected!r}")
+
+    def true(self, what, condition):
+        if not condition:
+            self.failures.append(what)
+
+    def finish(self):
+        for failure in self.failures:
+            print("FAIL:", failure)
+        print("all checks hold" if not self.failures else f"{len(self.failures)} failed")
+        return 1 if self.failures else 0
+
+
+def simulate(sim, scratch, name, *options):
+    session = os.path.join(scratch, name + ".sr")
+    truth = os.path.join(scratch, name + ".truth.json")
+    subprocess.run([sim, *COMMON, *options, "--sr", session, "--truth", truth], check=True)
+    with open(truth, encoding="utf-8") as f:
+        return session, json.load(f)
+
+
+def audit(pvtap, *args):
+    return subprocess.run([pvtap, "audit", *args], capture_output=True, text=True, timeout=120,
+                          check=False)
+
+
+def summary(result):
+    lines = [l for l in result.stdout.splitlines() if l.startswith('{"type":"summary"')]
+    return json.loads(lines[-1]) if lines else None
+
+
+def expected_turnarounds(truth):
+    """(driver channel, station) -> (release_us, frames, truncated) from the truth."""
+    drivers = {e["talker"]: e for e in truth["logic_events"] if e["kind"] == "driver"}
+    out = {}
+    for event in truth["events"]:
+        if event["type"] != "frame":
+            continue
+        talker = "master" if event["role"] == "request" else event["station"]
+        name = "DE_M" if talker == "master" else f"DE_{talker}"
+        d = drivers[talker]
+        key = (name, event["station"])
+        release, frames, truncated = out.get(key, (d["release_us"], 0, d["truncated"]))
+        out[key] = (release, frames + 1, truncated)
+    return out
+
+
+def check_drivers(checks, pvtap, sim, scratch):
+    session, truth = simulate(sim, scratch, "drivers", "--seed", "31", "--baud", "19200",
+                              "--sr-channels", "bus,de", "--glitches", "40",
+                              "--truncate-last-byte", "--jitter", "2")
+    des = [c for c in truth["logic_events"][0]["channels"] if c.startswith("DE_")]
+    args = ["--channels", "A-B"] + [a for d in des for a in ("--de", d)]
+    result = audit(pvtap, "--format", "jsonl", *args, session)
+    checks.equal("drivers: exit status", result.returncode, 0)
+    s = summary(result)
+    if s is None:
+        checks.true(f"drivers: a summary ({result.stderr.strip()})", False)
+        return
+    found = {(t["driver"], t["station"]): t for t in s["buses"][0]["turnaround"]}
+    expected = expected_turnarounds(truth)
+    checks.equal("drivers: (channel, station) pairs", sorted(found), sorted(expected))
+    bit_us = 1e6 / 19200
+    for key, (release, frames, truncated) in expected.items():
+        t = found.get(key)
+        if t is None:
+            continue
+        checks.equal(f"drivers: {key} frames", t["frames"], frames)
+        checks.true(f"drivers: {key} release {t['release_us']} near {release} us",
+                    abs(t["release_us"]["mean"] - release) <= 3.0)
+        checks.equal(f"drivers: {key} truncated", t["truncated"], frames if truncated else 0)
+        if truncated:
+            checks.true(f"drivers: {key} released before the stop bit ended",
+                        -0.5 * bit_us - 3 <= t["release_us"]["max"] < 0)
+    text = audit(pvtap, *args, session).stdout
+    checks.true("drivers: the text report names the truncated last byte",
+                "frames: a truncated last byte" in text)
+    bad = audit(pvtap, "--channels", "A-B", "--de", "DE_9", session)
+    checks.equal("drivers: --de DE_9 exit status", bad.returncode, 2)
+    checks.true(f"drivers: --de DE_9 refused in one line ({bad.stderr!r})",
+                bad.stderr.count("\n") == 1 and "no channel DE_9" in bad.stderr
+                and bad.stdout == "")
+
+
+def main():
+    pvtap, sim, scratch, mode = sys.argv[1:5]
+    os.makedirs(scratch, exist_ok=True)
+    checks = Checks()
+    {"drivers": check_drivers}[mode](checks, pvtap, sim, scratch)
+    return checks.finish()
+
+
+if __name__ == "__main__":
+    sys.exit(main())
