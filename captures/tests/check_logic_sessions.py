@@ -8,6 +8,10 @@ bit is the truth's within 3 us, over every frame it sent (per station for the ma
 station that releases half a bit before its last stop bit ends has every one of its frames
 truncated, in the summary and as a finding in the text report; --de naming a channel that is
 not there is refused in one line with exit 2.
+channels: a bus whose directions are on two channels (the master's TX and RX) is found as one
+bus without --channels, and with --channels TX,RX: every frame, the truth's requests, replies
+and timeouts, the planted t3.5 violations; beside the A-B channel it is a second bus, and
+--channels is repeatable for both; three names in one --channels are refused in one line.
 Exit 0 when every check holds, 1 with the failures listed.
 """
 import json
@@ -108,11 +112,62 @@ def check_drivers(checks, pvtap, sim, scratch):
                 and bad.stdout == "")
 
 
+SUMMARY_KEYS = ("frames", "requests", "responses", "timeouts", "bad_checks", "noise_bytes")
+
+
+def check_bus_totals(checks, what, bus_summary, result, truth):
+    if bus_summary is None:
+        checks.true(f"{what}: the bus is there ({result.stderr.strip()})", False)
+        return
+    for key in SUMMARY_KEYS:
+        checks.equal(f"{what}: {key}", bus_summary.get(key), truth["summary"][key])
+
+
+def buses_of(result):
+    """Each bus of the summary with its own totals, by name."""
+    s = summary(result)
+    if s is None:
+        return {}
+    out = {}
+    for b in s["buses"]:
+        totals = {"frames": b["frames"], "t35": b["timing"]["t35_violations"]}
+        out[b["bus"]] = totals
+    return out
+
+
+def check_channels(checks, pvtap, sim, scratch):
+    session, truth = simulate(sim, scratch, "channels", "--seed", "41", "--baud", "9600",
+                              "--faults", "missing=10,slow=5", "--sr-channels", "tx,rx",
+                              "--violations", "2", "--format", "8N2")
+    for what, args in (("auto", ()), ("--channels TX,RX", ("--channels", "TX,RX"))):
+        result = audit(pvtap, "--format", "jsonl", *args, session)
+        checks.equal(f"channels {what}: exit status", result.returncode, 0)
+        s = summary(result)
+        checks.equal(f"channels {what}: buses", [b["bus"] for b in (s or {}).get("buses", [])],
+                     ["TX,RX"])
+        check_bus_totals(checks, f"channels {what}", s, result, truth)
+        if s:
+            checks.equal(f"channels {what}: t3.5 violations",
+                         s["buses"][0]["timing"]["t35_violations"], truth["logic"]["early_replies"])
+    session, truth = simulate(sim, scratch, "both", "--seed", "42", "--baud", "9600",
+                              "--sr-channels", "bus,tx,rx")
+    frames = truth["summary"]["frames"]
+    for what, args in (("auto", ()), ("repeated", ("--channels", "A-B", "--channels", "TX,RX"))):
+        result = audit(pvtap, "--format", "jsonl", *args, session)
+        buses = {name: b["frames"] for name, b in buses_of(result).items()}
+        checks.equal(f"A-B beside TX,RX ({what}): buses and frames", buses,
+                     {"A-B": frames, "TX,RX": frames})
+    bad = audit(pvtap, "--channels", "TX,RX,A-B", session)
+    checks.equal("three names: exit status", bad.returncode, 2)
+    checks.true(f"three names refused in one line ({bad.stderr!r})",
+                bad.stderr.count("\n") == 1 and bad.stdout == "")
+
+
 def main():
     pvtap, sim, scratch, mode = sys.argv[1:5]
     os.makedirs(scratch, exist_ok=True)
     checks = Checks()
-    {"drivers": check_drivers}[mode](checks, pvtap, sim, scratch)
+    {"drivers": check_drivers, "channels": check_channels}[mode](checks, pvtap, sim, scratch)
     return checks.finish()
 
 

@@ -79,10 +79,10 @@ void add_input_options(CLI::App& audit, AuditOptions& o) {
       ->allow_extra_args(false);
   audit
       .add_option("--channels", o.logic_channels,
-                  "logic recordings: the channels to decode, by name (comma-separated). "
-                  "Default: every channel with UART traffic")
-      ->type_name("NAME")
-      ->delimiter(',')
+                  "logic recordings: a bus to decode, on one channel or on two (the requests' "
+                  "and the replies', comma-separated); repeatable. Default: every channel "
+                  "with UART traffic")
+      ->type_name("NAME[,NAME]")
       ->allow_extra_args(false);
   audit
       .add_option("--de", o.logic_drivers,

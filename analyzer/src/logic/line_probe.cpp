@@ -3,6 +3,8 @@
 
 #include <algorithm>
 
+#include "logic/channel_pairing.h"
+
 namespace pvtap::analyzer {
 
 LineProbe::LineProbe(std::vector<std::string> names) : names_(std::move(names)) {}
@@ -15,7 +17,7 @@ void LineProbe::begin(const std::vector<LogicChannel>& channels, double sample_r
     const bool asked =
         names_.empty() || std::find(names_.begin(), names_.end(), c.name) != names_.end();
     if (!asked || c.index >= 64) continue;
-    probed_.push_back(ProbedChannel{c, std::nullopt});
+    probed_.push_back(ProbedChannel{c, std::nullopt, {}, 0});
     bits.push_back(c.index);
   }
   for (const std::string& name : names_) {
@@ -48,6 +50,8 @@ void LineProbe::finish() {
   if (sample_rate_ <= 0) return;
   for (std::size_t i = 0; i < probed_.size(); ++i) {
     probed_[i].line = detectors_[i].decide(sample_rate_);
+    for (const SampleRun& r : detectors_[i].runs()) probed_[i].probed += r.count;
+    if (probed_[i].line) probed_[i].bursts = bursts_of(detectors_[i].runs(), *probed_[i].line);
   }
 }
 

@@ -13,10 +13,17 @@
 
 namespace pvtap::analyzer {
 
+// Burst: samples [start, end) of a channel where characters follow each other closely.
+struct Burst {
+  std::uint64_t start = 0, end = 0;
+};
+
 // ProbedChannel: a channel and what its samples say.
 struct ProbedChannel {
   LogicChannel channel;
   std::optional<DetectedLine> line;  // nullopt: no pulse common enough to be a bit
+  std::vector<Burst> bursts;         // in the stretch probed, for pairing directions
+  std::uint64_t probed = 0;          // samples the stretch covers
 };
 
 class LineProbe final : public LogicSink, private RunConsumer {

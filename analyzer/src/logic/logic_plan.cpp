@@ -2,6 +2,8 @@
 // read well.
 #include "logic/logic_plan.h"
 
+#include "logic/channel_pairing.h"
+
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -62,16 +64,62 @@ std::string find_drivers(LogicPlan& plan, const LineProbe& probe,
   return {};
 }
 
+// --channels "A" or "A,B": the groups of names, or why they are no buses.
+std::string read_groups(const std::vector<std::string>& given,
+                        std::vector<std::vector<std::string>>& groups,
+                        std::vector<std::string>& names) {
+  for (const std::string& text : given) {
+    std::vector<std::string> group;
+    std::size_t from = 0;
+    while (from <= text.size()) {
+      const std::size_t comma = std::min(text.find(',', from), text.size());
+      group.push_back(text.substr(from, comma - from));
+      from = comma + 1;
+    }
+    if (group.size() > 2 || std::find(group.begin(), group.end(), "") != group.end())
+      return "--channels " + text +
+             ": one channel, or the two directions of one bus (REQUESTS,REPLIES)";
+    for (const std::string& n : group) {
+      if (std::find(names.begin(), names.end(), n) != names.end())
+        return "--channels: channel " + n + " is named twice";
+      names.push_back(n);
+    }
+    groups.push_back(std::move(group));
+  }
+  return {};
+}
+
+// Each group's channels by their place in the plan; without groups, each channel a bus.
+void form_buses(LogicPlan& plan, const std::vector<std::vector<std::string>>& groups) {
+  if (groups.empty()) {
+    plan.buses = pair_channels(plan.channels);
+    return;
+  }
+  for (const auto& group : groups) {
+    std::vector<std::size_t> bus;
+    for (const std::string& name : group)
+      for (std::size_t i = 0; i < plan.channels.size(); ++i)
+        if (plan.channels[i].channel.name == name) bus.push_back(i);
+    plan.buses.push_back(std::move(bus));
+  }
+}
+
 }  // namespace
 
 bool is_logic_recording(const std::string& path) {
   return ends_with(path, ".sr") || ends_with(path, ".vcd");
 }
 
-LogicPlan plan_logic_audit(const std::string& path, const std::vector<std::string>& names,
+LogicPlan plan_logic_audit(const std::string& path, const std::vector<std::string>& buses,
                            const std::vector<std::string>& drivers) {
   LogicPlan plan;
   plan.path = path;
+  std::vector<std::vector<std::string>> groups;
+  std::vector<std::string> names;
+  if (const std::string why = read_groups(buses, groups, names); !why.empty()) {
+    plan.error = why;
+    return plan;
+  }
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) {
     plan.error = path + ": no such file";
@@ -94,6 +142,8 @@ LogicPlan plan_logic_audit(const std::string& path, const std::vector<std::strin
     plan.error = path + ": " + missing;
   } else if (const std::string why = keep_talking(plan, probed, !names.empty()); !why.empty()) {
     plan.error = path + ": " + why;
+  } else {
+    form_buses(plan, groups);
   }
   return plan;
 }

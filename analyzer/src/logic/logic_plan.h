@@ -19,14 +19,18 @@ struct LogicPlan {
   double sample_rate = 0;
   std::vector<ProbedChannel> channels;  // every one has a line with traffic
   std::vector<LogicChannel> drivers;    // --de: driver-enable channels, never read as UARTs
-  std::string error;                    // empty when the plan can run
+  // The buses, as indexes into `channels`: one channel carrying both directions, or two, the
+  // requests' and the replies'.
+  std::vector<std::vector<std::size_t>> buses;
+  std::string error;  // empty when the plan can run
 };
 
 // A decoder needs this many samples per bit to find a start bit's middle.
 inline constexpr double kMinSamplesPerBit = 4.0;
 
-// `names`: --channels, empty for every channel with UART traffic; `drivers`: --de.
-LogicPlan plan_logic_audit(const std::string& path, const std::vector<std::string>& names,
+// `buses`: --channels, each "NAME" (a bus on one channel) or "REQUESTS,REPLIES" (the two
+// directions of one bus); empty for every channel with UART traffic. `drivers`: --de.
+LogicPlan plan_logic_audit(const std::string& path, const std::vector<std::string>& buses,
                            const std::vector<std::string>& drivers = {});
 
 }  // namespace pvtap::analyzer

@@ -26,14 +26,30 @@ std::string link_text(const LogicPlan& plan) {
   return text;
 }
 
+void merge_errors(const SerialLineReport& from, SerialLineReport& into) {
+  into.framing_errors += from.framing_errors;
+  into.parity_errors += from.parity_errors;
+  into.breaks += from.breaks;
+  into.driver_glitches += from.driver_glitches;
+}
+
 }  // namespace
 
 LogicRun run_logic_audit(const LogicPlan& plan, Pipeline& pipeline, EventWriter& events) {
   std::vector<TappedChannel> tapped;
-  for (const ProbedChannel& p : plan.channels) {
+  int pairs = 0;
+  for (const std::vector<std::size_t>& group : plan.buses) {
+    const ProbedChannel& first = plan.channels[group.front()];
+    std::string name = first.channel.name;
+    for (std::size_t i = 1; i < group.size(); ++i)
+      name += "," + plan.channels[group[i]].channel.name;
     BusSession& bus =
-        pipeline.add_bus(p.channel.name, logic_bus_options(pipeline, *p.line, plan.sample_rate));
-    tapped.push_back(TappedChannel{p.channel, *p.line, &bus});
+        pipeline.add_bus(name, logic_bus_options(pipeline, *first.line, plan.sample_rate));
+    const int pair = group.size() == 2 ? pairs++ : -1;
+    for (std::size_t side = 0; side < group.size(); ++side) {
+      const ProbedChannel& p = plan.channels[group[side]];
+      tapped.push_back(TappedChannel{p.channel, *p.line, &bus, pair, side});
+    }
   }
   UartTap tap(std::move(tapped), plan.drivers, plan.sample_rate, events);
   LogicRun run;
@@ -50,10 +66,18 @@ LogicRun run_logic_audit(const LogicPlan& plan, Pipeline& pipeline, EventWriter&
   return run;
 }
 
+// A bus on two channels reports its requests' line (the first), with the errors of both.
 void add_serial_lines(const LogicRun& run, AuditReport& report) {
   for (BusFindings& bus : report.buses) {
+    const std::string names = "," + bus.name + ",";
     for (const SerialLineReport& line : run.lines) {
-      if (line.channel == bus.name) bus.serial = line;
+      if (names.find("," + line.channel + ",") == std::string::npos) continue;
+      if (bus.serial) {
+        merge_errors(line, *bus.serial);
+      } else {
+        bus.serial = line;
+        bus.serial->channel = bus.name;
+      }
     }
   }
   if (!run.lines.empty()) report.settings.baud = run.lines.front().baud;

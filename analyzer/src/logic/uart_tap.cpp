@@ -20,6 +20,10 @@ std::vector<std::string> names_of(const std::vector<LogicChannel>& channels) {
   return names;
 }
 
+double char_samples_of(const DetectedLine& d, double sample_rate) {
+  return sample_rate / d.line.baud * (d.line.format.bits_per_char() + 1);
+}
+
 double char_samples(const std::vector<TappedChannel>& channels, double sample_rate) {
   if (channels.empty()) return 0;
   const UartLine& line = channels.front().line.line;
@@ -50,6 +54,7 @@ UartTap::UartTap(std::vector<TappedChannel> channels, std::vector<LogicChannel> 
       turnaround_(names_of(drivers), sample_rate, char_samples(channels, sample_rate)) {
   slots_.reserve(channels.size());
   for (TappedChannel& c : channels) {
+    if (c.pair >= 0) pairs_.resize(std::max(pairs_.size(), static_cast<std::size_t>(c.pair) + 1));
     SerialLineReport report = settings_of(c);
     UartDecoder decoder(c.line.line);
     DriverGlitchFilter filter(c.line.line);
@@ -68,6 +73,24 @@ void UartTap::run(std::size_t slot, SampleRun run) {
   if (slot >= slots_.size()) return turnaround_.driver_run(slot - slots_.size(), run);
   slots_[slot].decoder.feed(run, characters_);
   if (!characters_.empty()) deliver(slots_[slot]);
+  if (slots_[slot].tapped.pair >= 0) feed_pair(slots_[slot]);
+}
+
+// Nothing earlier can still come from a channel than its held run or, the decoder being in a
+// character perhaps, a character before the samples it has read.
+void UartTap::feed_pair(Slot& s) {
+  const double behind =
+      static_cast<double>(s.decoder.position()) - char_samples_of(s.tapped.line, sample_rate_);
+  const std::uint64_t read = behind > 0 ? static_cast<std::uint64_t>(behind) : 0;
+  DirectionMerge& merge = pairs_[static_cast<std::size_t>(s.tapped.pair)];
+  merge.advance(s.tapped.side, s.glitch_filter.held_from(read));
+  merge.release(merged_);
+  for (const DirectedCharacter& d : merged_) {
+    const auto byte = static_cast<std::uint8_t>(d.character.value);
+    const double end = static_cast<double>(d.character.end) / sample_rate_;
+    s.tapped.bus->feed(BusChunk{std::span(&byte, 1), end, d.direction});
+  }
+  merged_.clear();
 }
 
 // A break carries no byte; a character with a line error still does (the frame around it
@@ -98,6 +121,10 @@ void UartTap::feed_bus(Slot& s, bool first) {
   }
   for (const UartCharacter& c : bus_characters_) {
     if (first) turnaround_.character(c);
+    if (s.tapped.pair >= 0) {
+      pairs_[static_cast<std::size_t>(s.tapped.pair)].add(s.tapped.side, c);
+      continue;
+    }
     const auto byte = static_cast<std::uint8_t>(c.value);
     const double end = static_cast<double>(c.end) / sample_rate_;
     s.tapped.bus->feed(BusChunk{std::span(&byte, 1), end, Direction::Unknown});
@@ -113,6 +140,17 @@ void UartTap::finish() {
     deliver(s);
     s.glitch_filter.flush(bus_characters_, glitches_);
     feed_bus(s, &s == &slots_.front());
+  }
+  // Every pair's last characters, each to its bus.
+  for (Slot& s : slots_) {
+    if (s.tapped.pair < 0 || s.tapped.side != 0) continue;
+    pairs_[static_cast<std::size_t>(s.tapped.pair)].finish(merged_);
+    for (const DirectedCharacter& d : merged_) {
+      const auto byte = static_cast<std::uint8_t>(d.character.value);
+      s.tapped.bus->feed(BusChunk{
+          std::span(&byte, 1), static_cast<double>(d.character.end) / sample_rate_, d.direction});
+    }
+    merged_.clear();
   }
 }
 

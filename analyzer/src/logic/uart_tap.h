@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "events/event_writer.h"
+#include "logic/direction_merge.h"
 #include "logic/driver_turnaround.h"
 #include "logic/edge_scanner.h"
 #include "logic/sigrok_file.h"
@@ -21,6 +22,10 @@ struct TappedChannel {
   LogicChannel channel;
   DetectedLine line;
   BusSession* bus = nullptr;
+  // One direction of a bus on two channels: the pair's index and its side (0: requests,
+  // 1: replies); none for a channel that is a bus of its own.
+  int pair = -1;
+  std::size_t side = 0;
 };
 
 class UartTap final : public LogicSink, private RunConsumer {
@@ -51,12 +56,15 @@ class UartTap final : public LogicSink, private RunConsumer {
   void run(std::size_t slot, SampleRun run) override;
   void deliver(Slot& s);
   void feed_bus(Slot& s, bool first);
+  void feed_pair(Slot& s);
 
   std::vector<Slot> slots_;
   double sample_rate_;
   EdgeScanner scanner_;
   EventWriter& events_;
   TurnaroundWatch turnaround_;
+  std::vector<DirectionMerge> pairs_;
+  std::vector<DirectedCharacter> merged_;  // scratch
   // Scratch, reused for every run: decoded characters, then those of ended runs and glitches.
   std::vector<UartCharacter> characters_, bus_characters_;
   std::vector<DriverGlitch> glitches_;

@@ -31,6 +31,10 @@ class DriverGlitchFilter {
   // The next character (no breaks); runs it ends go to `out` and `glitches`.
   void feed(const UartCharacter& c, std::vector<UartCharacter>& out,
             std::vector<DriverGlitch>& glitches);
+  // Where the held run starts (none held: `otherwise`): nothing earlier is still to come.
+  std::uint64_t held_from(std::uint64_t otherwise) const {
+    return run_.empty() ? otherwise : run_.front().start;
+  }
   // The samples ended: the held run is given out.
   void flush(std::vector<UartCharacter>& out, std::vector<DriverGlitch>& glitches);
 
