@@ -59,7 +59,7 @@ zip_int64_t chunk_callback(void* state, void* out, zip_uint64_t len, zip_source_
       return static_cast<zip_int64_t>(n);
     }
     case ZIP_SOURCE_CLOSE:
-      chunk->data = {};  // one chunk in memory at a time
+      chunk->data = {};
       return 0;
     case ZIP_SOURCE_STAT: {
       auto* st = static_cast<zip_stat_t*>(out);

@@ -8,8 +8,8 @@
 
 namespace pvtap::sim {
 
-// Returns an error text, empty on success. The samples are rendered one chunk at a time as
-// the archive is written, so a long session is never held whole.
+// Returns an error text, empty on success. The samples are rendered chunk by chunk as libzip
+// asks for them (libzip itself holds about a byte per sample until the archive is closed).
 std::string write_srzip(const LogicSignals& signals, const std::string& path);
 
 }  // namespace pvtap::sim
