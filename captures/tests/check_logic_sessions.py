@@ -10,7 +10,8 @@ truncated, in the summary and as a finding in the text report; --de naming a cha
 not there is refused in one line with exit 2.
 channels: a bus whose directions are on two channels (the master's TX and RX) is found as one
 bus without --channels, and with --channels TX,RX: every frame, the truth's requests, replies
-and timeouts, the planted t3.5 violations; beside the A-B channel it is a second bus, and
+and timeouts, the planted t3.5 violations; beside the A-B channel it is a second bus (and the
+driver-enable channels none), and
 --channels is repeatable for both; three names in one --channels are refused in one line.
 Exit 0 when every check holds, 1 with the failures listed.
 """
@@ -149,8 +150,9 @@ def check_channels(checks, pvtap, sim, scratch):
         if s:
             checks.equal(f"channels {what}: t3.5 violations",
                          s["buses"][0]["timing"]["t35_violations"], truth["logic"]["early_replies"])
+    # The DE channels' pulses read as slow characters but never as frames: no buses.
     session, truth = simulate(sim, scratch, "both", "--seed", "42", "--baud", "9600",
-                              "--sr-channels", "bus,tx,rx")
+                              "--sr-channels", "bus,tx,rx,de")
     frames = truth["summary"]["frames"]
     for what, args in (("auto", ()), ("repeated", ("--channels", "A-B", "--channels", "TX,RX"))):
         result = audit(pvtap, "--format", "jsonl", *args, session)

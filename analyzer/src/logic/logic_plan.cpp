@@ -32,6 +32,13 @@ std::string too_slow(const ProbedChannel& p, double sample_rate) {
   return text;
 }
 
+// Without --channels, a channel whose frames never check beside one whose frames do is no bus:
+// a driver-enable line's pulses read as slow characters, never as frames.
+void drop_frameless(std::vector<ProbedChannel>& channels) {
+  const auto frameless = [](const ProbedChannel& p) { return p.line->trial.good_frames == 0; };
+  if (!std::all_of(channels.begin(), channels.end(), frameless)) std::erase_if(channels, frameless);
+}
+
 // The channels asked for must all talk; without --channels, those that do are kept.
 std::string keep_talking(LogicPlan& plan, const std::vector<ProbedChannel>& probed, bool asked) {
   for (const ProbedChannel& p : probed) {
@@ -45,6 +52,7 @@ std::string keep_talking(LogicPlan& plan, const std::vector<ProbedChannel>& prob
       return "channel " + p.channel.name + " carries no UART traffic";
     }
   }
+  if (!asked) drop_frameless(plan.channels);
   return plan.channels.empty() ? "no channel carries UART traffic" : "";
 }
 
