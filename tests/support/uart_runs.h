@@ -28,7 +28,7 @@ class UartRuns {
     hold(false, 1);
     unsigned ones = 0;
     for (unsigned i = 0; i < format_.data_bits; ++i) {
-      const bool bit = ((value >> i) & 1u) != 0;
+      const bool bit = ((unsigned{value} >> i) & 1u) != 0;
       ones += bit ? 1 : 0;
       hold(bit, 1);
     }
