@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "report/serial_line_report.h"
+
 namespace pvtap::analyzer {
 
 // LineErrorCounts: a serial driver's error counters (TIOCGICOUNT) since the port was opened.
@@ -34,6 +36,8 @@ struct DeviceReport {
   double outage_seconds = 0;  // total time without the device
   bool lost_at_end = false;   // the device was gone when the capture stopped
   std::string last_error;     // the last open/read error, for the report
+  // --baud auto: the line the search settled on last; nullopt when it never settled.
+  std::optional<SerialLineReport> found_line;
 };
 
 // InterfaceReport: a live network capture (libpcap's counters at the end).

@@ -36,10 +36,12 @@ void append_serial_line_json(const SerialLineReport& s, std::string& o) {
   append_json_key(o, "serial");
   o += "{\"baud\":";
   append_uint(o, s.baud);
-  append_json_key(o, "measured_baud");
-  append_fixed(o, s.measured_baud, 1);
-  append_json_key(o, "deviation_percent");
-  append_fixed(o, s.deviation * 100, 2);
+  if (s.measured) {
+    append_json_key(o, "measured_baud");
+    append_fixed(o, s.measured_baud, 1);
+    append_json_key(o, "deviation_percent");
+    append_fixed(o, s.deviation * 100, 2);
+  }
   append_json_key(o, "parity");
   append_json_string(o, s.parity);
   append_json_count(o, "data_bits", s.data_bits);
@@ -51,6 +53,7 @@ void append_serial_line_json(const SerialLineReport& s, std::string& o) {
   append_json_key(o, "channel");
   append_json_string(o, s.channel);
   o += '}';
+  if (!s.has_line_errors) return;
   append_json_key(o, "line");
   o += "{\"framing_errors\":";
   append_uint(o, s.framing_errors);

@@ -27,7 +27,12 @@ struct SerialLineReport {
   unsigned stop_bits = 1;
   bool inverted = false;  // the line idles low
   bool detected = true;   // found from the samples (not given)
-  std::string channel;    // the logic channel it was read from, as the recording names it
+  std::string how_found = "found from the samples";
+  // A serial tap's search reads bytes, not pulses: no measured rate, and its line errors are
+  // the driver's counters of the device's report.
+  bool measured = true;
+  bool has_line_errors = true;
+  std::string channel;  // the logic channel it was read from, as the recording names it
   std::uint64_t framing_errors = 0;
   std::uint64_t parity_errors = 0;
   std::uint64_t breaks = 0;

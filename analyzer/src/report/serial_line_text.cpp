@@ -26,9 +26,14 @@ void append_turnaround_text(const DriverTurnaround& t, std::string& o) {
 
 void append_serial_line_text(const SerialLineReport& s, std::string& o) {
   const char parity = s.parity == "even" ? 'E' : s.parity == "odd" ? 'O' : 'N';
+  if (!s.measured) {
+    o += report_line("serial line on %s: %u baud %u%c%u, %s", s.channel.c_str(), s.baud,
+                     s.data_bits, parity, s.stop_bits, s.how_found.c_str());
+    return;
+  }
   o += report_line("serial line on channel %s: %u baud %u%c%u%s, %s (measured %.0f baud, %+.2f %%)",
                    s.channel.c_str(), s.baud, s.data_bits, parity, s.stop_bits,
-                   s.inverted ? " inverted" : "", s.detected ? "found from the samples" : "given",
+                   s.inverted ? " inverted" : "", s.detected ? s.how_found.c_str() : "given",
                    s.measured_baud, s.deviation * 100);
   // Over 2 % the rate is no standard one: worth a look at the device's clock or settings.
   if (std::abs(s.deviation) > 0.02) {

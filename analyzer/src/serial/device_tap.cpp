@@ -11,14 +11,28 @@ std::string line_text(std::uint32_t baud, SerialLine line) {
 
 }  // namespace
 
-DeviceTap::DeviceTap(std::string path, std::uint32_t baud, SerialLine line)
+DeviceTap::DeviceTap(std::string path, std::uint32_t baud, SerialLine line, bool search)
     : path_(std::move(path)), baud_(baud), line_(line) {
+  if (search) {
+    search_ = std::make_unique<AutoBaud>();
+    baud_ = search_->baud();
+    line_ = search_->line();
+  }
   report_.path = path_;
-  report_.line = line_text(baud, line);
+  report_.line = line_text(baud_, line_);
+}
+
+bool DeviceTap::follow_search() {
+  baud_ = search_->baud();
+  line_ = search_->line();
+  if (!port_.is_open()) return true;  // a reopening sets it
+  if (port_.set_line(baud_, line_)) return true;
+  report_.last_error = port_.error();
+  return false;
 }
 
 bool DeviceTap::open() {
-  if (!port_.open(path_, baud_, line_)) {
+  if (!port_.open(path_, baud_, line_, search_ != nullptr)) {
     report_.last_error = port_.error();
     return false;
   }
@@ -56,6 +70,11 @@ void DeviceTap::sample_line_errors() {
 
 DeviceReport DeviceTap::report(double now) {
   DeviceReport r = report_;
+  if (search_) {
+    r.line = search_->settled() ? search_->setting_text() + " (found from the traffic)"
+                                : "not found (last tried " + search_->setting_text() + ")";
+    r.found_line = search_->report(path_);
+  }
   r.adapter = latency_.adapter;
   r.latency_timer_ms = latency_.ms;
   r.latency_note = latency_.note;

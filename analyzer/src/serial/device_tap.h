@@ -3,9 +3,11 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 
 #include "report/live_report.h"
+#include "serial/auto_baud.h"
 #include "serial/device_outage.h"
 #include "serial/line_error_tally.h"
 #include "serial/serial_line.h"
@@ -16,7 +18,8 @@ namespace pvtap::analyzer {
 
 class DeviceTap {
  public:
-  DeviceTap(std::string path, std::uint32_t baud, SerialLine line);
+  // `search`: the rate and format are searched (--baud auto); baud and line are not used.
+  DeviceTap(std::string path, std::uint32_t baud, SerialLine line, bool search = false);
 
   // Opens the device (and lowers an FTDI latency timer); false with error() when it cannot.
   bool open();
@@ -26,6 +29,10 @@ class DeviceTap {
 
   // Its fd() is -1 while the device is gone.
   SerialPort& port() { return port_; }
+  // The search of its rate and format; null when they were given.
+  AutoBaud* search() { return search_.get(); }
+  // Sets the port to the search's current setting; false with error() when the driver refuses.
+  bool follow_search();
   void count_read(std::size_t bytes);
 
   // The device went away at `now`: closes it and schedules the first reopening attempt.
@@ -47,6 +54,7 @@ class DeviceTap {
   DeviceReport report_;
   DeviceOutage outage_;
   LineErrorTally line_errors_;
+  std::unique_ptr<AutoBaud> search_;
 };
 
 }  // namespace pvtap::analyzer

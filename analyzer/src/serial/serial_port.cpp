@@ -14,8 +14,10 @@
 namespace pvtap::analyzer {
 namespace {
 
-// The range (2400 to 115200): the rates inverters' RS485 ports use.
-constexpr std::array<std::pair<std::uint32_t, speed_t>, 7> kSpeeds{{
+// The range (2400 to 115200): the rates inverters' RS485 ports use; 1200 only for a
+// rate search (--baud auto), which tries every standard rate.
+constexpr std::array<std::pair<std::uint32_t, speed_t>, 8> kSpeeds{{
+    {1200, B1200},
     {2400, B2400},
     {4800, B4800},
     {9600, B9600},
@@ -59,8 +61,10 @@ SerialPort::~SerialPort() {
   close();
 }
 
-bool SerialPort::open(const std::string& path, std::uint32_t baud, SerialLine line) {
+bool SerialPort::open(const std::string& path, std::uint32_t baud, SerialLine line,
+                      bool mark_errors) {
   close();
+  mark_errors_ = mark_errors;
   if (!speed_of(baud)) {
     error_ = "unsupported speed " + std::to_string(baud) +
              " baud (a serial tap takes: " + supported_speeds_text() + ")";
@@ -92,6 +96,9 @@ bool SerialPort::configure(std::uint32_t baud, SerialLine line) {
   // Parity errors are counted by the driver (TIOCGICOUNT); the byte itself is kept as read,
   // so that every byte on the bus is accounted for in a frame or as noise.
   tio.c_iflag &= ~static_cast<tcflag_t>(INPCK | IGNPAR | PARMRK | IXON | IXOFF | IXANY);
+  // A rate search needs to know which bytes failed: the driver then marks each framing or
+  // parity error in the data (\377 \0 byte) and doubles a real \377.
+  if (mark_errors_) tio.c_iflag |= INPCK | PARMRK;
   tio.c_cc[VMIN] = 1;
   tio.c_cc[VTIME] = 0;
   const speed_t speed = *speed_of(baud);
@@ -119,6 +126,17 @@ bool SerialPort::configure(std::uint32_t baud, SerialLine line) {
              std::to_string(line.stop_bits) + " (data bits, parity, stop bits)";
     return false;
   }
+  return true;
+}
+
+bool SerialPort::set_line(std::uint32_t baud, SerialLine line) {
+  if (!speed_of(baud)) {
+    error_ = "unsupported speed " + std::to_string(baud) + " baud";
+    return false;
+  }
+  if (!configure(baud, line)) return false;
+  // Bytes still queued were read at the old setting. Flushing input writes nothing.
+  tcflush(fd_, TCIFLUSH);
   return true;
 }
 

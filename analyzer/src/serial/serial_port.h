@@ -21,7 +21,10 @@ class SerialPort {
 
   // Opens `path` read-only (a tap never drives the bus) and sets raw mode, the baud rate, the
   // parity and the stop bits, no flow control; false with error() when any step fails.
-  bool open(const std::string& path, std::uint32_t baud, SerialLine line);
+  // `mark_errors`: bytes with a framing or parity error come marked (PARMRK).
+  bool open(const std::string& path, std::uint32_t baud, SerialLine line, bool mark_errors = false);
+  // Sets another rate and format on the open port and drops what it read at the old ones.
+  bool set_line(std::uint32_t baud, SerialLine line);
   void close();
   bool is_open() const { return fd_ >= 0; }
   int fd() const { return fd_; }
@@ -40,6 +43,7 @@ class SerialPort {
  private:
   bool configure(std::uint32_t baud, SerialLine line);
   int fd_ = -1;
+  bool mark_errors_ = false;
   std::string error_;
 };
 
