@@ -156,4 +156,12 @@ LogicPlan plan_logic_audit(const std::string& path, const std::vector<std::strin
   return plan;
 }
 
+void keep_probed(const LineProbe& probe, bool asked, LogicPlan& plan) {
+  if (const std::string why = keep_talking(plan, probe.channels(), asked); !why.empty()) {
+    plan.error = plan.path + ": " + why;
+    return;
+  }
+  form_buses(plan, {});
+}
+
 }  // namespace pvtap::analyzer

@@ -33,4 +33,8 @@ inline constexpr double kMinSamplesPerBit = 4.0;
 LogicPlan plan_logic_audit(const std::string& path, const std::vector<std::string>& buses,
                            const std::vector<std::string>& drivers = {});
 
+// From a finished probe: the channels that talk into `plan` (which has its sample rate), or
+// why none can be read in plan.error. `asked`: each probed channel was named, and must talk.
+void keep_probed(const LineProbe& probe, bool asked, LogicPlan& plan);
+
 }  // namespace pvtap::analyzer

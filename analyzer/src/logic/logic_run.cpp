@@ -19,13 +19,6 @@ BusSessionOptions logic_bus_options(const Pipeline& pipeline, const DetectedLine
   return o;
 }
 
-std::string link_text(const LogicPlan& plan) {
-  char text[96];
-  std::snprintf(text, sizeof text, "sigrok logic, %zu UART channel%s at %g MS/s",
-                plan.channels.size(), plan.channels.size() == 1 ? "" : "s", plan.sample_rate / 1e6);
-  return text;
-}
-
 void merge_errors(const SerialLineReport& from, SerialLineReport& into) {
   into.framing_errors += from.framing_errors;
   into.parity_errors += from.parity_errors;
@@ -35,7 +28,15 @@ void merge_errors(const SerialLineReport& from, SerialLineReport& into) {
 
 }  // namespace
 
-LogicRun run_logic_audit(const LogicPlan& plan, Pipeline& pipeline, EventWriter& events) {
+std::string logic_link_text(const LogicPlan& plan) {
+  char text[96];
+  std::snprintf(text, sizeof text, "sigrok logic, %zu UART channel%s at %g MS/s",
+                plan.channels.size(), plan.channels.size() == 1 ? "" : "s", plan.sample_rate / 1e6);
+  return text;
+}
+
+std::unique_ptr<UartTap> tap_planned_channels(const LogicPlan& plan, Pipeline& pipeline,
+                                              EventWriter& events) {
   std::vector<TappedChannel> tapped;
   int pairs = 0;
   for (const std::vector<std::size_t>& group : plan.buses) {
@@ -51,7 +52,12 @@ LogicRun run_logic_audit(const LogicPlan& plan, Pipeline& pipeline, EventWriter&
       tapped.push_back(TappedChannel{p.channel, *p.line, &bus, pair, side});
     }
   }
-  UartTap tap(std::move(tapped), plan.drivers, plan.sample_rate, events);
+  return std::make_unique<UartTap>(std::move(tapped), plan.drivers, plan.sample_rate, events);
+}
+
+LogicRun run_logic_audit(const LogicPlan& plan, Pipeline& pipeline, EventWriter& events) {
+  const std::unique_ptr<UartTap> owned = tap_planned_channels(plan, pipeline, events);
+  UartTap& tap = *owned;
   LogicRun run;
   run.error = read_logic_file(plan.path, tap);
   tap.finish();
@@ -59,7 +65,7 @@ LogicRun run_logic_audit(const LogicPlan& plan, Pipeline& pipeline, EventWriter&
   pipeline.finish(run.end_time);
   run.lines = tap.lines();
   run.input.path = plan.path;
-  run.input.link_type = link_text(plan);
+  run.input.link_type = logic_link_text(plan);
   run.input.records = tap.chunks();
   run.input.truncated = !run.error.empty();
   run.input.error = run.error;

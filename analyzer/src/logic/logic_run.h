@@ -2,9 +2,11 @@
 // characters with their own times, judged on t1.5/t3.5 at the sample clock's precision.
 #pragma once
 
+#include <memory>
 #include <string>
 
 #include "logic/logic_plan.h"
+#include "logic/uart_tap.h"
 #include "pipeline/pipeline.h"
 
 namespace pvtap::analyzer {
@@ -16,6 +18,14 @@ struct LogicRun {
   InputReport input;
   std::vector<SerialLineReport> lines;  // per bus, in plan order; the bus is the channel name
 };
+
+// A bus per planned bus (named after its channels) in `pipeline`, and the tap that feeds them
+// the characters of the samples it is given. Driver glitches go to `events`.
+std::unique_ptr<UartTap> tap_planned_channels(const LogicPlan& plan, Pipeline& pipeline,
+                                              EventWriter& events);
+
+// The input line of the report: "sigrok logic, N UART channels at R MS/s".
+std::string logic_link_text(const LogicPlan& plan);
 
 // Feeds `pipeline` a bus per planned channel (named after the channel) and reads the
 // recording into them; finishes the pipeline. Driver glitches go to `events` (the pipeline's).
