@@ -4,6 +4,8 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <memory>
+#include <optional>
 #include <string>
 
 #include "cli/common_options.h"
@@ -13,6 +15,7 @@
 #include "run/run_output.h"
 #include "sources/interface_source.h"
 #include "sources/live_loop.h"
+#include "sources/logic_stream_source.h"
 #include "sources/serial_taps.h"
 #include "sources/stop_signal.h"
 
@@ -27,11 +30,21 @@ const char* const kDescription =
     "SIGTERM, --duration or --count).";
 
 const char* const kFooter =
-    "\nSerial taps: the adapter must be set to the bus's baud rate, parity and stop bits.\n"
+    "\nSerial taps: the adapter must be set to the bus's baud rate, parity and stop bits, or\n"
+    "--baud auto finds them from the traffic, never writing: it tries the standard rates\n"
+    "(1200 to 115200) at 8N1, tells even from odd parity by which bytes fail, settles when a\n"
+    "request and its reply both check (said on stderr, in the status line and the summary's\n"
+    "serial), and searches again when the line stops giving frames that check.\n"
     "Pass adapters by their /dev/serial/by-id/ name: after an unplug pvtap reopens the same\n"
     "path (retrying with backoff) and reports the outage as a data-loss gap. On FTDI adapters\n"
     "the USB latency timer is lowered to 1 ms when it is writable, so that timestamps can\n"
     "judge the t1.5/t3.5 silences; the report says when they cannot.\n"
+    "\nLogic analyzer: --logic - reads sigrok-cli's binary output on standard input, e.g.\n"
+    "  sigrok-cli -d fx2lafw --config samplerate=4M --continuous -O binary |\n"
+    "      pvtap sniff --logic - --samplerate 4M --channels D0,D1,D2\n"
+    "--channels names the samples' bits from bit 0 on; the rate, format and idle level of\n"
+    "every channel that talks are found from its first stretch, as pvtap audit does, and its\n"
+    "characters are timed by the sample clock, so t1.5/t3.5 are judged.\n"
     "\nGateway traffic: --interface captures with libpcap (needs root or CAP_NET_RAW and\n"
     "CAP_NET_ADMIN); --port names the gateway's port(s), --filter adds a BPF filter.\n"
     "\nOutput on stdout as frames complete; --write FILE keeps a pcap (link type 252) for\n"
@@ -43,6 +56,7 @@ const char* const kFooter =
     "  pvtap sniff --device /dev/serial/by-id/usb-FTDI_FT232R_USB_UART_A10K1234-if00-port0\n"
     "  pvtap sniff --device /dev/ttyUSB0 --baud 19200 --parity even --format jsonl | jq .\n"
     "  pvtap sniff --device /dev/ttyUSB0 --device /dev/ttyUSB1 --write site.pcap\n"
+    "  pvtap sniff --device /dev/ttyUSB0 --baud auto\n"
     "  pvtap sniff --interface eth0 --port 4001 --duration 600 --summary-only\n"
     "  pvtap sniff --device /dev/ttyUSB0 --duration 3600 --html hour.html --values hour.csv\n"
     "  pvtap sniff --device /dev/ttyUSB0 --summary-only --mqtt mqtt://broker.lan\n"
@@ -67,6 +81,21 @@ void add_source_options(CLI::App& sniff, SniffCommandLine& c) {
       ->type_name("N")
       ->default_str("1");
   sniff
+      .add_option("--logic", live.logic_input,
+                  "a logic analyzer's samples as sigrok-cli -O binary writes them (- for "
+                  "standard input), with --samplerate and --channels")
+      ->type_name("FILE");
+  sniff
+      .add_option("--samplerate", c.sample_rate, "--logic: samples per second (4000000, 4M, 500k)")
+      ->type_name("RATE");
+  sniff
+      .add_option("--channels", live.logic_channels,
+                  "--logic: the names of the samples' bits from bit 0 on (comma-separated), as "
+                  "sigrok-cli --show lists the session's channels")
+      ->type_name("NAMES")
+      ->delimiter(',')
+      ->allow_extra_args(false);
+  sniff
       .add_option("--interface", live.interface,
                   "network interface to capture a serial-to-TCP gateway's traffic on")
       ->type_name("IFACE");
@@ -80,6 +109,32 @@ void add_source_options(CLI::App& sniff, SniffCommandLine& c) {
       ->type_name("BPF");
 }
 
+// --baud for sniff takes "auto" besides a rate: the tap then searches the bus's settings.
+void add_baud_option(CLI::App& sniff, SniffCommandLine& c, BaudRange range) {
+  sniff.remove_option(sniff.get_option("--baud"));
+  const std::string help = "bus baud rate (" + std::to_string(range.min) + " to " +
+                           std::to_string(range.max) +
+                           "), or auto: serial taps search the rate, parity and stop bits "
+                           "from the traffic, passively";
+  sniff.add_option("--baud", c.baud, help)
+      ->check(CLI::Validator(
+          [range](std::string& value) {
+            if (value == "auto") return std::string{};
+            try {
+              std::size_t used = 0;
+              const unsigned long baud = std::stoul(value, &used);
+              if (used == value.size() && baud >= range.min && baud <= range.max)
+                return std::string{};
+            } catch (const std::exception&) {
+            }
+            return value + " is neither auto nor a rate from " + std::to_string(range.min) +
+                   " to " + std::to_string(range.max);
+          },
+          "", "baud"))
+      ->type_name("BAUD")
+      ->default_str("9600");
+}
+
 void add_stop_options(CLI::App& sniff, LiveOptions& live) {
   sniff.add_option("--duration", live.duration, "stop after this many seconds")
       ->check(CLI::PositiveNumber.description(""))
@@ -89,17 +144,58 @@ void add_stop_options(CLI::App& sniff, LiveOptions& live) {
       ->type_name("N");
 }
 
+// "4M", "500k", "4000000": samples per second; nullopt when it is none.
+std::optional<double> sample_rate_from(const std::string& text) {
+  std::size_t used = 0;
+  double rate = 0;
+  try {
+    rate = std::stod(text, &used);
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+  const std::string unit = text.substr(used);
+  if (unit == "k" || unit == "K")
+    rate *= 1e3;
+  else if (unit == "M")
+    rate *= 1e6;
+  else if (unit == "G")
+    rate *= 1e9;
+  else if (!unit.empty())
+    return std::nullopt;
+  if (!(rate > 0)) return std::nullopt;
+  return rate;
+}
+
 // A one-line reason why the sources given cannot be captured from; empty when they can.
+std::string logic_problem(const LiveOptions& live) {
+  if (!live.devices.empty() || !live.interface.empty()) {
+    return "give one of --device, --interface and --logic";
+  }
+  if (live.search_line)
+    return "--baud auto searches a serial tap's settings; it goes with --device";
+  if (live.sample_rate <= 0) return "--logic needs --samplerate RATE (e.g. 4M)";
+  if (live.logic_channels.empty()) return "--logic needs --channels NAMES (bit 0 first)";
+  if (live.logic_channels.size() > 64) return "--logic reads at most 64 channels";
+  return {};
+}
+
 std::string source_problem(const SniffOptions& o) {
   const LiveOptions& live = o.live;
+  if (!live.logic_input.empty()) return logic_problem(live);
+  if (live.sample_rate > 0 || !live.logic_channels.empty()) {
+    return "--samplerate and --channels describe a --logic stream";
+  }
   if (live.devices.empty() && live.interface.empty()) {
-    return "sniff needs --device PATH or --interface IFACE (see --help)";
+    return "sniff needs --device PATH, --interface IFACE or --logic - (see --help)";
   }
   if (!live.devices.empty() && !live.interface.empty()) {
     return "give either --device or --interface, not both";
   }
   if (!live.devices.empty() && (!o.ports.empty() || !live.filter.empty())) {
     return "--port and --filter select gateway traffic; they go with --interface";
+  }
+  if (live.search_line && live.devices.empty()) {
+    return "--baud auto searches a serial tap's settings; it goes with --device";
   }
   return {};
 }
@@ -127,7 +223,11 @@ int capture(const SniffOptions& o, const RegisterDecoder& decoder, OutputStream&
   Pipeline pipeline(pipeline_settings(o), decoder, output.events());
   LiveSources live;
   bool opened = false;
-  if (!o.live.devices.empty()) {
+  std::unique_ptr<LogicStreamSource> logic;
+  if (!o.live.logic_input.empty()) {
+    logic = std::make_unique<LogicStreamSource>(o.live, pipeline);
+    opened = capture_from(*logic, o, pipeline, output, live);
+  } else if (!o.live.devices.empty()) {
     SerialTaps taps(o.live, o.baud, pipeline);
     opened = capture_from(taps, o, pipeline, output, live);
   } else {
@@ -138,6 +238,8 @@ int capture(const SniffOptions& o, const RegisterDecoder& decoder, OutputStream&
   AuditReport report = pipeline.report();
   report.written_records = output.written_records();
   report.live = live;
+  SerialTaps::add_found_lines(report);
+  if (logic) logic->add_found_lines(report);
   output.write_summary(report);
   out.flush();
   if (!output.close(report)) return kExitBadInput;
@@ -150,7 +252,9 @@ CLI::App* add_sniff_command(CLI::App& app, SniffCommandLine& command) {
   CLI::App* sniff = app.add_subcommand("sniff", kDescription);
   sniff->footer(std::string(kFooter) + kMqttHelpFooter);
   add_source_options(*sniff, command);
-  add_protocol_options(*sniff, command.options, BaudRange{2400, 115200});
+  const BaudRange rates{2400, 115200};
+  add_protocol_options(*sniff, command.options, rates);
+  add_baud_option(*sniff, command, rates);
   add_stop_options(*sniff, command.options.live);
   add_output_options(*sniff, command.options);
   add_mqtt_options(*sniff, command.options.mqtt);
@@ -160,6 +264,17 @@ CLI::App* add_sniff_command(CLI::App& app, SniffCommandLine& command) {
 int run_sniff(SniffCommandLine& command) {
   SniffOptions& o = command.options;
   o.live.line.parity = SerialLine::parity_letter(command.parity);
+  o.live.search_line = command.baud == "auto";
+  if (!o.live.search_line) o.baud = static_cast<std::uint32_t>(std::stoul(command.baud));
+  if (!command.sample_rate.empty()) {
+    const std::optional<double> rate = sample_rate_from(command.sample_rate);
+    if (!rate) {
+      std::fprintf(stderr, "pvtap: --samplerate %s: expected a rate such as 4000000, 4M or 500k\n",
+                   command.sample_rate.c_str());
+      return kExitBadInput;
+    }
+    o.live.sample_rate = *rate;
+  }
   o.live.status_line = ::isatty(STDERR_FILENO) == 1 && o.format_name == "text";
   return run_live_capture(o);
 }

@@ -13,6 +13,8 @@ namespace pvtap::analyzer {
 struct SniffCommandLine {
   SniffOptions options;
   std::string parity = "none";
+  std::string baud = "9600";  // a rate, or "auto"
+  std::string sample_rate;    // --samplerate as typed: 4000000, 4M, 500k
 };
 
 // Adds `sniff` to the program's command line; parsed values land in `command`.

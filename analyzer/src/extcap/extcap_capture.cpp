@@ -83,7 +83,8 @@ SniffOptions capture_options(const DiscoveredPort& port, const ExtcapSettings& s
   o.live.devices = {port.path};
   o.live.line.parity = SerialLine::parity_letter(settings.parity);
   o.live.line.stop_bits = settings.stop_bits == "2" ? 2 : 1;
-  o.baud = static_cast<std::uint32_t>(std::stoul(settings.baud));
+  o.live.search_line = settings.baud == "auto";
+  if (!o.live.search_line) o.baud = static_cast<std::uint32_t>(std::stoul(settings.baud));
   o.dialect = settings.dialect;
   o.write_path = fifo;
   o.live.quiet = true;

@@ -11,13 +11,21 @@ std::vector<ExtcapChoice> same_shown(std::initializer_list<const char*> values) 
   return choices;
 }
 
+// The rates `pvtap sniff --baud` accepts that inverters and loggers use, and its search.
+std::vector<ExtcapChoice> baud_choices() {
+  std::vector<ExtcapChoice> choices =
+      same_shown({"2400", "4800", "9600", "19200", "38400", "57600", "115200"});
+  choices.push_back({"auto", "Auto (found from the traffic; parity and stop bits too)"});
+  return choices;
+}
+
 std::vector<ExtcapOption> build_options() {
   const ExtcapSettings defaults;
   return {
-      {"--baud", "Baud rate", "The bus's speed; the tap must be set like the bus", "Serial line",
-       // The rates `pvtap sniff --baud` accepts that inverters and loggers use.
-       same_shown({"2400", "4800", "9600", "19200", "38400", "57600", "115200"}), defaults.baud,
-       &ExtcapSettings::baud},
+      {"--baud", "Baud rate",
+       "The bus's speed; the tap must be set like the bus, or Auto finds the speed, parity and "
+       "stop bits from the traffic (passively)",
+       "Serial line", baud_choices(), defaults.baud, &ExtcapSettings::baud},
       {"--parity",
        "Parity",
        "Parity of the bus's characters",

@@ -56,13 +56,15 @@ void LiveLoop::show_status(double now) {
   const ReassemblerTotals sum = pipeline_.buses().totals();
   const EventTally tally = pipeline_.buses().tally();
   const std::optional<TimedLatency> last = tally.last_latency();
-  char text[160];
-  std::snprintf(
-      text, sizeof text, "%llu bytes, %llu frames, %llu bad checks, %llu timeouts, last latency %s",
-      static_cast<unsigned long long>(sum.bytes_in), static_cast<unsigned long long>(sum.frames),
-      static_cast<unsigned long long>(sum.bad_frames),
-      static_cast<unsigned long long>(tally.counts().timeouts),
-      last ? (std::to_string(std::lround(last->latency * 1e3)) + " ms").c_str() : "-");
+  char text[224];
+  std::snprintf(text, sizeof text,
+                "%s%s%llu bytes, %llu frames, %llu bad checks, %llu timeouts, last latency %s",
+                status_note_.c_str(), status_note_.empty() ? "" : ", ",
+                static_cast<unsigned long long>(sum.bytes_in),
+                static_cast<unsigned long long>(sum.frames),
+                static_cast<unsigned long long>(sum.bad_frames),
+                static_cast<unsigned long long>(tally.counts().timeouts),
+                last ? (std::to_string(std::lround(last->latency * 1e3)) + " ms").c_str() : "-");
   status_.show(now, text);
 }
 
@@ -75,7 +77,7 @@ void LiveLoop::end(double now, LiveSources& live) {
   live.seconds = now - started_;
   // --count is a stop the user asked for, not an interruption.
   live.stopped_by_signal = stop_requested() && !count_reached();
-  saw_time(now);
+  if (!sample_clock_) saw_time(now);
 }
 
 }  // namespace pvtap::analyzer

@@ -3,6 +3,8 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
+#include <utility>
 
 #include "console/status_line.h"
 #include "pipeline/pipeline.h"
@@ -27,10 +29,15 @@ class LiveLoop {
   void after_wake(double now);
   // The run's output, for what a source reports besides events (line error counters).
   RunOutput& output() { return output_; }
+  // Shown at the head of the status line (a serial tap's rate search); empty for none.
+  void set_status_note(std::string note) { status_note_ = std::move(note); }
   // A line is about to go to stderr: the status line makes room for it.
   void make_room_on_stderr() { status_.clear(); }
   // A record of this time was fed: the capture ends no earlier.
   void saw_time(double time);
+  // The source's records are timed by a sample clock (a logic stream), not by the wall clock:
+  // the capture ends at its last record, not at the wall clock's now.
+  void use_sample_clock() { sample_clock_ = true; }
   // Ends the capture at `now`: how long it ran and whether a signal stopped it.
   void end(double now, LiveSources& live);
   double last_time() const { return last_time_; }
@@ -44,6 +51,8 @@ class LiveLoop {
   StatusLine status_;
   double started_;
   double last_time_ = 0;
+  std::string status_note_;
+  bool sample_clock_ = false;
 };
 
 }  // namespace pvtap::analyzer

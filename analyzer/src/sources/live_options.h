@@ -12,6 +12,12 @@ namespace pvtap::analyzer {
 struct LiveOptions {
   std::vector<std::string> devices;  // serial devices (RS485 taps), each its own bus
   SerialLine line;
+  bool search_line = false;  // --baud auto: each tap's rate and format are searched, not given
+  // --logic: a logic analyzer's binary samples ("-": standard input), their rate, and the
+  // names of their bits from bit 0 on.
+  std::string logic_input;
+  double sample_rate = 0;
+  std::vector<std::string> logic_channels;
   std::string interface;     // a network interface with a gateway's TCP traffic (libpcap)
   std::string filter;        // BPF filter for the interface, added to the --port filter
   double duration = 0;       // seconds; 0 runs until SIGINT/SIGTERM

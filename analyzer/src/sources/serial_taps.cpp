@@ -12,9 +12,12 @@
 namespace pvtap::analyzer {
 
 struct SerialTaps::Tap {
-  Tap(const std::string& path, std::uint32_t baud, SerialLine line) : device(path, baud, line) {}
+  Tap(const std::string& path, std::uint32_t baud, SerialLine line, bool search)
+      : device(path, baud, line, search) {}
   DeviceTap device;
+  // A searched tap's bus is added once its search settles, with the rate it found.
   BusSession* bus = nullptr;
+  AutoBaud::BusBytes for_bus;  // what a searched tap's read gives the bus
   // The bus is known silent up to this moment: when the last read that found nothing began.
   // Not "now": bytes may have arrived since, unread while pvtap was scheduled out.
   double quiet_until = 0;
@@ -38,20 +41,23 @@ SerialTaps::~SerialTaps() = default;
 BusSessionOptions SerialTaps::session_options(Tap& tap) const {
   BusSessionOptions o = pipeline_.bus_options(InputKind::Serial);
   o.reassembler.bits_per_char = live_.line.bits_per_char();
+  if (AutoBaud* search = tap.device.search()) {
+    o.reassembler.baud = search->baud();
+    o.reassembler.bits_per_char = search->line().bits_per_char();
+  }
   apply_carrier_timing({Carrier::LiveSerial, 0.0, tap.device.latency_timer().ms}, o);
   return o;
 }
 
 bool SerialTaps::open() {
   for (const std::string& path : live_.devices) {
-    taps_.push_back(std::make_unique<Tap>(path, baud_, live_.line));
+    taps_.push_back(std::make_unique<Tap>(path, baud_, live_.line, live_.search_line));
     Tap& tap = *taps_.back();
     if (!tap.device.open()) {
       std::fprintf(stderr, "pvtap: cannot open %s: %s\n", path.c_str(), tap.device.error().c_str());
       return false;
     }
-    const std::string name = live_.devices.size() > 1 ? path : "";
-    tap.bus = &pipeline_.add_bus(name, session_options(tap));
+    if (!tap.device.search()) bus_of(tap);
     const LatencyTimerState& timer = tap.device.latency_timer();
     // Only a timer left coarse is worth a line on stderr (Wireshark shows an extcap's stderr
     // as an error); a lowered one is in the report.
@@ -63,8 +69,27 @@ bool SerialTaps::open() {
   return true;
 }
 
+BusSession& SerialTaps::bus_of(Tap& tap) {
+  if (!tap.bus) {
+    const std::string name = live_.devices.size() > 1 ? tap.device.path() : "";
+    tap.bus = &pipeline_.add_bus(name, session_options(tap));
+  }
+  return *tap.bus;
+}
+
+void SerialTaps::add_found_lines(AuditReport& report) {
+  const bool named = report.live.devices.size() > 1;
+  for (const DeviceReport& d : report.live.devices) {
+    if (!d.found_line) continue;
+    for (BusFindings& bus : report.buses) {
+      if (bus.name == (named ? d.path : "")) bus.serial = d.found_line;
+    }
+  }
+}
+
 void SerialTaps::run(LiveLoop& loop, LiveSources& live) {
   loop_ = &loop;
+  show_searches();
   std::vector<std::uint8_t> buffer(kReadBuffer);
   double now = wall_clock_seconds();
   next_sample_ = now + kLineErrorSampleEvery;
@@ -132,16 +157,64 @@ void SerialTaps::read(Tap& tap, std::span<std::uint8_t> buffer) {
       return;
     }
     tap.device.count_read(got);
-    tap.bus->feed(BusChunk{buffer.first(got), time, Direction::Unknown});
+    if (tap.device.search()) {
+      searched_read(tap, buffer.first(got), time);
+    } else {
+      tap.bus->feed(BusChunk{buffer.first(got), time, Direction::Unknown});
+    }
     // A read that did not fill the buffer emptied the driver's queue: no need for another
     // read (a system call per wake-up) to learn that nothing else was waiting.
     if (got < buffer.size()) return;
   }
 }
 
+void SerialTaps::searched_read(Tap& tap, std::span<const std::uint8_t> bytes, double time) {
+  const AutoBaud::Outcome outcome = tap.device.search()->take(bytes, time, tap.for_bus);
+  std::size_t from = 0;
+  for (const auto& [end, read_time] : tap.for_bus.reads) {
+    const auto piece = std::span<const std::uint8_t>(tap.for_bus.bytes).subspan(from, end - from);
+    bus_of(tap).feed(BusChunk{piece, read_time, Direction::Unknown});
+    from = end;
+  }
+  after_search(tap, outcome, time);
+}
+
+void SerialTaps::after_search(Tap& tap, const AutoBaud::Outcome& outcome, double now) {
+  if (!outcome.change && !outcome.settled) return;
+  const AutoBaud& search = *tap.device.search();
+  const char* path = tap.device.path().c_str();
+  if (outcome.lost && tap.bus) tap.bus->data_lost(Direction::Unknown, now, std::nullopt);
+  if (!live_.quiet && (outcome.settled || outcome.lost)) loop_->make_room_on_stderr();
+  if (!live_.quiet && outcome.settled) {
+    std::fprintf(stderr, "pvtap: %s: %s found from the traffic\n", path,
+                 search.setting_text().c_str());
+  }
+  if (!live_.quiet && outcome.lost) {
+    std::fprintf(stderr, "pvtap: %s: the line stopped making sense; searching its rate again\n",
+                 path);
+  }
+  if (outcome.change && !tap.device.follow_search()) {
+    loop_->make_room_on_stderr();
+    std::fprintf(stderr, "pvtap: %s: cannot set %s: %s\n", path, search.setting_text().c_str(),
+                 tap.device.error().c_str());
+  }
+  show_searches();
+}
+
+void SerialTaps::show_searches() {
+  std::string note;
+  for (const auto& tap : taps_) {
+    const AutoBaud* search = tap->device.search();
+    if (!search) continue;
+    if (!note.empty()) note += "; ";
+    note += search->status_text();
+  }
+  loop_->set_status_note(note);
+}
+
 void SerialTaps::lose(Tap& tap, double now) {
   tap.device.went_away(now);
-  tap.bus->data_lost(Direction::Unknown, now, std::nullopt);
+  if (tap.bus) tap.bus->data_lost(Direction::Unknown, now, std::nullopt);
   loop_->make_room_on_stderr();
   std::fprintf(stderr, "pvtap: %s: device gone (%s); reopening it as it comes back\n",
                tap.device.path().c_str(), tap.device.error().c_str());
@@ -162,8 +235,9 @@ void SerialTaps::revive(double now) {
 void SerialTaps::after_wake(double now) {
   revive(now);
   for (auto& tap : taps_) {
+    if (AutoBaud* search = tap->device.search()) after_search(*tap, search->tick(now), now);
     // A tap that is gone has nothing unread: its timeouts run on the clock.
-    tap->bus->idle(tap->device.port().fd() >= 0 ? tap->quiet_until : now);
+    if (tap->bus) tap->bus->idle(tap->device.port().fd() >= 0 ? tap->quiet_until : now);
   }
   loop_->after_wake(now);
 }

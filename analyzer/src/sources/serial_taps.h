@@ -9,6 +9,7 @@
 
 #include "pipeline/pipeline.h"
 #include "report/live_report.h"
+#include "serial/auto_baud.h"
 #include "sources/live_loop.h"
 #include "sources/live_options.h"
 
@@ -24,12 +25,18 @@ class SerialTaps {
   bool open();
   // Reads until the loop says stop; the taps' reports go into `live`.
   void run(LiveLoop& loop, LiveSources& live);
+  // --baud auto: the lines the taps' searches found, on the buses of `report`.
+  static void add_found_lines(AuditReport& report);
 
  private:
   struct Tap;
   BusSessionOptions session_options(Tap& tap) const;
   void wait(double wake_at);
   void read(Tap& tap, std::span<std::uint8_t> buffer);
+  BusSession& bus_of(Tap& tap);
+  void searched_read(Tap& tap, std::span<const std::uint8_t> bytes, double time);
+  void after_search(Tap& tap, const AutoBaud::Outcome& outcome, double now);
+  void show_searches();
   void lose(Tap& tap, double now);
   void revive(double now);
   double next_wake(double now) const;

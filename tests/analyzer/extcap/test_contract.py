@@ -20,6 +20,9 @@ PCAP_HEADER = 24
 RECORD_HEADER = 16
 # A GSL (Modbus RTU) read request: station 1, function 3, start 0, count 10, CRC.
 FRAME = bytes.fromhex("01030000000ac5cd")
+# Station 1 reading one register, and its reply: a pair that settles a rate search.
+PAIR_REQUEST = bytes.fromhex("010300000001840a")
+PAIR_REPLY = bytes.fromhex("010302002a399b")
 
 
 def run_pvtap(args, ports=()):
@@ -88,6 +91,7 @@ class Answers(unittest.TestCase):
             self.assertIn("{number=%d}{call=%s}" % (number, call), line)
             self.assertIn("{type=selector}{default=%s}" % default, line)
             self.assertIn("value {arg=%d}{value=%s}" % (number, default), result.stdout)
+        self.assertIn("value {arg=0}{value=auto}", result.stdout)
 
     def test_unknown_interface_is_refused(self):
         result = run_pvtap(["--capture", "--extcap-interface", "pvtap-nothing", "--fifo",
@@ -124,6 +128,8 @@ class Answers(unittest.TestCase):
 class Capture(unittest.TestCase):
     """`--capture --fifo`: the pcap header at once, a record per frame, a clean stop."""
 
+    BAUD = "9600"
+
     def setUp(self):
         self.pty = ReadablePty()
         self.folder = tempfile.mkdtemp(prefix="pvtap-extcap-")
@@ -132,7 +138,7 @@ class Capture(unittest.TestCase):
         env = dict(os.environ, PVTAP_SERIAL_PORTS=self.pty.path)
         self.proc = subprocess.Popen(
             [pvtap_path(), "--capture", "--extcap-interface", interface_of(self.pty.path),
-             "--fifo", self.fifo, "--baud", "9600", "--dialect", "gsl"],
+             "--fifo", self.fifo, "--baud", self.BAUD, "--dialect", "gsl"],
             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
         # As Wireshark does: the reader opens the fifo, pvtap's open completes with it. Not
         # blocking, so that a pvtap that never opens the fifo fails the test instead of hanging
@@ -205,6 +211,41 @@ class Capture(unittest.TestCase):
         except subprocess.TimeoutExpired:
             self.fail("pvtap kept capturing after the reader left")
         self.assertNotEqual(self.proc.returncode, -signal.SIGPIPE, "killed by SIGPIPE")
+        self.assertEqual(self.proc.returncode, 0, self.proc.stderr.read())
+
+
+class AutoBaudCapture(Capture):
+    """The baud selector's Auto: the tap searches its settings; a pty carries any rate, so the
+    first one tried settles on a request and its reply, and both reach the fifo."""
+
+    BAUD = "auto"
+
+    def record_body(self):
+        record = read_exactly(self.reader, RECORD_HEADER)
+        self.assertEqual(len(record), RECORD_HEADER, "no record")
+        _, _, caplen, _ = struct.unpack("<IIII", record)
+        return read_exactly(self.reader, caplen)
+
+    def test_header_comes_at_once_and_frames_as_they_complete(self):
+        self.assertEqual(self.header(), 252)
+        self.wait_open()
+        os.write(self.pty.master, PAIR_REQUEST)
+        time.sleep(0.1)
+        os.write(self.pty.master, PAIR_REPLY)
+        self.assertTrue(self.record_body().endswith(PAIR_REQUEST))
+        self.assertTrue(self.record_body().endswith(PAIR_REPLY))
+        self.assertEqual(self.stop(), 0, self.proc.stderr.read())
+
+    def test_a_closed_fifo_ends_the_capture(self):
+        self.header()
+        self.wait_open()
+        os.close(self.reader)
+        self.reader = None
+        os.write(self.pty.master, PAIR_REQUEST + PAIR_REPLY)
+        try:
+            self.proc.wait(GUARD_S)
+        except subprocess.TimeoutExpired:
+            self.fail("pvtap kept capturing after the reader left")
         self.assertEqual(self.proc.returncode, 0, self.proc.stderr.read())
 
 

@@ -35,7 +35,7 @@ TEST(extcapOptions, EachDefaultIsOneOfItsChoicesAndTheParsersDefault) {
 
 TEST(extcapOptions, OffersTheUsualRatesAndAllDialects) {
   const ExtcapOption& baud = extcap_options().at(0);
-  for (const char* rate : {"2400", "4800", "9600", "19200", "38400", "57600", "115200"}) {
+  for (const char* rate : {"2400", "4800", "9600", "19200", "38400", "57600", "115200", "auto"}) {
     EXPECT_TRUE(offers(baud, rate)) << rate;
   }
   const ExtcapOption& dialect = extcap_options().at(3);
@@ -52,10 +52,19 @@ TEST(extcapOptions, ValuesOutsideTheChoicesAreProblems) {
   settings.dialect = "profibus";
   const std::vector<std::string> problems = settings_problems(settings);
   ASSERT_EQ(problems.size(), 4u);
-  EXPECT_EQ(problems[0], "--baud 1234: not one of 2400, 4800, 9600, 19200, 38400, 57600, 115200");
+  EXPECT_EQ(problems[0],
+            "--baud 1234: not one of 2400, 4800, 9600, 19200, 38400, 57600, 115200, auto");
   EXPECT_EQ(problems[1], "--parity mark: not one of none, even, odd");
   EXPECT_EQ(problems[2], "--stop-bits 1.5: not one of 1, 2");
   EXPECT_EQ(problems[3], "--dialect profibus: not one of auto, ascii, hybrid, gsl, modbus");
+}
+
+TEST(extcapOptions, AutoBaudSearchesTheTapsSettings) {
+  const DiscoveredPort port{"/dev/ttyUSB0", "ttyUSB0", "pvtap-ttyUSB0"};
+  ExtcapSettings settings;
+  settings.baud = "auto";
+  EXPECT_TRUE(settings_problems(settings).empty());
+  EXPECT_TRUE(capture_options(port, settings, "/tmp/fifo").live.search_line);
 }
 
 TEST(extcapOptions, ACaptureSniffsThePortWithTheSettingsIntoTheFifo) {
@@ -74,6 +83,7 @@ TEST(extcapOptions, ACaptureSniffsThePortWithTheSettingsIntoTheFifo) {
   EXPECT_EQ(o.write_path, "/tmp/fifo");
   EXPECT_TRUE(o.live.quiet);
   EXPECT_TRUE(o.summary_only);
+  EXPECT_FALSE(o.live.search_line);
   settings.parity = "odd";
   EXPECT_EQ(capture_options(port, settings, "f").live.line.parity, 'O');
   settings.parity = "none";
