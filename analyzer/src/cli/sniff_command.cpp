@@ -11,11 +11,11 @@
 #include "cli/common_options.h"
 #include "cli/exit_status.h"
 #include "cli/mqtt_command_options.h"
+#include "logic/logic_stream_source.h"
 #include "pipeline/pipeline.h"
 #include "run/run_output.h"
 #include "sources/interface_source.h"
 #include "sources/live_loop.h"
-#include "sources/logic_stream_source.h"
 #include "sources/serial_taps.h"
 #include "sources/stop_signal.h"
 
