@@ -21,7 +21,8 @@ namespace pvtap::analyzer {
 // recording; then every channel that talks is a bus timed at the sample clock.
 class LogicStreamSource {
  public:
-  LogicStreamSource(const LiveOptions& live, Pipeline& pipeline);
+  // Driver glitches go to `events` (the pipeline's).
+  LogicStreamSource(const LiveOptions& live, Pipeline& pipeline, EventWriter& events);
   ~LogicStreamSource();
 
   // Reads the first stretch and finds the lines; false (after saying why) when no channel
@@ -41,6 +42,7 @@ class LogicStreamSource {
 
   const LiveOptions& live_;
   Pipeline& pipeline_;
+  EventWriter& events_;
   int fd_ = -1;
   unsigned unitsize_ = 1;
   bool ended_ = false;
