@@ -37,17 +37,6 @@ V5Conversation v5_conversation(packet_info* pinfo) {
   return V5Conversation{&side, track};
 }
 
-Direction direction_of(RoleHint hint) {
-  switch (hint) {
-    case RoleHint::Request:
-      return Direction::ToSlave;
-    case RoleHint::Response:
-      return Direction::FromSlave;
-    default:
-      return Direction::Unknown;
-  }
-}
-
 // The stick sends responses and its own frames; the client sends requests and answers them.
 bool sent_by_stick(std::uint16_t control) {
   const v5::FrameKind kind = v5::kind_of(control);

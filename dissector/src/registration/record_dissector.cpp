@@ -2,7 +2,6 @@
 
 #include <epan/packet.h>
 
-
 #include "pvtap/capture/exported_pdu_tags.h"
 #include "registration/record_layer.h"
 #include "stream/conversation_state.h"
@@ -23,12 +22,6 @@ RoleHint hint_of(const packet_info* pinfo) {
     default:
       return RoleHint::Unknown;
   }
-}
-
-Direction direction_of(RoleHint hint) {
-  if (hint == RoleHint::Request) return Direction::ToSlave;
-  if (hint == RoleHint::Response) return Direction::FromSlave;
-  return Direction::Unknown;
 }
 
 // Dissects a record; `data` points to the direction the record carries. All records of a

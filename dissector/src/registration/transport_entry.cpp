@@ -19,17 +19,6 @@ namespace {
 
 using ProtocolOf = InverterProtocol& (*)();
 
-Direction direction_of(RoleHint hint) {
-  switch (hint) {
-    case RoleHint::Request:
-      return Direction::ToSlave;
-    case RoleHint::Response:
-      return Direction::FromSlave;
-    default:
-      return Direction::Unknown;
-  }
-}
-
 // `tcp`: TCP's struct tcpinfo for TCP payloads, null for datagrams.
 int dissect_bound(InverterProtocol& p, tvbuff_t* tvb, packet_info* pinfo, proto_tree* tree,
                   const tcpinfo* tcp) {

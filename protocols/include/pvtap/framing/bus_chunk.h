@@ -30,6 +30,18 @@ constexpr RoleHint role_hint(Direction d) {
   }
 }
 
+// The direction whose frames play the role `hint` says (the inverse of role_hint).
+constexpr Direction direction_of(RoleHint hint) {
+  switch (hint) {
+    case RoleHint::Request:
+      return Direction::ToSlave;
+    case RoleHint::Response:
+      return Direction::FromSlave;
+    default:
+      return Direction::Unknown;
+  }
+}
+
 // BusChunk: bytes as one read delivered them; `time` is the capture time of the last byte.
 struct BusChunk {
   std::span<const std::uint8_t> bytes;
