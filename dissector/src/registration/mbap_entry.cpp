@@ -8,11 +8,11 @@
 #include <epan/dissectors/packet-tcp.h>
 
 #include <span>
-#include <vector>
 
 #include "fields/field_list.h"
 #include "pvtap/carriers/mbap_structure.h"
 #include "registration/inverter_protocol.h"
+#include "stream/call_view.h"
 #include "stream/mbap_track.h"
 #include "stream/piece_display.h"
 
@@ -82,15 +82,6 @@ FrameRecord* record_of(packet_info* pinfo, guint32 index, std::span<const std::u
   return r;
 }
 
-// The track's timeouts not announced yet. noexcept: nothing may be thrown into Wireshark.
-std::vector<FrameRecord*> unannounced(MbapTrack& track) noexcept {
-  try {
-    return track.take_timeouts();
-  } catch (...) {
-    return {};  // out of memory: a later ADU announces them
-  }
-}
-
 // The timeouts this ADU's call announces: taken from the track on the first pass (the ones its
 // time made due), the same ones on every later pass.
 const Announcements* announcements_of(packet_info* pinfo, guint32 index) {
@@ -98,15 +89,12 @@ const Announcements* announcements_of(packet_info* pinfo, guint32 index) {
   auto* a =
       static_cast<Announcements*>(p_get_proto_data(wmem_file_scope(), pinfo, g_mbap.proto, key));
   if (a != nullptr || PINFO_FD_VISITED(pinfo)) return a;
-  const std::vector<FrameRecord*> ready = unannounced(track_of(pinfo));
-  if (ready.empty()) return nullptr;
+  std::uint32_t count = 0;
+  FrameRecord** requests = announce_timeouts(pinfo, track_of(pinfo).timeouts(), count);
+  if (requests == nullptr) return nullptr;
   a = wmem_new0(wmem_file_scope(), Announcements);
-  a->requests = wmem_alloc_array(wmem_file_scope(), FrameRecord*, ready.size());
-  a->count = static_cast<std::uint32_t>(ready.size());
-  for (std::size_t i = 0; i < ready.size(); ++i) {
-    a->requests[i] = ready[i];
-    ready[i]->announced_in = pinfo->num;
-  }
+  a->requests = requests;
+  a->count = count;
   p_add_proto_data(wmem_file_scope(), pinfo, g_mbap.proto, key, a);
   return a;
 }

@@ -129,17 +129,7 @@ void BusTrack::on_timeout(const SessionTimeout& t) {
   r->timeout_reason = t.timeout.reason;
   r->unanswered = t.kind;
   if (t.timeout.next_request_id) r->next_request = record(*t.timeout.next_request_id);
-  unannounced_.push_back(r);
-}
-
-std::vector<FrameRecord*> BusTrack::take_timeouts() {
-  std::vector<FrameRecord*> ready;
-  std::erase_if(unannounced_, [&](FrameRecord* r) {
-    if (r->packet == 0) return false;
-    ready.push_back(r);
-    return true;
-  });
-  return ready;
+  timeouts_.add(r);
 }
 
 BusTrack* new_bus_track(const ProtocolSettings& settings, Carrier carrier) {

@@ -14,6 +14,7 @@
 #include "registration/inverter_protocol.h"
 #include "stream/held_bytes.h"
 #include "stream/station_names.h"
+#include "stream/timeout_queue.h"
 
 namespace pvtap::dissector {
 
@@ -33,9 +34,8 @@ class BusTrack final : public BusSessionSink {
   FrameRecord* record(std::uint64_t frame_id) const {
     return frame_id < records_.size() ? records_[frame_id] : nullptr;
   }
-  // The requests whose timeout the session reported since the last call, and whose own packet
-  // is known (a request not shown yet waits): for the packet that announces them.
-  std::vector<FrameRecord*> take_timeouts();
+  // The requests whose timeout the session reported, for the packet that announces them.
+  TimeoutQueue& timeouts() { return timeouts_; }
   // Stream position of a TCP sequence number of `d`; the first one seen is position 0.
   std::uint64_t stream_offset(Direction d, guint32 seq);
   // Stream position of the next datagram of `d`, which is `length` bytes long.
@@ -49,7 +49,7 @@ class BusTrack final : public BusSessionSink {
 
   SegmentedBus bus_;
   std::vector<FrameRecord*> records_;  // by frame id
-  std::vector<FrameRecord*> unannounced_;
+  TimeoutQueue timeouts_;
   std::array<guint32, 3> first_seq_{};
   std::array<bool, 3> seq_known_{};
   std::array<std::uint64_t, 3> datagram_end_{};

@@ -10,9 +10,9 @@ namespace pvtap::dissector {
 namespace {
 
 // The timeouts not announced yet. noexcept: nothing may be thrown into Wireshark.
-std::vector<FrameRecord*> unannounced(BusTrack& bus) noexcept {
+std::vector<FrameRecord*> unannounced(TimeoutQueue& queue) noexcept {
   try {
-    return bus.take_timeouts();
+    return queue.take_shown();
   } catch (...) {
     return {};  // out of memory: a later call announces them
   }
@@ -20,16 +20,21 @@ std::vector<FrameRecord*> unannounced(BusTrack& bus) noexcept {
 
 }  // namespace
 
-void note_timeouts(CallView& view, packet_info* pinfo, BusTrack& bus) {
-  if (PINFO_FD_VISITED(pinfo) || view.extends_pdu) return;
-  const std::vector<FrameRecord*> ready = unannounced(bus);
-  if (ready.empty()) return;
-  view.timeouts = wmem_alloc_array(wmem_file_scope(), FrameRecord*, ready.size());
-  view.timeout_count = static_cast<std::uint32_t>(ready.size());
+FrameRecord** announce_timeouts(packet_info* pinfo, TimeoutQueue& queue, std::uint32_t& count) {
+  const std::vector<FrameRecord*> ready = unannounced(queue);
+  count = static_cast<std::uint32_t>(ready.size());
+  if (ready.empty()) return nullptr;
+  auto** requests = wmem_alloc_array(wmem_file_scope(), FrameRecord*, ready.size());
   for (std::size_t i = 0; i < ready.size(); ++i) {
-    view.timeouts[i] = ready[i];
+    requests[i] = ready[i];
     ready[i]->announced_in = pinfo->num;
   }
+  return requests;
+}
+
+void note_timeouts(CallView& view, packet_info* pinfo, BusTrack& bus) {
+  if (PINFO_FD_VISITED(pinfo) || view.extends_pdu) return;
+  view.timeouts = announce_timeouts(pinfo, bus.timeouts(), view.timeout_count);
 }
 
 CallView* noted_view(packet_info* pinfo, int proto, guint32 number) {

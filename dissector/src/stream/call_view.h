@@ -7,6 +7,7 @@
 
 #include "plan/frame_record.h"
 #include "stream/bus_track.h"
+#include "stream/timeout_queue.h"
 
 namespace pvtap::dissector {
 
@@ -27,6 +28,10 @@ CallView* noted_view(packet_info* pinfo, int proto, guint32 number);
 
 // A new view for call `number`, kept for later passes.
 CallView& note_view(packet_info* pinfo, int proto, guint32 number);
+
+// First pass: the requests of `queue` whose own packet is known, announced by this packet (their
+// announced_in set), as an array in file scope of `count` entries (null when none).
+FrameRecord** announce_timeouts(packet_info* pinfo, TimeoutQueue& queue, std::uint32_t& count);
 
 // First pass, once the call's pieces are shown: the timeouts it announces (none when a later
 // pass will not make the call).

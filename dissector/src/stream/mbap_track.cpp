@@ -53,17 +53,7 @@ void MbapTrack::on_timeout(const SessionTimeout& t) {
   r->timed_out = true;
   r->timeout_reason = t.timeout.reason;
   r->unanswered = t.kind;
-  unannounced_.push_back(r);
-}
-
-std::vector<FrameRecord*> MbapTrack::take_timeouts() {
-  std::vector<FrameRecord*> ready;
-  std::erase_if(unannounced_, [&](FrameRecord* r) {
-    if (r->packet == 0) return false;
-    ready.push_back(r);
-    return true;
-  });
-  return ready;
+  timeouts_.add(r);
 }
 
 MbapTrack* new_mbap_track(const ProtocolSettings& settings) {

@@ -11,6 +11,7 @@
 #include "pvtap/carriers/mbap_flow.h"
 #include "registration/inverter_protocol.h"
 #include "stream/station_names.h"
+#include "stream/timeout_queue.h"
 
 namespace pvtap::dissector {
 
@@ -26,9 +27,9 @@ class MbapTrack final : public BusSessionSink {
   // The record of the ADU whose station byte and PDU are `frame`, fed now.
   FrameRecord* feed(Direction d, std::span<const std::uint8_t> adu, double time);
 
-  // The requests that timed out and were shown, not yet announced: the packet that takes
-  // them announces them, as invrtu's serial and gateway buses do.
-  std::vector<FrameRecord*> take_timeouts();
+  // The requests whose timeout the session reported, for the packet that announces them, as
+  // invrtu's serial and gateway buses do.
+  TimeoutQueue& timeouts() { return timeouts_; }
 
  private:
   void on_frame(const SessionFrame& f) override;
@@ -38,7 +39,7 @@ class MbapTrack final : public BusSessionSink {
   MbapFlow flow_;
   std::map<std::pair<Direction, std::uint64_t>, FrameRecord*> by_offset_;
   std::vector<FrameRecord*> by_id_;
-  std::vector<FrameRecord*> unannounced_;
+  TimeoutQueue timeouts_;
   StationNames names_;
 };
 
