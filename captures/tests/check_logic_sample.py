@@ -12,31 +12,16 @@ exactly the planted t1.5 and t3.5 violations. The TX channel carries every reque
 channel every reply. Exit 0 when every check holds, 1 with the failures listed.
 """
 import json
+import os
 import shutil
 import subprocess
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tests", "support"))
+from checks import Checks  # noqa: E402
+
 SUMMARY_KEYS = ("frames", "requests", "responses", "bad_checks", "timeouts", "damaged_replies",
                 "exceptions")
-
-
-class Checks:
-    def __init__(self):
-        self.failures = []
-
-    def equal(self, what, actual, expected):
-        if actual != expected:
-            self.failures.append(f"{what}: got {actual!r}, expected {expected!r}")
-
-    def true(self, what, condition):
-        if not condition:
-            self.failures.append(what)
-
-    def finish(self):
-        for failure in self.failures:
-            print("FAIL:", failure)
-        print("all checks hold" if not self.failures else f"{len(self.failures)} failed")
-        return 1 if self.failures else 0
 
 
 def audit(pvtap, session, channel):

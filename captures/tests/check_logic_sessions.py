@@ -20,26 +20,10 @@ import os
 import subprocess
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tests", "support"))
+from checks import Checks  # noqa: E402
+
 COMMON = ["--dialect", "gsl", "--inverters", "3", "--duration", "15", "--period", "5"]
-
-
-class Checks:
-    def __init__(self):
-        self.failures = []
-
-    def equal(self, what, actual, expected):
-        if actual != expected:
-            self.failures.append(f"{what}: got {actual!r}, expected {expected!r}")
-
-    def true(self, what, condition):
-        if not condition:
-            self.failures.append(what)
-
-    def finish(self):
-        for failure in self.failures:
-            print("FAIL:", failure)
-        print("all checks hold" if not self.failures else f"{len(self.failures)} failed")
-        return 1 if self.failures else 0
 
 
 def simulate(sim, scratch, name, *options):

@@ -17,6 +17,8 @@ import shutil
 import subprocess
 import sys
 import tempfile
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+from checks import Checks  # noqa: E402
 
 # The longest one program this test runs may take: a guard, not a timing check. On expiry
 # subprocess raises TimeoutExpired, which names the command that was waited for.
@@ -26,28 +28,6 @@ SKIP = 77
 SUMMARY_COUNTS = ("bytes", "frames", "requests", "responses", "bad_checks", "timeouts",
                   "noise_bytes", "exceptions", "lost_bytes", "gaps", "unsolicited",
                   "unanswered_after_loss")
-
-
-class Checks:
-    """Collects failed checks instead of stopping at the first."""
-
-    def __init__(self):
-        self.failures = []
-
-    def equal(self, what, actual, expected):
-        if actual != expected:
-            self.failures.append(f"{what}: got {actual!r}, expected {expected!r}")
-
-    def true(self, what, condition):
-        if not condition:
-            self.failures.append(what)
-
-    def finish(self):
-        for failure in self.failures:
-            print("FAIL:", failure)
-        if not self.failures:
-            print("all checks hold")
-        return 1 if self.failures else 0
 
 
 def run(pvtap, args, expect_status=None, checks=None):

@@ -20,6 +20,9 @@ import shutil
 import subprocess
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "support"))
+from checks import Checks  # noqa: E402
+
 SKIP = 77
 
 # The flow-meter sessions and their frames, from /work/shared/real/README.md.
@@ -31,28 +34,6 @@ SESSIONS = {
     "flowmeter_flowmeter_target_20liter_per_min.sr": 66,
 }
 GRAPH = "flowmeter_flowmeter_graph_tool.sr"
-
-
-class Checks:
-    """Collects failed checks instead of stopping at the first."""
-
-    def __init__(self):
-        self.failures = []
-
-    def equal(self, what, actual, expected):
-        if actual != expected:
-            self.failures.append(f"{what}: got {actual!r}, expected {expected!r}")
-
-    def true(self, what, condition):
-        if not condition:
-            self.failures.append(what)
-
-    def finish(self):
-        for failure in self.failures:
-            print("FAIL:", failure)
-        if not self.failures:
-            print("all checks hold")
-        return 1 if self.failures else 0
 
 
 def audit(pvtap, *args):
