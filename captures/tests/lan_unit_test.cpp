@@ -46,7 +46,7 @@ TEST(V5Frame, HeaderChecksumAndEndAsTheNotesSay) {
 
 TEST(V5Frame, PayloadsWrapTheRtuFrame) {
   const std::vector<std::uint8_t> rtu{0x01, 0x03, 0x00, 0x00, 0x00, 0x01, 0x84, 0x0A};
-  const auto request = v5_request_payload(rtu);
+  const auto request = solarman_v5::request_payload(rtu);
   ASSERT_EQ(request.size(), 15 + rtu.size());
   EXPECT_EQ(request[0], 0x02);
   EXPECT_TRUE(std::equal(rtu.begin(), rtu.end(), request.begin() + 15));

@@ -84,7 +84,7 @@ void V5Planner::record(Micros at, bool from_client, const OutFrame& f, std::size
   std::snprintf(code, sizeof code, "0x%04x", control);
   o << "{\"ts\":" << seconds(at) << ",\"from\":\"" << (from_client ? "client" : "stick")
     << "\",\"control\":\"" << code << "\",\"sequence\":\"" << hex(std::span(f.bytes).subspan(5, 2))
-    << "\",\"length\":" << f.bytes.size() - kV5Overhead << ",\"checksum\":\""
+    << "\",\"length\":" << f.bytes.size() - solarman_v5::kOverhead << ",\"checksum\":\""
     << (f.bad_checksum ? "bad" : "ok") << "\"";
   if (f.event) o << ",\"event\":" << *f.event;
   if (f.quirk) o << ",\"quirk_bytes\":" << f.quirk;
@@ -143,8 +143,9 @@ void V5Planner::answer(const OutFrame& stick, Micros at) {
   const bool data_report = stick.bytes[4] == 0x42;
   OutFrame f;
   f.bytes = v5_frame(
-      data_report ? v5_control::kDataAnswer : v5_control::kHeartbeatAnswer, stick.bytes[5],
-      stick.bytes[6], options_.logger_serial,
+      static_cast<std::uint16_t>((data_report ? v5_control::kDataReport : v5_control::kHeartbeat) -
+                                 v5_control::kReplyOffset),
+      stick.bytes[5], stick.bytes[6], options_.logger_serial,
       v5_answer_payload(data_report ? 0x01 : 0x00, static_cast<std::uint32_t>(at / 1'000'000)));
   ++n_.client_answers;
   send(at, true, f);
@@ -197,7 +198,7 @@ void V5Planner::exchange(const LanExchange& x, Micros request_at) {
   r.rtu = req.bytes.size();
   const std::uint8_t seq0 = client_seq_++;
   r.bytes = v5_frame(v5_control::kRequest, seq0, 0x00, options_.logger_serial,
-                     v5_request_payload(req.bytes));
+                     solarman_v5::request_payload(req.bytes));
   ++n_.requests;
   send(request_at, true, r);
   if (!x.reply) return;
