@@ -55,7 +55,6 @@ void GatewayTraffic::Connection::gap(Direction d, std::uint64_t lost, double tim
 
 void GatewayTraffic::Connection::feed_bus(Direction d, std::span<const std::uint8_t> bytes,
                                           double time) {
-  bus_bytes += bytes.size();
   if (mbap) {
     mbap->feed(d, bytes, time);
     return;
@@ -77,13 +76,9 @@ void GatewayTraffic::Connection::become_bus() {
 void GatewayTraffic::Connection::become_mbap() {
   // The bus is named after the gateway endpoint, as a serial gateway's is.
   bus = &buses.gateway_bus(streams.slave().to_string());
-  start_mbap();
-  replay_probe();
-}
-
-void GatewayTraffic::Connection::start_mbap() {
   state = State::Mbap;
   mbap = std::make_unique<MbapFlow>(*bus, reply_timeout);
+  replay_probe();
 }
 
 void GatewayTraffic::Connection::replay_probe() {

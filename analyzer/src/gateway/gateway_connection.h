@@ -34,7 +34,6 @@ struct GatewayTraffic::Connection final : FlowBytes {
   void become_mbap();
   void become_v5();
   void become_ignored();
-  void start_mbap();
   void replay_probe();
 
   State state;
@@ -45,7 +44,6 @@ struct GatewayTraffic::Connection final : FlowBytes {
   FlowStreams streams;
   std::unique_ptr<MbapFlow> mbap;
   double reply_timeout;
-  std::uint64_t bus_bytes = 0;  // fed to the bus (or the MBAP reader) so far
   std::uint64_t ignored_bytes = 0;
   double last_seen = 0;
 };
