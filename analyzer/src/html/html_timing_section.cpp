@@ -49,7 +49,7 @@ void append_html_bus_timing(std::string& o, const AuditReport& r) {
        "against t3.5, in buckets a quarter octave of character times wide.</p>\n";
   std::size_t charts = 0;
   for (const BusFindings& bus : r.buses) {
-    o += "<h3>";
+    o += "<div class=\"bus-timing\"><h3>";
     append_html_escaped(o, bus.name.empty() ? "serial bus" : "bus " + bus.name);
     o += "</h3>\n";
     if (bus.serial) {
@@ -67,6 +67,7 @@ void append_html_bus_timing(std::string& o, const AuditReport& r) {
       append_html_escaped(o, g.not_measurable_reason);
       o += "</p>\n";
     }
+    o += "</div>\n";
   }
   o += "</section>\n";
 }

@@ -125,7 +125,7 @@ SILENCE_CHECK = r"""
       }
     }
     const shown = {};
-    document.getElementById('silence-chart-' + n).previousElementSibling
+    document.getElementById('silence-chart-' + n).closest('.bus-timing')
       .querySelectorAll('[data-key]').forEach(e => { shown[e.dataset.key] = Number(e.textContent); });
     return {bus: s.bus, t15_ms: s.t15_ms, t35_ms: s.t35_ms, sums: sums, shown: shown,
             t15_line: linePixels(g, s.t15_ms, pvtap.silenceLineColors.t15),

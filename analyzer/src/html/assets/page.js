@@ -312,13 +312,29 @@
     };
   }
 
+  const SILENCE_SERIES = [['largest silence inside a frame (against t1.5)', '#ff7f0e'],
+                          ['silence between frames (against t3.5)', '#1f77b4']];
+
+  // Which colour is which, shown before any hover.
+  function silenceLegend(chart) {
+    const legend = document.createElement('div');
+    legend.className = 'legend';
+    SILENCE_SERIES.forEach(([text, color]) => {
+      const span = document.createElement('span');
+      span.innerHTML = '<i style="background:' + color + '"></i>';
+      span.appendChild(document.createTextNode(text));
+      legend.appendChild(span);
+    });
+    chart.before(legend);
+  }
+
   function buildSilenceChart(s, n) {
     const chart = element('silence-chart-' + n);
+    silenceLegend(chart);
     const points = [silenceRows(s.inner), silenceRows(s.between)];
     return new Dygraph(chart, rowsOf(points), {
-      labels: ['ms', 'largest silence inside a frame (against t1.5)',
-               'silence between frames (against t3.5)'],
-      colors: ['#ff7f0e', '#1f77b4'], stepPlot: true, fillGraph: true,
+      labels: ['ms'].concat(SILENCE_SERIES.map(([text]) => text)),
+      colors: SILENCE_SERIES.map(([, color]) => color), stepPlot: true, fillGraph: true,
       connectSeparatedPoints: true, legend: 'follow', labelsSeparateLines: true,
       xlabel: 'silence, ms (log scale; one character is ' + s.char_ms.toFixed(3) + ' ms)',
       ylabel: 'silences', axes: { x: { logscale: true } },
