@@ -126,7 +126,9 @@ SILENCE_CHECK = r"""
     }
     const shown = {};
     document.getElementById('silence-chart-' + n).closest('.bus-timing')
-      .querySelectorAll('[data-key]').forEach(e => { shown[e.dataset.key] = Number(e.textContent); });
+      .querySelectorAll('[data-key]').forEach(e => {
+        shown[e.dataset.key] = Number(e.textContent);
+      });
     return {bus: s.bus, t15_ms: s.t15_ms, t35_ms: s.t35_ms, sums: sums, shown: shown,
             t15_line: linePixels(g, s.t15_ms, pvtap.silenceLineColors.t15),
             t35_line: linePixels(g, s.t35_ms, pvtap.silenceLineColors.t35)};
@@ -183,8 +185,10 @@ def check_silences(summary, charts):
         timing, sums, name = bus["timing"], c["sums"], c["bus"]
         pairs = ((sums["inner_beyond"], timing["t15_violations"], "over t1.5 inside"),
                  (sums["between_beyond"], timing["t35_violations"], "under t3.5 between"),
-                 (c["shown"].get("t15_violations"), timing["t15_violations"], "page's t1.5 verdict"),
-                 (c["shown"].get("t35_violations"), timing["t35_violations"], "page's t3.5 verdict"),
+                 (c["shown"].get("t15_violations"), timing["t15_violations"],
+                  "page's t1.5 verdict"),
+                 (c["shown"].get("t35_violations"), timing["t35_violations"],
+                  "page's t3.5 verdict"),
                  (c["t15_ms"], timing["t15_ms"], "t1.5 line (ms)"),
                  (c["t35_ms"], timing["t35_ms"], "t3.5 line (ms)"))
         for got, expected, what in pairs:

@@ -293,7 +293,9 @@
     return (ctx, area, g) => {
       // toDomXCoord is linear even on a log axis: place the line by the logarithms.
       const [lo, hi] = g.xAxisRange().map(Math.log);
-      [[s.t15_ms, 't1.5', SILENCE_LINE_COLORS.t15], [s.t35_ms, 't3.5', SILENCE_LINE_COLORS.t35]].forEach(([ms, text, color]) => {
+      const lines = [[s.t15_ms, 't1.5', SILENCE_LINE_COLORS.t15],
+                     [s.t35_ms, 't3.5', SILENCE_LINE_COLORS.t35]];
+      lines.forEach(([ms, text, color]) => {
         // On a pixel's middle, so that the line is crisp rather than smeared over two.
         const x = Math.round(area.x + area.w * (Math.log(ms) - lo) / (hi - lo)) + 0.5;
         if (x < area.x || x > area.x + area.w) return;
