@@ -13,6 +13,9 @@ bus without --channels, and with --channels TX,RX: every frame, the truth's requ
 and timeouts, the planted t3.5 violations; beside the A-B channel it is a second bus (and the
 driver-enable channels none), and
 --channels is repeatable for both; three names in one --channels are refused in one line.
+clock: every talker's clock 3 % slow is one clock deviation per bus (the A-B channel, and TX,RX),
+in the summary's line and the text report's findings, its deviation_percent the simulated one;
+1 % slow is none; --fail-on errors does not count them.
 Exit 0 when every check holds, 1 with the failures listed.
 """
 import json
@@ -149,11 +152,41 @@ def check_channels(checks, pvtap, sim, scratch):
                 bad.stderr.count("\n") == 1 and bad.stdout == "")
 
 
+def check_clock(checks, pvtap, sim, scratch):
+    """A clock 3 % slow is one finding per bus (A-B and TX,RX); 1 % off is none."""
+    for pct, expected in ((3, 1), (1, 0)):
+        session, truth = simulate(sim, scratch, f"clock{pct}", "--seed", "51", "--baud", "9600",
+                                  "--sr-channels", "bus,tx,rx", "--clock-deviation", str(pct))
+        result = audit(pvtap, "--format", "jsonl", "--fail-on", "errors", session)
+        # Like the t3.5 violations and the driver glitches, no error of a frame: exit 0.
+        checks.equal(f"clock {pct} %: exit status with --fail-on errors", result.returncode, 0)
+        s = summary(result) or {"buses": []}
+        checks.equal(f"clock {pct} %: buses", sorted(b["bus"] for b in s["buses"]),
+                     ["A-B", "TX,RX"])
+        # The bits last 1 + pct/100 times as long: the rate is 1 / (1 + pct/100) of 9600.
+        deviation = (1 / (1 + pct / 100) - 1) * 100
+        for b in s["buses"]:
+            checks.true(f"clock {pct} %: {b['bus']} deviation {b['serial']['deviation_percent']}"
+                        f" near {deviation:.2f}",
+                        abs(b["serial"]["deviation_percent"] - deviation) <= 0.05)
+            checks.equal(f"clock {pct} %: {b['bus']} clock deviations",
+                         b["line"]["clock_deviations"], expected)
+            checks.equal(f"clock {pct} %: {b['bus']} frames", b["frames"],
+                         truth["summary"]["frames"])
+        text = audit(pvtap, session).stdout
+        checks.true(f"clock {pct} %: the findings line counts {2 * expected}",
+                    f"exceptions and error replies, {2 * expected} clock deviations over 2 %"
+                    in text)
+        checks.equal(f"clock {pct} %: lines naming the deviation",
+                     text.count("clock deviation: the rate is"), 2 * expected)
+
+
 def main():
     pvtap, sim, scratch, mode = sys.argv[1:5]
     os.makedirs(scratch, exist_ok=True)
     checks = Checks()
-    {"drivers": check_drivers, "channels": check_channels}[mode](checks, pvtap, sim, scratch)
+    modes = {"drivers": check_drivers, "channels": check_channels, "clock": check_clock}
+    modes[mode](checks, pvtap, sim, scratch)
     return checks.finish()
 
 

@@ -10,6 +10,7 @@
 #include "formatting/json_text.h"
 #include "formatting/number_text.h"
 #include "html/html_sections.h"
+#include "html/html_silence_data.h"
 #include "pvtap/codec/function_codes.h"
 #include "report/frame_findings.h"
 #include "report/poll_block_text.h"
@@ -290,6 +291,7 @@ void append_chart_data_json(std::string& o, const AuditReport& r, const Timeline
   function_names(o, t);
   loads(o, t);
   values(o, r, t, options);
+  append_silence_data_json(o, r);
   o += '}';
 }
 

@@ -7,6 +7,7 @@
 #include "html/html_report.h"
 #include "html/html_sections.h"
 #include "html/html_text.h"
+#include "html/html_timing_section.h"
 
 namespace pvtap::analyzer {
 namespace {
@@ -75,6 +76,7 @@ void write_html_report(const AuditReport& report, const Timeline& timeline,
   append_html_stations(o, report);
   append_chart_sections(o);
   append_html_polling(o, report, timeline);
+  append_html_bus_timing(o, report);
   append_html_findings(o, report);
   append_html_latest_values(o, report);
   o += "</main>\n";

@@ -1,6 +1,7 @@
 // run_logic_audit: buses from the plan, the recording read through UartTap.
 #include "logic/logic_run.h"
 
+#include <algorithm>
 #include <cstdio>
 
 #include "logic/uart_tap.h"
@@ -24,6 +25,8 @@ void merge_errors(const SerialLineReport& from, SerialLineReport& into) {
   into.parity_errors += from.parity_errors;
   into.breaks += from.breaks;
   into.driver_glitches += from.driver_glitches;
+  // Both directions of a bus off the standard rate are one clock finding, not two.
+  into.clock_deviations = std::max(into.clock_deviations, from.clock_deviations);
 }
 
 }  // namespace

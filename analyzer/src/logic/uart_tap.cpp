@@ -1,6 +1,8 @@
 // UartTap: runs to characters to bus chunks, one character a chunk, stamped with its end.
 #include "logic/uart_tap.h"
 
+#include <cmath>
+
 namespace pvtap::analyzer {
 
 namespace {
@@ -36,6 +38,7 @@ SerialLineReport settings_of(const TappedChannel& c) {
   r.baud = d.baud.baud;
   r.measured_baud = d.baud.measured;
   r.deviation = d.baud.deviation;
+  r.clock_deviations = std::abs(d.baud.deviation) > BaudEstimate::kSnapTolerance ? 1 : 0;
   r.parity = parity_name(d.line.format.parity);
   r.data_bits = d.line.format.data_bits;
   r.stop_bits = d.line.format.stop_bits;

@@ -60,6 +60,7 @@ void append_serial_line_json(const SerialLineReport& s, std::string& o) {
   append_json_count(o, "parity_errors", s.parity_errors);
   append_json_count(o, "breaks", s.breaks);
   append_json_count(o, "driver_glitches", s.driver_glitches);
+  if (s.measured) append_json_count(o, "clock_deviations", s.clock_deviations);
   o += '}';
   if (!s.turnarounds.empty()) append_turnarounds_json(s.turnarounds, o);
 }

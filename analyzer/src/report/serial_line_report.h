@@ -38,6 +38,9 @@ struct SerialLineReport {
   std::uint64_t breaks = 0;
   // Bytes of RS485 drivers switching on or off, kept out of the frames and the noise.
   std::uint64_t driver_glitches = 0;
+  // A finding, once per bus: a channel's clock over 2 % off the nearest standard rate, which
+  // a receiver at the standard rate may misread (a device's clock or setting to look at).
+  std::uint64_t clock_deviations = 0;
   std::vector<DriverTurnaround> turnarounds;  // --de: per DE channel and station
 };
 

@@ -1,6 +1,4 @@
 // A logic-analyzer bus's serial line in the text report.
-#include <cmath>
-
 #include "report/report_line.h"
 #include "report/serial_line_report.h"
 
@@ -36,8 +34,9 @@ void append_serial_line_text(const SerialLineReport& s, std::string& o) {
                    s.inverted ? " inverted" : "", s.detected ? s.how_found.c_str() : "given",
                    s.measured_baud, s.deviation * 100);
   // Over 2 % the rate is no standard one: worth a look at the device's clock or settings.
-  if (std::abs(s.deviation) > 0.02) {
-    o += report_line("  the rate is %.1f %% off the nearest standard rate", s.deviation * 100);
+  if (s.clock_deviations > 0) {
+    o += report_line("  clock deviation: the rate is %.1f %% off the nearest standard rate",
+                     s.deviation * 100);
   }
   o += report_line("  line errors: framing %llu, parity %llu, break %llu; driver glitches %llu",
                    static_cast<unsigned long long>(s.framing_errors),

@@ -110,6 +110,16 @@ void network(const AuditReport& r, std::string& o) {
   }
 }
 
+// The buses whose clock is over 2 % off a standard rate; nullopt when no bus's rate was
+// measured.
+std::optional<std::uint64_t> clock_deviations(const AuditReport& r) {
+  std::optional<std::uint64_t> n;
+  for (const BusFindings& bus : r.buses) {
+    if (bus.serial && bus.serial->measured) n = n.value_or(0) + bus.serial->clock_deviations;
+  }
+  return n;
+}
+
 void totals(const AuditReport& r, std::string& o) {
   const BusReport t = r.totals();
   o += report_line(
@@ -119,8 +129,14 @@ void totals(const AuditReport& r, std::string& o) {
   o += report_line("frames: %llu (%llu requests, %llu responses, %llu bad checks, %llu malformed)",
                    u(t.bytes.frames), u(t.requests), u(t.responses), u(t.bytes.bad_frames),
                    u(t.malformed_frames));
-  o += report_line("findings: %llu bad checks, %llu timeouts, %llu exceptions and error replies",
-                   u(t.bytes.bad_frames), u(t.timeouts), u(t.exceptions));
+  // Clock deviations only where a line's rate was measured (a logic recording), so that other
+  // reports keep their shape.
+  std::string clocks;
+  if (const std::optional<std::uint64_t> n = clock_deviations(r)) {
+    clocks = ", " + std::to_string(*n) + " clock deviations over 2 %";
+  }
+  o += report_line("findings: %llu bad checks, %llu timeouts, %llu exceptions and error replies%s",
+                   u(t.bytes.bad_frames), u(t.timeouts), u(t.exceptions), clocks.c_str());
   o += report_line(
       "  of the bad checks: %llu damaged replies (the slave answered; the line damaged the "
       "answer), %llu damaged requests left unanswered (the slave rightly ignored them)",

@@ -11,14 +11,16 @@ bool is_rtu(Dialect d) {
 }  // namespace
 
 void BusGapStatistics::add_frame(const FrameTiming& frame) {
-  if (is_rtu(frame.dialect) && frame.max_internal_gap > timing_.t15) {
-    record(inner_gap_t15_, frame.id);
+  if (is_rtu(frame.dialect)) {
+    inner_silences_.add(frame.max_internal_gap);
+    if (frame.max_internal_gap > timing_.t15) record(inner_gap_t15_, frame.id);
   }
   if (previous_) {
     const double gap = frame.start_time - previous_->end_time;
     gaps_.add(gap);
-    if (is_rtu(frame.dialect) && is_rtu(previous_->dialect) && gap < timing_.t35) {
-      record(spacing_t35_, frame.id);
+    if (is_rtu(frame.dialect) && is_rtu(previous_->dialect)) {
+      frame_silences_.add(gap);
+      if (gap < timing_.t35) record(spacing_t35_, frame.id);
     }
   }
   previous_ = frame;
@@ -37,6 +39,8 @@ BusGapReport BusGapStatistics::report(const TimestampQuality& quality) const {
   r.gaps = gaps_.summary();
   r.inner_gap_t15 = inner_gap_t15_;
   r.spacing_t35 = spacing_t35_;
+  r.inner_silences = inner_silences_;
+  r.frame_silences = frame_silences_;
   return r;
 }
 

@@ -70,7 +70,8 @@ def check_session(checks, pvtap, path, frames, extra=()):
     checks.equal(f"{name}: inverted", serial.get("inverted"), False)
     checks.equal(f"{name}: detected", serial.get("detected"), True)
     checks.equal(f"{name}: line errors", bus.get("line"),
-                 {"framing_errors": 0, "parity_errors": 0, "breaks": 0, "driver_glitches": 0})
+                 {"framing_errors": 0, "parity_errors": 0, "breaks": 0, "driver_glitches": 0,
+                  "clock_deviations": 0})
     timing = bus["timing"]
     checks.equal(f"{name}: timing judged", timing["judged"], True)
     checks.true(f"{name}: timed by the sample clock ({timing.get('timed_by')})",
@@ -213,7 +214,8 @@ def synthetic(checks, args):
                  (serial["baud"], serial["parity"], serial["stop_bits"], serial["inverted"]),
                  (19200, "even", 1, True))
     checks.equal("synthetic: line errors", bus["line"],
-                 {"framing_errors": 0, "parity_errors": 0, "breaks": 0, "driver_glitches": 0})
+                 {"framing_errors": 0, "parity_errors": 0, "breaks": 0, "driver_glitches": 0,
+                  "clock_deviations": 0})
     checks.equal("synthetic: t3.5 violations", bus["timing"]["t35_violations"], 1)
     checks.equal("synthetic: t1.5 violations", bus["timing"]["t15_violations"], 1)
     checks.equal("synthetic: timed by", bus["timing"].get("timed_by"), "logic analyzer at 1 MS/s")

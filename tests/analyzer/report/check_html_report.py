@@ -2,13 +2,16 @@
 """pvtap audit --html in a real browser: Debian's headless chromium opens the report of a
 capture from disk with no network, and the page must show what the report model says.
 
-  check_html_report.py PVTAP CAPTURE OUT_DIR
+  check_html_report.py PVTAP CAPTURE OUT_DIR [TRUTH]
 
 Checks: no console error or uncaught exception; no request for anything but the file itself;
 the overview tiles equal the jsonl summary's numbers; the timeline holds as many marks of each
 kind as the summary counts (and its request/reply buckets add up to the summary's requests and
 responses); the last point of every numeric value chart equals that register's "latest value"
-in the text report. A screenshot of the page goes to OUT_DIR/NAME.png.
+in the text report; where a bus's timing is judged (a logic recording), its timing histogram's
+counts beyond t1.5 and t3.5 equal the summary's violations, and both lines are drawn where the
+summary puts t1.5 and t3.5 (and, given a logic sample's TRUTH, the counts beyond them are its
+planted violations). A screenshot of the page goes to OUT_DIR/NAME.png.
 Exit 77 (skipped) when chromium is not installed.
 """
 
@@ -83,6 +86,56 @@ MARK_POSITION = r"""
 })
 """
 
+# Each timing histogram read back from its dygraph: per series, the silences beyond its line
+# (rows are buckets at their lower edge, and the line is an edge: inside a frame, the buckets
+# from t1.5 up; between frames, those below t3.5) and in all; where the page's verdicts say
+# what; and how many pixels of each line's color stand in a column at the line's place on the
+# chart's canvases (a drawn line covers much of the plot's height, dashed).
+SILENCE_CHECK = r"""
+(() => {
+  const hex = c => [1, 3, 5].map(i => parseInt(c.substr(i, 2), 16));
+  function linePixels(g, ms, color) {
+    // Where `ms` is on the log axis (toDomXCoord would place it linearly).
+    const area = g.getArea(), [lo, hi] = g.xAxisRange().map(Math.log), want = hex(color);
+    const x = Math.round(area.x + area.w * (Math.log(ms) - lo) / (hi - lo));
+    let found = 0;
+    g.graphDiv.querySelectorAll('canvas').forEach(canvas => {
+      const ctx = canvas.getContext('2d');
+      for (let y = Math.ceil(area.y); y < area.y + area.h; ++y) {
+        for (let dx = -1; dx <= 1; ++dx) {
+          const p = ctx.getImageData(x + dx, y, 1, 1).data;
+          if (p[3] > 200 && want.every((v, i) => Math.abs(p[i] - v) <= 8)) { ++found; break; }
+        }
+      }
+    });
+    return {found: found, height: Math.floor(area.h)};
+  }
+  return JSON.stringify((pvtap.charts.silences || []).map((s, n) => {
+    const g = s.chart, sums = {inner_beyond: 0, inner_total: 0, between_beyond: 0,
+                               between_total: 0};
+    for (let row = 0; row < g.numRows(); ++row) {
+      const x = g.getValue(row, 0), inner = g.getValue(row, 1), between = g.getValue(row, 2);
+      if (inner !== null) {
+        sums.inner_total += inner;
+        if (x >= s.t15_ms) sums.inner_beyond += inner;
+      }
+      if (between !== null) {
+        sums.between_total += between;
+        if (x < s.t35_ms) sums.between_beyond += between;
+      }
+    }
+    const shown = {};
+    document.getElementById('silence-chart-' + n).closest('.bus-timing')
+      .querySelectorAll('[data-key]').forEach(e => {
+        shown[e.dataset.key] = Number(e.textContent);
+      });
+    return {bus: s.bus, t15_ms: s.t15_ms, t35_ms: s.t35_ms, sums: sums, shown: shown,
+            t15_line: linePixels(g, s.t15_ms, pvtap.silenceLineColors.t15),
+            t35_line: linePixels(g, s.t35_ms, pvtap.silenceLineColors.t35)};
+  }));
+})()
+"""
+
 TILE_FIELDS = ["frames", "bad_checks", "timeouts", "unanswered_damaged_requests", "exceptions",
                "noise_bytes", "gaps"]
 MARK_FIELDS = {"damaged": "bad_checks", "timeout": "timeouts",
@@ -118,6 +171,44 @@ def hover_tooltip(browser, kind):
     return text, where["mark"]
 
 
+def check_silences(summary, charts):
+    """One timing histogram per bus whose timing is judged, and none for the others: its counts
+    beyond t1.5 and t3.5 are the bus's violations, the page's verdicts say the same, its lines
+    stand where the summary's t1.5 and t3.5 are, drawn."""
+    failures = []
+    judged = [b for b in summary["buses"] if b["timing"]["judged"]]
+    names = [b["bus"] or "serial" for b in judged]
+    if [c["bus"] for c in charts] != names:
+        return ["timing histograms for %s, the judged buses are %s"
+                % ([c["bus"] for c in charts], names)]
+    for bus, c in zip(judged, charts):
+        timing, sums, name = bus["timing"], c["sums"], c["bus"]
+        pairs = ((sums["inner_beyond"], timing["t15_violations"], "over t1.5 inside"),
+                 (sums["between_beyond"], timing["t35_violations"], "under t3.5 between"),
+                 (c["shown"].get("t15_violations"), timing["t15_violations"],
+                  "page's t1.5 verdict"),
+                 (c["shown"].get("t35_violations"), timing["t35_violations"],
+                  "page's t3.5 verdict"),
+                 (c["t15_ms"], timing["t15_ms"], "t1.5 line (ms)"),
+                 (c["t35_ms"], timing["t35_ms"], "t3.5 line (ms)"))
+        for got, expected, what in pairs:
+            if isinstance(got, float) and abs(got - expected) <= 1e-3:
+                continue
+            if got != expected:
+                failures.append("%s: histogram %s is %s, the summary says %s"
+                                % (name, what, got, expected))
+        # Every frame of the samples checked here is RTU: each has its largest inner silence,
+        # and there is one silence fewer between them.
+        if sums["inner_total"] != bus["frames"] or sums["between_total"] != bus["frames"] - 1:
+            failures.append("%s: histogram holds %d inner and %d between silences for %d frames"
+                            % (name, sums["inner_total"], sums["between_total"], bus["frames"]))
+        for line in ("t15_line", "t35_line"):
+            if c[line]["found"] < c[line]["height"] // 3:
+                failures.append("%s: the %s is %d pixels of a %d pixel high plot"
+                                % (name, line, c[line]["found"], c[line]["height"]))
+    return failures
+
+
 def run(args):
     result = subprocess.run(args, capture_output=True, text=True, timeout=RUN_GUARD_S)
     if result.returncode != 0:
@@ -127,12 +218,16 @@ def run(args):
 
 def main():
     pvtap, capture, out_dir = sys.argv[1:4]
+    truth = None
+    if len(sys.argv) > 4:
+        with open(sys.argv[4], encoding="utf-8") as f:
+            truth = json.load(f)
     chromium = find_chromium()
     if chromium is None:
         print("SKIP: no chromium (apt-get install chromium)")
         return 77
     os.makedirs(out_dir, exist_ok=True)
-    name = os.path.basename(capture).rsplit(".pcap", 1)[0]
+    name = os.path.splitext(os.path.basename(capture))[0]
     html = os.path.join(out_dir, name + ".html")
     summary = json.loads(run([pvtap, "audit", "--format", "jsonl", "--summary-only", capture]))
     text = run([pvtap, "audit", "--summary-only", "--html", html, capture])
@@ -150,6 +245,7 @@ def main():
             time.sleep(0.05)
         loaded = time.monotonic() - started
         page = json.loads(browser.evaluate(PAGE_CHECK))
+        silences = json.loads(browser.evaluate(SILENCE_CHECK))
         tooltip = hover_tooltip(browser, "timeout")
         shot = os.path.join(out_dir, name + ".png")
         browser.screenshot(shot)
@@ -203,8 +299,27 @@ def main():
             failures.append("%s: chart ends at %s, the text report's latest value is %s"
                             % (point["label"], point["value"], latest[key]))
 
+    failures += check_silences(summary, silences)
+    # A logic sample's planted violations, as its truth lists them, beyond the lines of every
+    # bus (each bus of the sample carries every frame).
+    if truth is not None:
+        planted = (truth["logic"]["pauses_in_frames"], truth["logic"]["early_replies"])
+        for c in silences:
+            found = (c["sums"]["inner_beyond"], c["sums"]["between_beyond"])
+            if found != planted:
+                failures.append("%s: beyond t1.5 and t3.5 %s, the truth planted %s"
+                                % (c["bus"], found, planted))
+        if not silences:
+            failures.append("no timing histogram for a logic sample")
+
     if tooltip:
         print("tooltip of the first timeout: " + tooltip[0])
+    for c in silences:
+        print("timing histogram of %s: %d of %d frames with a silence over t1.5 inside, %d of %d "
+              "silences between frames under t3.5; lines of %d and %d pixels"
+              % (c["bus"], c["sums"]["inner_beyond"], c["sums"]["inner_total"],
+                 c["sums"]["between_beyond"], c["sums"]["between_total"],
+                 c["t15_line"]["found"], c["t35_line"]["found"]))
     print("%s: %d tiles, %d mark kinds, %d value series checked; page ready in %.2f s; "
           "network %s; screenshot %s"
           % (name, len(TILE_FIELDS), len(MARK_FIELDS), len(page["last"]), loaded,

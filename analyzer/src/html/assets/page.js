@@ -274,6 +274,81 @@
                                        chart: buildValueChart(group, container) }));
   }
 
+  // A silence histogram's rows: each bucket at its lower edge (log axis: the bucket below the
+  // lowest edge, which holds zero and overlaps, a quarter octave lower), then one row past the
+  // highest edge where the step ends. The line is an edge, so the rows on either side of it
+  // are exactly the silences on either side.
+  const QUARTER_OCTAVE = Math.pow(2, 0.25);
+  function silenceRows(h) {
+    const e = h.edges_ms, last = e[e.length - 1];
+    const rows = h.counts.map((n, i) => [i === 0 ? e[0] / QUARTER_OCTAVE : e[i - 1], n]);
+    rows.push([last * QUARTER_OCTAVE, 0]);
+    return rows;
+  }
+
+  // The rules' limits as vertical lines under the bars, named where they stand.
+  const SILENCE_LINE_COLORS = { t15: '#d62728', t35: '#9467bd' };
+  pvtap.silenceLineColors = SILENCE_LINE_COLORS;
+  function silenceLines(s) {
+    return (ctx, area, g) => {
+      // toDomXCoord is linear even on a log axis: place the line by the logarithms.
+      const [lo, hi] = g.xAxisRange().map(Math.log);
+      const lines = [[s.t15_ms, 't1.5', SILENCE_LINE_COLORS.t15],
+                     [s.t35_ms, 't3.5', SILENCE_LINE_COLORS.t35]];
+      lines.forEach(([ms, text, color]) => {
+        // On a pixel's middle, so that the line is crisp rather than smeared over two.
+        const x = Math.round(area.x + area.w * (Math.log(ms) - lo) / (hi - lo)) + 0.5;
+        if (x < area.x || x > area.x + area.w) return;
+        ctx.save();
+        ctx.strokeStyle = color;
+        ctx.fillStyle = color;
+        ctx.lineWidth = 1.5;
+        ctx.setLineDash([5, 3]);
+        ctx.beginPath();
+        ctx.moveTo(x, area.y);
+        ctx.lineTo(x, area.y + area.h);
+        ctx.stroke();
+        ctx.fillText(text, x + 3, area.y + 12);
+        ctx.restore();
+      });
+    };
+  }
+
+  const SILENCE_SERIES = [['largest silence inside a frame (against t1.5)', '#ff7f0e'],
+                          ['silence between frames (against t3.5)', '#1f77b4']];
+
+  // Which colour is which, shown before any hover.
+  function silenceLegend(chart) {
+    const legend = document.createElement('div');
+    legend.className = 'legend';
+    SILENCE_SERIES.forEach(([text, color]) => {
+      const span = document.createElement('span');
+      span.innerHTML = '<i style="background:' + color + '"></i>';
+      span.appendChild(document.createTextNode(text));
+      legend.appendChild(span);
+    });
+    chart.before(legend);
+  }
+
+  function buildSilenceChart(s, n) {
+    const chart = element('silence-chart-' + n);
+    silenceLegend(chart);
+    const points = [silenceRows(s.inner), silenceRows(s.between)];
+    return new Dygraph(chart, rowsOf(points), {
+      labels: ['ms'].concat(SILENCE_SERIES.map(([text]) => text)),
+      colors: SILENCE_SERIES.map(([, color]) => color), stepPlot: true, fillGraph: true,
+      connectSeparatedPoints: true, legend: 'follow', labelsSeparateLines: true,
+      xlabel: 'silence, ms (log scale; one character is ' + s.char_ms.toFixed(3) + ' ms)',
+      ylabel: 'silences', axes: { x: { logscale: true } },
+      underlayCallback: silenceLines(s)
+    });
+  }
+
+  function buildSilences() {
+    return data.silences.map((s, n) => ({ bus: s.bus, t15_ms: s.t15_ms, t35_ms: s.t35_ms,
+                                          chart: buildSilenceChart(s, n) }));
+  }
+
   if (!data.has_timestamps) {
     ['timeline-chart', 'load-chart', 'latency-chart', 'histogram-chart'].forEach(id =>
       note(element(id), 'Not drawn: the input has no timestamps.'));
@@ -292,6 +367,7 @@
   timed_build('latency', buildLatency);
   timed_build('histogram', buildHistogram);
   timed_build('values', buildValues);
+  timed_build('silences', buildSilences);
   const timed = [pvtap.charts.timeline, pvtap.charts.load, pvtap.charts.latency]
     .concat(pvtap.charts.values.map(v => v.chart)).filter(g => g);
   const t0 = performance.now();

@@ -10,6 +10,7 @@
 #include "pvtap/statistics/bus_timing.h"
 #include "pvtap/statistics/distribution_summary.h"
 #include "pvtap/statistics/frame_timing.h"
+#include "pvtap/statistics/silence_histogram.h"
 
 namespace pvtap {
 
@@ -30,6 +31,11 @@ struct BusGapReport {
   DistributionSummary gaps;      // silence from one frame's end to the next frame's start
   RuleViolations inner_gap_t15;  // RTU frames with a gap inside longer than t1.5
   RuleViolations spacing_t35;    // RTU frames starting less than t3.5 after an RTU frame
+  // When measurable: each RTU frame's largest silence inside, against t1.5 (those above the
+  // line are inner_gap_t15), and each silence between two RTU frames, against t3.5 (those
+  // below it are spacing_t35).
+  std::optional<SilenceHistogram> inner_silences;
+  std::optional<SilenceHistogram> frame_silences;
 };
 
 // BusGapStatistics: collects gaps as frames pass; the timestamp verdict comes at report time,
@@ -38,7 +44,10 @@ class BusGapStatistics {
  public:
   static constexpr std::size_t kMaxExamples = 10;
 
-  explicit BusGapStatistics(BusTiming timing) : timing_(timing) {}
+  explicit BusGapStatistics(BusTiming timing)
+      : timing_(timing),
+        inner_silences_(timing.char_time, timing.t15, LineSide::Below),
+        frame_silences_(timing.char_time, timing.t35, LineSide::Above) {}
   void add_frame(const FrameTiming& frame);
   BusGapReport report(const TimestampQuality& quality) const;
 
@@ -49,6 +58,8 @@ class BusGapStatistics {
   DistributionAccumulator gaps_;
   RuleViolations inner_gap_t15_;
   RuleViolations spacing_t35_;
+  SilenceHistogram inner_silences_;
+  SilenceHistogram frame_silences_;
   std::optional<FrameTiming> previous_;
 };
 
