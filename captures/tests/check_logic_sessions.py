@@ -16,6 +16,9 @@ driver-enable channels none), and
 clock: every talker's clock 3 % slow is one clock deviation per bus (the A-B channel, and TX,RX),
 in the summary's line and the text report's findings, its deviation_percent the simulated one;
 1 % slow is none; --fail-on errors does not count them.
+long: the same bus sampled at 1 MS/s (about 11 MB of samples, which the audit reads once and
+keeps) and at 4 MS/s (about 43 MB, over what it keeps: read a second time) gives the truth's
+frames, timeouts and planted t3.5 violations both ways.
 Exit 0 when every check holds, 1 with the failures listed.
 """
 import json
@@ -181,11 +184,27 @@ def check_clock(checks, pvtap, sim, scratch):
                      text.count("clock deviation: the rate is"), 2 * expected)
 
 
+def check_long(checks, pvtap, sim, scratch):
+    """A recording kept from the probe's reading and one read twice decode alike."""
+    for rate in ("1000000", "4000000"):
+        session, truth = simulate(sim, scratch, f"rate{rate}", "--seed", "61", "--baud", "9600",
+                                  "--faults", "missing=10", "--violations", "3",
+                                  "--samplerate", rate)
+        result = audit(pvtap, "--format", "jsonl", session)
+        checks.equal(f"{rate} samples/s: exit status", result.returncode, 0)
+        s = summary(result)
+        check_bus_totals(checks, f"{rate} samples/s", s, result, truth)
+        if s:
+            checks.equal(f"{rate} samples/s: t3.5 violations",
+                         s["buses"][0]["timing"]["t35_violations"], truth["logic"]["early_replies"])
+
+
 def main():
     pvtap, sim, scratch, mode = sys.argv[1:5]
     os.makedirs(scratch, exist_ok=True)
     checks = Checks()
-    modes = {"drivers": check_drivers, "channels": check_channels, "clock": check_clock}
+    modes = {"drivers": check_drivers, "channels": check_channels, "clock": check_clock,
+             "long": check_long}
     modes[mode](checks, pvtap, sim, scratch)
     return checks.finish()
 

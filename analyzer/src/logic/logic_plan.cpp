@@ -134,8 +134,10 @@ LogicPlan plan_logic_audit(const std::string& path, const std::vector<std::strin
     return plan;
   }
   LineProbe probe(names);
-  const std::string error = read_logic_file(path, probe);
+  SampleHold hold(probe, kHeldRecordingLimit);
+  const std::string error = read_logic_file(path, hold);
   probe.finish();
+  if (error.empty()) plan.held = hold.take();
   plan.sample_rate = probe.sample_rate();
   std::vector<ProbedChannel> probed = probe.channels();
   if (!error.empty()) {

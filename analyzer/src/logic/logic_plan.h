@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "logic/line_probe.h"
+#include "logic/sample_hold.h"
 
 namespace pvtap::analyzer {
 
@@ -23,7 +24,11 @@ struct LogicPlan {
   // requests' and the replies'.
   std::vector<std::vector<std::size_t>> buses;
   std::string error;  // empty when the plan can run
+  HeldSamples held;   // the samples the probe read, when it read the whole recording
 };
+
+// A recording of at most this many bytes of samples is read once: the probe's reading is kept.
+inline constexpr std::size_t kHeldRecordingLimit = std::size_t{32} << 20;
 
 // A decoder needs this many samples per bit to find a start bit's middle.
 inline constexpr double kMinSamplesPerBit = 4.0;

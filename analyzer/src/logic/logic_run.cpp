@@ -62,7 +62,11 @@ LogicRun run_logic_audit(const LogicPlan& plan, Pipeline& pipeline, EventWriter&
   const std::unique_ptr<UartTap> owned = tap_planned_channels(plan, pipeline, events);
   UartTap& tap = *owned;
   LogicRun run;
-  run.error = read_logic_file(plan.path, tap);
+  if (plan.held.whole) {
+    plan.held.replay(tap);
+  } else {
+    run.error = read_logic_file(plan.path, tap);
+  }
   tap.finish();
   run.end_time = tap.end_time();
   pipeline.finish(run.end_time);

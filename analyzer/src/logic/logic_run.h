@@ -1,5 +1,6 @@
-// The second pass of a logic recording's audit: every UART channel a bus of its own, fed its
-// characters with their own times, judged on t1.5/t3.5 at the sample clock's precision.
+// The second pass of a logic recording's audit (over the samples the probe held, or the file
+// read again): every UART channel a bus of its own, fed its characters with their own times,
+// judged on t1.5/t3.5 at the sample clock's precision.
 #pragma once
 
 #include <memory>
