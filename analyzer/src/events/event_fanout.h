@@ -31,6 +31,9 @@ class EventFanout : public EventWriter {
   void driver_glitch(const EventContext& c, const DriverGlitchEvent& g) override {
     for (EventWriter* w : consumers_) w->driver_glitch(c, g);
   }
+  void line_error(const EventContext& c, const LineErrorEvent& e) override {
+    for (EventWriter* w : consumers_) w->line_error(c, e);
+  }
 
  private:
   std::vector<EventWriter*> consumers_;

@@ -24,6 +24,32 @@ struct DriverGlitchEvent {
   bool framing_error = false;
 };
 
+// LineErrorEvent: a character the UART could not read cleanly (a stop bit read as space, a
+// parity bit that does not hold) or a break. Such a character still goes to its frame, whose
+// check then fails; the event says which character and why.
+struct LineErrorEvent {
+  enum class Kind : std::uint8_t { framing, parity, framing_and_parity, line_break };
+  double time = 0;  // its start bit's edge
+  double duration = 0;
+  std::uint8_t value = 0;  // none for a break
+  Kind kind = Kind::framing;
+};
+
+// The words for a line error in every output: "framing", "parity", "framing+parity", "break".
+constexpr std::string_view line_error_name(LineErrorEvent::Kind kind) {
+  switch (kind) {
+    case LineErrorEvent::Kind::framing:
+      return "framing";
+    case LineErrorEvent::Kind::parity:
+      return "parity";
+    case LineErrorEvent::Kind::framing_and_parity:
+      return "framing+parity";
+    case LineErrorEvent::Kind::line_break:
+      return "break";
+  }
+  return "framing";
+}
+
 class EventWriter {
  public:
   virtual ~EventWriter() = default;
@@ -34,6 +60,7 @@ class EventWriter {
   virtual void gap(const EventContext& c, const SessionGap& g) = 0;
   // Only logic recordings see the line itself: other formats need not show these.
   virtual void driver_glitch(const EventContext&, const DriverGlitchEvent&) {}
+  virtual void line_error(const EventContext&, const LineErrorEvent&) {}
 };
 
 }  // namespace pvtap::analyzer

@@ -103,6 +103,7 @@ void UartTap::deliver(Slot& s) {
   for (const UartCharacter& c : characters_) {
     if (c.is_break) {
       ++s.report.breaks;
+      report_line_error(s, c);
       continue;
     }
     s.report.framing_errors += c.framing_error ? 1 : 0;
@@ -111,6 +112,20 @@ void UartTap::deliver(Slot& s) {
   }
   characters_.clear();
   feed_bus(s, &s == &slots_.front());
+}
+
+// Glitches have their own event; a character that stays on the bus, or a break, gets this one.
+void UartTap::report_line_error(const Slot& s, const UartCharacter& c) {
+  using Kind = LineErrorEvent::Kind;
+  const Kind kind = c.is_break                          ? Kind::line_break
+                    : c.framing_error && c.parity_error ? Kind::framing_and_parity
+                    : c.framing_error                   ? Kind::framing
+                                                        : Kind::parity;
+  const double rate = sample_rate_;
+  events_.line_error(EventContext{s.tapped.channel.name, true},
+                     LineErrorEvent{static_cast<double>(c.start) / rate,
+                                    static_cast<double>(c.end - c.start) / rate,
+                                    static_cast<std::uint8_t>(c.value), kind});
 }
 
 void UartTap::feed_bus(Slot& s, bool first) {
@@ -123,6 +138,7 @@ void UartTap::feed_bus(Slot& s, bool first) {
                                                      g.switch_on, c.framing_error});
   }
   for (const UartCharacter& c : bus_characters_) {
+    if (c.framing_error || c.parity_error) report_line_error(s, c);
     if (first) turnaround_.character(c);
     if (s.tapped.pair >= 0) {
       pairs_[static_cast<std::size_t>(s.tapped.pair)].add(s.tapped.side, c);

@@ -56,6 +56,7 @@ class UartTap final : public LogicSink, private RunConsumer {
   void run(std::size_t slot, SampleRun run) override;
   void deliver(Slot& s);
   void feed_bus(Slot& s, bool first);
+  void report_line_error(const Slot& s, const UartCharacter& c);
   void feed_pair(Slot& s);
 
   std::vector<Slot> slots_;

@@ -123,6 +123,22 @@ class JsonlEventWriter : public EventWriter {
     end_line(o, c);
   }
 
+  void line_error(const EventContext& c, const LineErrorEvent& e) override {
+    std::string& o = out_.buffer();
+    begin_line(o, "line_error", c, e.time);
+    o += ",\"error\":\"";
+    o += line_error_name(e.kind);
+    o += '"';
+    if (e.kind != LineErrorEvent::Kind::line_break) {
+      o += ",\"raw\":\"";
+      append_hex(o, std::span(&e.value, 1));
+      o += '"';
+    }
+    o += ",\"duration_us\":";
+    append_fixed(o, e.duration * 1e6, 1);
+    end_line(o, c);
+  }
+
   void gap(const EventContext& c, const SessionGap& g) override {
     std::string& o = out_.buffer();
     begin_line(o, "gap", c, g.time);

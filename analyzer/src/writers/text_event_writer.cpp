@@ -98,6 +98,20 @@ class TextEventWriter : public EventWriter {
     out_.done();
   }
 
+  void line_error(const EventContext& c, const LineErrorEvent& e) override {
+    std::string& o = out_.buffer();
+    const std::size_t start = begin_line(o, c, e.time, 0);
+    o += "line";
+    pad_to(o, start, 8);
+    if (e.kind != LineErrorEvent::Kind::line_break) {
+      append_spaced_hex(o, std::span(&e.value, 1));
+      o += "  ";
+    }
+    o += line_error_name(e.kind);
+    o += '\n';
+    out_.done();
+  }
+
   void gap(const EventContext& c, const SessionGap& g) override {
     std::string& o = out_.buffer();
     const std::size_t start = begin_line(o, c, g.time, 0);

@@ -8,7 +8,9 @@ every check good, no noise, 9600 baud found, timing judged at the sample clock. 
 --channels picks a channel, names one that is not there or one without traffic. vcd: the
 session exported by sigrok-cli reads the same through libsigrok's VCD input. synthetic: a VCD
 written here of an inverted 19200 8E1 line with one reply too early (t3.5) and one request with
-a pause inside (t1.5) gives its settings and exactly those violations. bad_inputs: a file
+a pause inside (t1.5) gives its settings and exactly those violations; on the same line, a
+parity error, a framing error and a break are each a line_error event (jsonl) and a text
+line, at their times. bad_inputs: a file
 that is no recording, a recording without UART traffic, a sample rate under 4 per bit.
 Exit 0 when every check holds, 1 with the failures listed, 77 when a needed input is missing.
 """
@@ -174,16 +176,25 @@ class Line:
             self.level = level
         self.t += bits * self.bit
 
-    def frame(self, data, pause_after=None, pause_chars=0.0):
+    def frame(self, data, pause_after=None, pause_chars=0.0, damage=None):
+        """`damage`: {index: "parity" or "framing"}, that character's parity or stop bit wrong."""
+        damage = damage or {}
         for i, v in enumerate(data):
             data_bits = [(v >> k) & 1 for k in range(8)]
-            for b in [0] + data_bits + [sum(data_bits) % 2, 1]:
+            parity = sum(data_bits) % 2 ^ (damage.get(i) == "parity")
+            stop = 0 if damage.get(i) == "framing" else 1
+            for b in [0] + data_bits + [parity, stop]:
                 self.hold(b == 1, 1)
+            if stop == 0:
+                self.hold(True, 1)
             if i == pause_after:
                 self.hold(True, 11 * pause_chars)
 
     def idle(self, chars):
         self.hold(True, 11 * chars)
+
+    def line_break(self, chars):
+        self.hold(False, 11 * chars)
 
 
 def synthetic(checks, args):
@@ -219,6 +230,41 @@ def synthetic(checks, args):
     checks.equal("synthetic: t3.5 violations", bus["timing"]["t35_violations"], 1)
     checks.equal("synthetic: t1.5 violations", bus["timing"]["t15_violations"], 1)
     checks.equal("synthetic: timed by", bus["timing"].get("timed_by"), "logic analyzer at 1 MS/s")
+    line_errors(checks, args)
+
+
+def line_errors(checks, args):
+    """After clean frames that set the format: a reply with a parity error in its 4th byte, one
+    with a framing error in its 2nd, and a break; each a line_error event with its time."""
+    line = Line(19200)
+    line.idle(10)
+    damaged = {2: {3: "parity"}, 4: {1: "framing"}}
+    expected = []
+    for i in range(6):
+        line.frame(crc16([0x11, 0x03, 0x00, 0x20 + i, 0x00, 0x02]))
+        line.idle(5)
+        start = line.t
+        line.frame(crc16([0x11, 0x03, 0x04, 0x00, i, 0x12, 0x34]), damage=damaged.get(i))
+        for index, kind in damaged.get(i, {}).items():
+            expected.append((kind, round((start + index * 11 * line.bit) / 1e6, 4)))
+        line.idle(500)
+    expected.append(("break", round(line.t / 1e6, 4)))
+    line.line_break(3)
+    line.idle(500)
+    path = os.path.join(args.scratch, "line_errors.vcd")
+    write_vcd(path, 1, line.edges, round(line.t), idle_high=False)
+    result = audit(args.pvtap, "--format", "jsonl", path)
+    events = [json.loads(l) for l in result.stdout.splitlines() if '"type":"line_error"' in l]
+    checks.equal("line errors: events (kind, time)",
+                 [(e["error"], round(e["ts"], 4)) for e in events], expected)
+    s = summary(result) or {"buses": [{}]}
+    checks.equal("line errors: counts", s["buses"][0].get("line", {}).get("parity_errors"), 1)
+    # The damaged bits are parity and stop bits: the values, and so the frames, still check.
+    checks.equal("line errors: frames", s.get("frames"), 12)
+    text = audit(args.pvtap, path).stdout
+    event_lines = [l.split("  line")[1].split() for l in text.splitlines() if "  TX  line  " in l]
+    checks.equal("line errors: text lines", event_lines,
+                 [["00", "parity"], ["03", "framing"], ["break"]])
 
 
 def bad_inputs(checks, args):
