@@ -18,6 +18,7 @@ constexpr std::size_t kCommonShareDivisor = 50;  // 2 %
 constexpr std::size_t kMinPulses = 4;
 constexpr double kBand = 1.25;
 constexpr unsigned kMaxMultiple = 10;  // the longest pulse inside a character
+constexpr int kRefineRounds = 4;
 
 double shortest_common(const std::vector<std::uint64_t>& sorted) {
   const std::size_t need = std::max(kMinPulses, sorted.size() / kCommonShareDivisor);
@@ -69,9 +70,13 @@ std::optional<BaudEstimate> estimate_baud(std::span<const std::uint64_t> widths,
                                           double sample_rate) {
   std::vector<std::uint64_t> sorted(widths.begin(), widths.end());
   std::sort(sorted.begin(), sorted.end());
-  const double first = shortest_common(sorted);
-  if (first < 1) return std::nullopt;
-  return snap_baud(sample_rate / refined_bit(sorted, first));
+  double bit = shortest_common(sorted);
+  if (bit < 1) return std::nullopt;
+  // The shortest common width is the short end of the bits when edges jitter, and a band
+  // around its multiples then takes the short pulses of each and leaves the long ones out.
+  // Refining from the refined bit centres the bands: a few rounds settle it.
+  for (int round = 0; round < kRefineRounds; ++round) bit = refined_bit(sorted, bit);
+  return snap_baud(sample_rate / bit);
 }
 
 }  // namespace pvtap
