@@ -10,7 +10,7 @@ truncated, in the summary and as a finding in the text report; --de naming a cha
 not there is refused in one line with exit 2.
 channels: a bus whose directions are on two channels (the master's TX and RX) is found as one
 bus without --channels, and with --channels TX,RX: every frame, the truth's requests, replies
-and timeouts, the planted t3.5 violations; beside the A-B channel it is a second bus (and the
+and timeouts, the planted t3.5 violations (also where slow replies make the pauses mislead); beside the A-B channel it is a second bus (and the
 driver-enable channels none), and
 --channels is repeatable for both; three names in one --channels are refused in one line.
 clock: every talker's clock 3 % slow is one clock deviation per bus (the A-B channel, and TX,RX),
@@ -140,6 +140,16 @@ def check_channels(checks, pvtap, sim, scratch):
         if s:
             checks.equal(f"channels {what}: t3.5 violations",
                          s["buses"][0]["timing"]["t35_violations"], truth["logic"]["early_replies"])
+    # A slow reply in the first stretch made the mean wait for replies longer than the
+    # master's between polls, and the pauses named RX the requests' channel: the frames' own
+    # layouts decide.
+    session, truth = simulate(sim, scratch, "slow", "--seed", "104", "--baud", "19200",
+                              "--meter", "20", "--faults", "missing=10,slow=5,corrupt=5",
+                              "--sr-channels", "tx,rx", "--violations", "2", "--format", "8E1")
+    result = audit(pvtap, "--format", "jsonl", session)
+    s = summary(result)
+    checks.equal("slow replies: buses", [b["bus"] for b in (s or {}).get("buses", [])], ["TX,RX"])
+    check_bus_totals(checks, "slow replies", s, result, truth)
     # The DE channels' pulses read as slow characters but never as frames: no buses.
     session, truth = simulate(sim, scratch, "both", "--seed", "42", "--baud", "9600",
                               "--sr-channels", "bus,tx,rx,de")

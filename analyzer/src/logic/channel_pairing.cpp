@@ -47,6 +47,18 @@ Turns turns_of(const ProbedChannel& a, const ProbedChannel& b) {
   return t;
 }
 
+// What the frames say: +1 when `a` carries requests and `b` replies, -1 for the reverse, 0
+// when they do not say (writes read alike both ways, or too few frames).
+int role_vote(const ProbedChannel& a, const ProbedChannel& b) {
+  const auto lean = [](const ProbedChannel& p) {
+    const FormatTrial& t = p.line->trial;
+    return static_cast<double>(t.requests) - static_cast<double>(t.responses);
+  };
+  if (lean(a) > 0 && lean(b) < 0) return 1;
+  if (lean(a) < 0 && lean(b) > 0) return -1;
+  return 0;
+}
+
 }  // namespace
 
 std::vector<Burst> bursts_of(const std::vector<SampleRun>& runs, const DetectedLine& line) {
@@ -88,8 +100,12 @@ std::vector<std::vector<std::size_t>> pair_channels(const std::vector<ProbedChan
     }
     if (partner != i) {
       taken[partner] = true;
-      bus = best.first_asks ? std::vector<std::size_t>{i, partner}
-                            : std::vector<std::size_t>{partner, i};
+      // The frames' layouts say which side asks; the pauses only where they do not (a slow
+      // reply or two make the mean wait for replies look longer than the master's).
+      const int vote = role_vote(channels[i], channels[partner]);
+      const bool first_asks = vote != 0 ? vote > 0 : best.first_asks;
+      bus =
+          first_asks ? std::vector<std::size_t>{i, partner} : std::vector<std::size_t>{partner, i};
     }
     buses.push_back(std::move(bus));
   }

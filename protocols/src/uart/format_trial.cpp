@@ -11,9 +11,17 @@ namespace {
 
 class GoodFrameCount final : public ReassemblerSink {
  public:
-  void on_frame(const FrameEvent& frame) override { count += frame.check.ok ? 1 : 0; }
+  void on_frame(const FrameEvent& frame) override {
+    if (!frame.check.ok) return;
+    ++count;
+    if (frame.role == Role::Request) {
+      ++requests;
+    } else {
+      ++responses;
+    }
+  }
   void on_noise(const NoiseEvent&) override {}
-  std::uint64_t count = 0;
+  std::uint64_t count = 0, requests = 0, responses = 0;
 };
 
 }  // namespace
@@ -45,6 +53,8 @@ FormatTrial try_format(const UartLine& line, std::span<const SampleRun> runs, Di
   }
   reassembler.finish();
   trial.good_frames = frames.count;
+  trial.requests = frames.requests;
+  trial.responses = frames.responses;
   trial.distinct_values = static_cast<unsigned>(seen.count());
   return trial;
 }

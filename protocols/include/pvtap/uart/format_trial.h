@@ -16,7 +16,10 @@ struct FormatTrial {
   std::uint64_t characters = 0;
   std::uint64_t line_errors = 0;  // framing and parity errors
   std::uint64_t good_frames = 0;  // frames of any dialect whose check holds
-  unsigned distinct_values = 0;   // how many byte values the characters took
+  // Of those, the ones the framing read as requests and as replies: which side of a bus a
+  // channel carrying one direction is.
+  std::uint64_t requests = 0, responses = 0;
+  unsigned distinct_values = 0;  // how many byte values the characters took
 
   // More good frames first; then fewer line errors.
   bool better_than(const FormatTrial& other) const {
