@@ -11,7 +11,7 @@
 #include "cli/common_options.h"
 #include "cli/exit_status.h"
 #include "cli/mqtt_command_options.h"
-#include "logic/logic_stream_source.h"
+#include "logic/input/logic_stream_source.h"
 #include "pipeline/pipeline.h"
 #include "run/run_output.h"
 #include "sources/interface_source.h"

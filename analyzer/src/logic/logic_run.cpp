@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "logic/uart_tap.h"
+#include "logic/tap/uart_tap.h"
 #include "pvtap/session/carrier_timing.h"
 
 namespace pvtap::analyzer {

@@ -6,8 +6,8 @@
 #include <memory>
 #include <string>
 
-#include "logic/logic_plan.h"
-#include "logic/uart_tap.h"
+#include "logic/plan/logic_plan.h"
+#include "logic/tap/uart_tap.h"
 #include "pipeline/pipeline.h"
 
 namespace pvtap::analyzer {

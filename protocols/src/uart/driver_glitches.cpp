@@ -39,14 +39,16 @@ bool DriverGlitchFilter::switch_on_glitch(std::size_t first, std::size_t last) c
   const UartCharacter& c = run_[first];
   if (!head_open_ || last <= first || !suspect(c)) return false;
   if (silence(c, run_[first + 1]) > 1.5 * char_samples_) return false;
-  return c.framing_error || (checks(run_, first + 1, last) && !checks(run_, first, last));
+  return c.framing_error || c.parity_error ||
+         (checks(run_, first + 1, last) && !checks(run_, first, last));
 }
 
 bool DriverGlitchFilter::switch_off_glitch(std::size_t first, std::size_t last) const {
   const UartCharacter& c = run_[last];
   if (last <= first || !suspect(c)) return false;
   if (silence(run_[last - 1], c) > 1.5 * char_samples_) return false;
-  return c.framing_error || (checks(run_, first, last - 1) && !checks(run_, first, last));
+  return c.framing_error || c.parity_error ||
+         (checks(run_, first, last - 1) && !checks(run_, first, last));
 }
 
 void DriverGlitchFilter::close_run(std::vector<UartCharacter>& out,

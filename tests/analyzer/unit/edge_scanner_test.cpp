@@ -1,5 +1,5 @@
 // EdgeScanner: runs per channel from interleaved samples, whatever the chunking and unit size.
-#include "logic/edge_scanner.h"
+#include "logic/input/edge_scanner.h"
 
 #include <gtest/gtest.h>
 

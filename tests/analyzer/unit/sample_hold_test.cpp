@@ -1,6 +1,6 @@
 // SampleHold: a recording that fits is held whole and replayed as the file gave it; one that
 // does not is given up, and a refused probe stops the reading.
-#include "logic/sample_hold.h"
+#include "logic/input/sample_hold.h"
 
 #include <gtest/gtest.h>
 

@@ -64,6 +64,23 @@ TEST(DriverGlitchFilter, SwitchOnAndOffGlitchesGoAsideAndTheFrameStaysWhole) {
   EXPECT_EQ(f.glitches[1].character.value, 0xFE);
 }
 
+TEST(DriverGlitchFilter, ASwitchOffByteWithAParityErrorGoesAsideAfterADamagedFrame) {
+  // No CRC can tell here: the frame is damaged with the byte and without it. On an 8E1 line
+  // the 0xFF of a driver switching off has its parity bit wrong, and that says it.
+  auto frame = with_crc({0x01, 0x03, 0x02, 0x12, 0x34});
+  frame[3] ^= 0x40;
+  std::vector<UartCharacter> line;
+  const std::uint64_t end = put(line, 10'000, frame);
+  line.push_back(UartCharacter{0xFF, end + 30, end + 30 + kChar, false, true});
+  const Filtered f = run(line);
+  EXPECT_EQ(f.bytes, frame);
+  ASSERT_EQ(f.glitches.size(), 1u);
+  EXPECT_FALSE(f.glitches[0].switch_on);
+  // Read cleanly, the same byte stays: it may be the frame's own.
+  line.back().parity_error = false;
+  EXPECT_EQ(run(line).bytes.size(), frame.size() + 1);
+}
+
 TEST(DriverGlitchFilter, AFramesOwnZeroAndFfStay) {
   // A broadcast (station 0) whose CRC may end in anything: every byte is the frame's.
   std::vector<std::uint8_t> frame;

@@ -140,6 +140,36 @@ TEST(LineDetector, EdgesJitteringEightPercentOfABitKeepTheRate) {
   }
 }
 
+// Each talker's driver switching on (space for a whole character, stop bits included, then
+// mark for a bit) before its frame and off after it (the line falling for one bit).
+std::vector<SampleRun> glitching_conversation(double baud, UartFormat format) {
+  const auto request = with_crc({0xF7, 0x03, 0x00, 0x10, 0x00, 0x02});
+  UartRuns line(kRate / baud, format);
+  line.idle(50);
+  const auto frame = [&](std::span<const std::uint8_t> bytes) {
+    line.hold(false, 11).idle(1.0).bytes(bytes).idle(0.3).hold(false, 1).idle(60);
+  };
+  for (int i = 0; i < 6; ++i) {
+    const auto reply = with_crc({0xF7, 0x03, 0x04, 0x12, static_cast<std::uint8_t>(i), 0x00,
+                                 static_cast<std::uint8_t>(0x80 | i)});
+    frame(request);
+    frame(reply);
+    line.idle(140);
+  }
+  return line.runs();
+}
+
+TEST(LineDetector, DriverGlitchesBetweenFramesDoNotChooseTheFormat) {
+  // The glitches read with more line errors in 8N2 than in 8N1; the frames read clean in both,
+  // and 8N2 is what Modbus RTU asks for without parity.
+  const UartFormat format{8, Parity::None, 2, false};
+  const DetectedLine d = detect(glitching_conversation(9600, format));
+  EXPECT_EQ(format_name(d.line.format), format_name(format));
+  EXPECT_EQ(d.trial.good_frames, 12u);
+  EXPECT_EQ(d.trial.frame_line_errors, 0u);
+  EXPECT_GT(d.trial.line_errors, 0u);
+}
+
 TEST(LineDetector, IdleLineHasNoBit) {
   LineDetector detector;
   detector.add(SampleRun{true, 1'000'000});

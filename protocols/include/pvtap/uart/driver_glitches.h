@@ -21,9 +21,10 @@ struct DriverGlitch {
 // frame beside them nor break it. A run's first character is a switch-on glitch when it is
 // suspect (a framing error, or 0x00, 0xFE, 0xFF) and the next starts within about a character
 // time of its end; its last is a switch-off glitch when suspect and it starts within about a
-// character time of the one before. A suspect byte without a framing error is only a glitch
-// when the run checks (CRC-16/MODBUS) without it and does not with it: a frame's own 0x00 or
-// 0xFF stays.
+// character time of the one before. A suspect byte read cleanly (no framing or parity error:
+// on a parity line a switch-off 0xFF has its parity bit wrong) is only a glitch when the run
+// checks (CRC-16/MODBUS) without it and does not with it: a frame's own 0x00 or 0xFF stays,
+// and a damaged frame keeps its last byte unless that byte's own bits say it is a glitch.
 class DriverGlitchFilter {
  public:
   explicit DriverGlitchFilter(const UartLine& line);

@@ -21,9 +21,18 @@ struct FormatTrial {
   std::uint64_t requests = 0, responses = 0;
   unsigned distinct_values = 0;  // how many byte values the characters took
 
-  // More good frames first; then fewer line errors.
+  // Line errors on the characters of the good frames: a format that reads the frames' values
+  // right but not their bits (an 8E1 line read as 8N2, its parity bit taken for a stop bit).
+  std::uint64_t frame_line_errors = 0;
+
+  // More good frames first, then fewer line errors inside them. Where frames read alike and
+  // clean, the characters between them (a driver's glitches, noise) do not choose: the
+  // earlier candidate stays. Without frames, fewer line errors.
   bool better_than(const FormatTrial& other) const {
     if (good_frames != other.good_frames) return good_frames > other.good_frames;
+    if (frame_line_errors != other.frame_line_errors)
+      return frame_line_errors < other.frame_line_errors;
+    if (good_frames > 0) return false;
     return line_errors < other.line_errors;
   }
 };

@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "logic/line_probe.h"
-#include "logic/sigrok_file.h"
+#include "logic/input/sigrok_file.h"
+#include "logic/plan/line_probe.h"
 
 namespace pvtap::analyzer {
 

@@ -1,5 +1,5 @@
 // LogicStreamSource: a probe over the held first stretch, then the UART tap over the rest.
-#include "logic/logic_stream_source.h"
+#include "logic/input/logic_stream_source.h"
 
 #include <fcntl.h>
 #include <poll.h>

@@ -1,5 +1,5 @@
 // EdgeScanner: edges found by comparing samples, runs given out per channel.
-#include "logic/edge_scanner.h"
+#include "logic/input/edge_scanner.h"
 
 #include <cstring>
 

@@ -1,5 +1,5 @@
 // UartTap: runs to characters to bus chunks, one character a chunk, stamped with its end.
-#include "logic/uart_tap.h"
+#include "logic/tap/uart_tap.h"
 
 #include <cmath>
 

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "logic/edge_scanner.h"
-#include "logic/sigrok_file.h"
+#include "logic/input/edge_scanner.h"
+#include "logic/input/sigrok_file.h"
 #include "pvtap/uart/line_detector.h"
 
 namespace pvtap::analyzer {

@@ -7,9 +7,9 @@
 #include <memory>
 #include <vector>
 
-#include "logic/line_probe.h"
-#include "logic/logic_plan.h"
-#include "logic/uart_tap.h"
+#include "logic/plan/line_probe.h"
+#include "logic/plan/logic_plan.h"
+#include "logic/tap/uart_tap.h"
 #include "pipeline/pipeline.h"
 #include "report/live_report.h"
 #include "sources/live_loop.h"

@@ -1,9 +1,9 @@
 // LineProbe: the channels asked for, each fed to a line detector until its stretch is full.
-#include "logic/line_probe.h"
+#include "logic/plan/line_probe.h"
 
 #include <algorithm>
 
-#include "logic/channel_pairing.h"
+#include "logic/plan/channel_pairing.h"
 
 namespace pvtap::analyzer {
 

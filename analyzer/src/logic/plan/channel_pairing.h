@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "logic/line_probe.h"
+#include "logic/plan/line_probe.h"
 
 namespace pvtap::analyzer {
 

@@ -1,5 +1,5 @@
 // DirectionMerge: an ordered queue released up to the lower of the two sides' watermarks.
-#include "logic/direction_merge.h"
+#include "logic/tap/direction_merge.h"
 
 #include <algorithm>
 

@@ -1,5 +1,5 @@
 // SampleHold: the probe's reading, kept while it fits.
-#include "logic/sample_hold.h"
+#include "logic/input/sample_hold.h"
 
 namespace pvtap::analyzer {
 

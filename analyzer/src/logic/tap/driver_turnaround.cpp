@@ -1,5 +1,5 @@
 // TurnaroundWatch: each fall of a DE channel matched to the frame that ended just before it.
-#include "logic/driver_turnaround.h"
+#include "logic/tap/driver_turnaround.h"
 
 #include <algorithm>
 

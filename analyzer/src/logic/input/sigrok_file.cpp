@@ -1,5 +1,5 @@
 // read_logic_file: libsigrok's session loading or its input modules, one datafeed for both.
-#include "logic/sigrok_file.h"
+#include "logic/input/sigrok_file.h"
 
 #include <libsigrok/libsigrok.h>
 

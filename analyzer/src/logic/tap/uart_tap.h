@@ -6,10 +6,10 @@
 #include <vector>
 
 #include "events/event_writer.h"
-#include "logic/direction_merge.h"
-#include "logic/driver_turnaround.h"
-#include "logic/edge_scanner.h"
-#include "logic/sigrok_file.h"
+#include "logic/input/edge_scanner.h"
+#include "logic/input/sigrok_file.h"
+#include "logic/tap/direction_merge.h"
+#include "logic/tap/driver_turnaround.h"
 #include "pvtap/session/bus_session.h"
 #include "pvtap/uart/driver_glitches.h"
 #include "pvtap/uart/line_detector.h"

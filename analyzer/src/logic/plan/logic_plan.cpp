@@ -1,8 +1,8 @@
 // plan_logic_audit: probe the recording, keep the channels that talk, refuse what cannot be
 // read well.
-#include "logic/logic_plan.h"
+#include "logic/plan/logic_plan.h"
 
-#include "logic/channel_pairing.h"
+#include "logic/plan/channel_pairing.h"
 
 #include <algorithm>
 #include <cstdio>

@@ -1,5 +1,5 @@
 // pair_channels: bursts compared over the stretch both channels were probed in.
-#include "logic/channel_pairing.h"
+#include "logic/plan/channel_pairing.h"
 
 #include <algorithm>
 

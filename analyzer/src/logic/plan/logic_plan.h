@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "logic/line_probe.h"
-#include "logic/sample_hold.h"
+#include "logic/input/sample_hold.h"
+#include "logic/plan/line_probe.h"
 
 namespace pvtap::analyzer {
 
