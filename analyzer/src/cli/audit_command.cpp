@@ -11,6 +11,7 @@
 #include "cli/common_options.h"
 #include "cli/exit_status.h"
 #include "cli/mqtt_command_options.h"
+#include "cli/sample_rate_argument.h"
 #include "console/progress_bar.h"
 #include "logic/logic_run.h"
 #include "logic/plan/logic_plan.h"
@@ -36,11 +37,12 @@ std::string footer_text() {
          "  serial captures    USER0-USER15 and RTAC serial: raw bus bytes in chunks.\n"
          "  exported PDUs      link type 252 as written by --write.\n"
          "  --raw FILE         a plain dump of bus bytes (cat /dev/ttyUSB0 > FILE), no time.\n"
-         "  logic recordings   a sigrok session (.sr) or a VCD file (.vcd), read with libsigrok:\n"
-         "                     each channel with UART traffic is a bus; its baud, parity, stop\n"
-         "                     bits and idle level are found from the samples (--channels\n"
-         "                     names the channels), and t1.5/t3.5 are judged at the sample\n"
-         "                     clock. One recording at a time.\n"
+         "  logic recordings   a sigrok session (.sr), a VCD file (.vcd) or a logic CSV (.csv,\n"
+         "                     a column per channel as sigrok-cli -O csv writes it; give its\n"
+         "                     --samplerate), read with libsigrok: each channel with UART\n"
+         "                     traffic is a bus; its baud, parity, stop bits and idle level are\n"
+         "                     found from the samples (--channels names the channels), and\n"
+         "                     t1.5/t3.5 are judged at the sample clock. One recording at a time.\n"
          "  Several FILEs are read in the order given as one capture (e.g. a ring buffer).\n"
          "\nOutput on stdout: frames (and timeouts, noise, gaps) in the chosen format, then the\n"
          "report. jsonl ends with a {\"type\":\"summary\",...} line; csv holds rows only (use\n"
@@ -91,6 +93,11 @@ void add_input_options(CLI::App& audit, AuditOptions& o) {
       ->type_name("NAME")
       ->allow_extra_args(false);
   audit
+      .add_option("--samplerate", o.logic_sample_rate,
+                  "logic recordings: samples per second (4000000, 4M, 500k), for a file that "
+                  "does not give it (a CSV export) or in place of the one it gives")
+      ->type_name("RATE");
+  audit
       .add_option("--threads", o.threads,
                   "1: read and analyse on one thread; 2: read capture files ahead on a second "
                   "thread (output is the same). Default: 2 when more than one CPU is available")
@@ -125,16 +132,27 @@ bool logic_inputs_fit(const AuditOptions& options, bool logic) {
   const char* why = nullptr;
   if (logic && (options.captures.size() != 1 || !options.raw_dumps.empty())) {
     why = "a logic recording is audited alone (one FILE, no --raw)";
-  } else if (!logic && (!options.logic_channels.empty() || !options.logic_drivers.empty())) {
-    why = "--channels and --de name the channels of a logic recording (.sr, .vcd)";
+  } else if (!logic && (!options.logic_channels.empty() || !options.logic_drivers.empty() ||
+                        !options.logic_sample_rate.empty())) {
+    why = "--channels, --de and --samplerate describe a logic recording (.sr, .vcd, .csv)";
   }
   if (why != nullptr) std::fprintf(stderr, "pvtap: %s\n", why);
   return why == nullptr;
 }
 
 int audit_logic(const AuditOptions& options, const RegisterDecoder& decoder, OutputStream& out) {
-  const LogicPlan plan =
-      plan_logic_audit(options.captures.front(), options.logic_channels, options.logic_drivers);
+  double rate = 0;
+  if (!options.logic_sample_rate.empty()) {
+    const std::optional<double> given = sample_rate_from(options.logic_sample_rate);
+    if (!given) {
+      std::fprintf(stderr, "pvtap: --samplerate %s: expected a rate such as 4000000, 4M or 500k\n",
+                   options.logic_sample_rate.c_str());
+      return kExitBadInput;
+    }
+    rate = *given;
+  }
+  const LogicPlan plan = plan_logic_audit(options.captures.front(), options.logic_channels,
+                                          options.logic_drivers, rate);
   if (!plan.error.empty()) {
     std::fprintf(stderr, "pvtap: %s\n", plan.error.c_str());
     return kExitBadInput;

@@ -54,6 +54,9 @@ struct AuditOptions : CommonOptions {
   std::vector<std::string> logic_channels;
   // --de: driver-enable channels of a logic recording, for the drivers' turnaround.
   std::vector<std::string> logic_drivers;
+  // --samplerate: a logic recording's sample rate where the file gives none (a CSV export),
+  // or in place of the one it gives; as written ("4M").
+  std::string logic_sample_rate;
   bool progress = false;  // draw a progress bar on stderr
   // --threads: 2 reads capture files ahead on a second thread, 1 reads and analyses on one;
   // 0 (the default) picks 2 when this process may run on more than one CPU.

@@ -1,5 +1,7 @@
 #include "cli/sniff_command.h"
 
+#include "cli/sample_rate_argument.h"
+
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -142,28 +144,6 @@ void add_stop_options(CLI::App& sniff, LiveOptions& live) {
   sniff.add_option("--count", live.count, "stop after this many frames")
       ->check(CLI::PositiveNumber.description(""))
       ->type_name("N");
-}
-
-// "4M", "500k", "4000000": samples per second; nullopt when it is none.
-std::optional<double> sample_rate_from(const std::string& text) {
-  std::size_t used = 0;
-  double rate = 0;
-  try {
-    rate = std::stod(text, &used);
-  } catch (const std::exception&) {
-    return std::nullopt;
-  }
-  const std::string unit = text.substr(used);
-  if (unit == "k" || unit == "K")
-    rate *= 1e3;
-  else if (unit == "M")
-    rate *= 1e6;
-  else if (unit == "G")
-    rate *= 1e9;
-  else if (!unit.empty())
-    return std::nullopt;
-  if (!(rate > 0)) return std::nullopt;
-  return rate;
 }
 
 // A one-line reason why the sources given cannot be captured from; empty when they can.

@@ -6,7 +6,8 @@
 sessions: each real flow-meter session gives the frames its source counts, requests = replies,
 every check good, no noise, 9600 baud found, timing judged at the sample clock. channels:
 --channels picks a channel, names one that is not there or one without traffic. vcd: the
-session exported by sigrok-cli reads the same through libsigrok's VCD input. synthetic: a VCD
+session exported by sigrok-cli reads the same through libsigrok's VCD input, and through its
+CSV input with --samplerate (refused in one line without). synthetic: a VCD
 written here of an inverted 19200 8E1 line with one reply too early (t3.5) and one request with
 a pause inside (t1.5) gives its settings and exactly those violations; on the same line, a
 parity error, a framing error and a break are each a line_error event (jsonl) and a text
@@ -47,7 +48,7 @@ def summary(result):
     return json.loads(lines[-1]) if lines else None
 
 
-def check_session(checks, pvtap, path, frames, extra=()):
+def check_session(checks, pvtap, path, frames, extra=(), bus_name="RXTX"):
     name = os.path.basename(path)
     result = audit(pvtap, "--format", "jsonl", *extra, path)
     checks.equal(f"{name}: exit status", result.returncode, 0)
@@ -63,7 +64,7 @@ def check_session(checks, pvtap, path, frames, extra=()):
     checks.equal(f"{name}: timeouts", s["timeouts"], 0)
     checks.equal(f"{name}: buses", len(s["buses"]), 1)
     bus = s["buses"][0]
-    checks.equal(f"{name}: bus name", bus["bus"], "RXTX")
+    checks.equal(f"{name}: bus name", bus["bus"], bus_name)
     serial = bus.get("serial", {})
     checks.equal(f"{name}: baud", serial.get("baud"), 9600)
     checks.true(f"{name}: measured baud {serial.get('measured_baud')} within 2 % of 9600",
@@ -124,6 +125,16 @@ def vcd(checks, args):
     subprocess.run([sigrok_cli, "-i", os.path.join(args.sigrok, GRAPH), "-o", out, "-O", "vcd"],
                    check=True, timeout=120)
     check_session(checks, args.pvtap, out, 18)
+    # A CSV export names no channels (libsigrok's CSV input numbers them: RXTX is the third)
+    # and gives no rate it can read: --samplerate gives it, and without it the file is refused.
+    out = os.path.join(args.scratch, "graph.csv")
+    subprocess.run([sigrok_cli, "-i", os.path.join(args.sigrok, GRAPH), "-o", out, "-O", "csv"],
+                   check=True, timeout=120)
+    check_session(checks, args.pvtap, out, 18, extra=("--samplerate", "4M"), bus_name="2")
+    bad = audit(args.pvtap, out)
+    checks.equal("csv without --samplerate: exit status", bad.returncode, 2)
+    checks.true(f"csv without --samplerate: one line naming it ({bad.stderr!r})",
+                bad.stderr.count("\n") == 1 and "--samplerate" in bad.stderr and bad.stdout == "")
 
 
 def write_vcd(path, timescale_us, edges, end, idle_high=True):

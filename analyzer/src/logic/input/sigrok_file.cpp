@@ -3,6 +3,7 @@
 
 #include <libsigrok/libsigrok.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 
@@ -18,6 +19,7 @@ struct Feed {
   sr_session* session = nullptr;
   bool begun = false;
   double sample_rate = 0;
+  double given_rate = 0;  // in place of the file's
   std::vector<LogicChannel> channels;
 };
 
@@ -38,6 +40,14 @@ void learn_channels(Feed& f, const sr_dev_inst* sdi) {
     if (ch->type != SR_CHANNEL_LOGIC || !ch->enabled) continue;
     f.channels.push_back(LogicChannel{ch->name, static_cast<unsigned>(ch->index)});
   }
+  // A CSV export's header can name every column alike ("logic"): such channels go by their
+  // index, so that each name picks one channel.
+  std::vector<LogicChannel> named = f.channels;
+  for (LogicChannel& c : f.channels) {
+    const auto same = std::count_if(named.begin(), named.end(),
+                                    [&](const LogicChannel& o) { return o.name == c.name; });
+    if (same > 1) c.name = std::to_string(c.index);
+  }
   if (f.sample_rate == 0) f.sample_rate = configured_rate(sdi);
 }
 
@@ -55,7 +65,7 @@ void on_packet(const sr_dev_inst* sdi, const sr_datafeed_packet* packet, void* d
   if (packet->type != SR_DF_LOGIC || !f.sink.wants_more()) return;
   if (!f.begun) {
     learn_channels(f, sdi);
-    f.sink.begin(f.channels, f.sample_rate);
+    f.sink.begin(f.channels, f.given_rate > 0 ? f.given_rate : f.sample_rate);
     f.begun = true;
   }
   const auto* logic = static_cast<const sr_datafeed_logic*>(packet->payload);
@@ -114,10 +124,11 @@ std::string read_with_input(const std::string& path, const sr_input* in, sr_cont
 
 }  // namespace
 
-std::string read_logic_file(const std::string& path, LogicSink& sink) {
+std::string read_logic_file(const std::string& path, LogicSink& sink, double sample_rate) {
   Context context;
   if (context.ctx == nullptr) return "libsigrok did not start";
   Feed feed(sink);
+  feed.given_rate = sample_rate;
   sr_session* session = nullptr;
   std::string error;
   if (sr_session_load(context.ctx, path.c_str(), &session) == SR_OK) {

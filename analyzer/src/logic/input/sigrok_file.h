@@ -30,6 +30,7 @@ class LogicSink {
 
 // Reads `path` from its start into `sink`; the one-line reason when it cannot be read (not a
 // recording libsigrok knows, unreadable); empty when done. Each call reads afresh.
-std::string read_logic_file(const std::string& path, LogicSink& sink);
+// `sample_rate`: given in place of the recording's own (0: the recording's).
+std::string read_logic_file(const std::string& path, LogicSink& sink, double sample_rate = 0);
 
 }  // namespace pvtap::analyzer

@@ -115,13 +115,14 @@ void form_buses(LogicPlan& plan, const std::vector<std::vector<std::string>>& gr
 }  // namespace
 
 bool is_logic_recording(const std::string& path) {
-  return ends_with(path, ".sr") || ends_with(path, ".vcd");
+  return ends_with(path, ".sr") || ends_with(path, ".vcd") || ends_with(path, ".csv");
 }
 
 LogicPlan plan_logic_audit(const std::string& path, const std::vector<std::string>& buses,
-                           const std::vector<std::string>& drivers) {
+                           const std::vector<std::string>& drivers, double sample_rate) {
   LogicPlan plan;
   plan.path = path;
+  plan.given_rate = sample_rate;
   std::vector<std::vector<std::string>> groups;
   std::vector<std::string> names;
   if (const std::string why = read_groups(buses, groups, names); !why.empty()) {
@@ -135,7 +136,7 @@ LogicPlan plan_logic_audit(const std::string& path, const std::vector<std::strin
   }
   LineProbe probe(names);
   SampleHold hold(probe, kHeldRecordingLimit);
-  const std::string error = read_logic_file(path, hold);
+  const std::string error = read_logic_file(path, hold, sample_rate);
   probe.finish();
   if (error.empty()) plan.held = hold.take();
   plan.sample_rate = probe.sample_rate();
@@ -146,7 +147,7 @@ LogicPlan plan_logic_audit(const std::string& path, const std::vector<std::strin
     plan.error = path + ": no channel " + probe.missing().front() +
                  " (the recording has: " + channel_list(probe.available()) + ")";
   } else if (plan.sample_rate <= 0) {
-    plan.error = path + ": the recording does not give its sample rate";
+    plan.error = path + ": the recording does not give its sample rate (give --samplerate)";
   } else if (const std::string missing = find_drivers(plan, probe, drivers, probed);
              !missing.empty()) {
     plan.error = path + ": " + missing;

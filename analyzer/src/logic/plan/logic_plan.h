@@ -10,14 +10,15 @@
 
 namespace pvtap::analyzer {
 
-// A file pvtap reads as a logic recording rather than as a capture: a sigrok session (.sr) or
-// a Value Change Dump (.vcd), both through libsigrok.
+// A file pvtap reads as a logic recording rather than as a capture: a sigrok session (.sr), a
+// Value Change Dump (.vcd) or a logic CSV (.csv), all through libsigrok.
 bool is_logic_recording(const std::string& path);
 
 // LogicPlan: the channels with UART traffic (each with its line), or why there are none.
 struct LogicPlan {
   std::string path;
   double sample_rate = 0;
+  double given_rate = 0;                // --samplerate (0: none), for reading the recording again
   std::vector<ProbedChannel> channels;  // every one has a line with traffic
   std::vector<LogicChannel> drivers;    // --de: driver-enable channels, never read as UARTs
   // The buses, as indexes into `channels`: one channel carrying both directions, or two, the
@@ -35,8 +36,9 @@ inline constexpr double kMinSamplesPerBit = 4.0;
 
 // `buses`: --channels, each "NAME" (a bus on one channel) or "REQUESTS,REPLIES" (the two
 // directions of one bus); empty for every channel with UART traffic. `drivers`: --de.
+// `sample_rate`: --samplerate, in place of the recording's own (0: the recording's).
 LogicPlan plan_logic_audit(const std::string& path, const std::vector<std::string>& buses,
-                           const std::vector<std::string>& drivers = {});
+                           const std::vector<std::string>& drivers = {}, double sample_rate = 0);
 
 // From a finished probe: the channels that talk into `plan` (which has its sample rate), or
 // why none can be read in plan.error. `asked`: each probed channel was named, and must talk.
