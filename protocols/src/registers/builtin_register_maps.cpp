@@ -47,11 +47,26 @@ RegisterMapResult load_builtin_register_map(Dialect d) {
 }
 
 const RegisterMap& builtin_register_map(Dialect d) {
-  // A function-local static is initialized once, even when several threads ask at once.
-  static const std::array<RegisterMap, kDialectCount> maps{
-      loaded_or_empty(Dialect::Ascii), loaded_or_empty(Dialect::Hybrid),
-      loaded_or_empty(Dialect::Gsl), RegisterMap{}};
-  return maps[static_cast<std::size_t>(d)];
+  // Each map is parsed the first time it is asked for (a function-local static is initialized
+  // once, even when several threads ask at once): an audit of a plain Modbus line parses none.
+  switch (d) {
+    case Dialect::Ascii: {
+      static const RegisterMap ascii = loaded_or_empty(Dialect::Ascii);
+      return ascii;
+    }
+    case Dialect::Hybrid: {
+      static const RegisterMap hybrid = loaded_or_empty(Dialect::Hybrid);
+      return hybrid;
+    }
+    case Dialect::Gsl: {
+      static const RegisterMap gsl = loaded_or_empty(Dialect::Gsl);
+      return gsl;
+    }
+    case Dialect::Modbus:
+      break;
+  }
+  static const RegisterMap none;
+  return none;
 }
 
 }  // namespace pvtap

@@ -135,13 +135,10 @@ std::span<const std::uint16_t> first_word(const Frame& frame) {
 
 }  // namespace
 
-RegisterDecoder::RegisterDecoder(DecoderOptions options)
-    : maps_{builtin_register_map(Dialect::Ascii), builtin_register_map(Dialect::Hybrid),
-            builtin_register_map(Dialect::Gsl), builtin_register_map(Dialect::Modbus)},
-      options_(options) {}
+RegisterDecoder::RegisterDecoder(DecoderOptions options) : options_(options) {}
 
 void RegisterDecoder::use_map(const RegisterMap& map) {
-  maps_[static_cast<std::size_t>(map.dialect())] = map;
+  own_maps_[static_cast<std::size_t>(map.dialect())] = map;
 }
 
 void RegisterDecoder::use_station_map(std::uint8_t station, const RegisterMap& map) {

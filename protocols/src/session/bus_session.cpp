@@ -71,6 +71,9 @@ struct BusSession::Impl {
   detail::BusTally tally;
   detail::StationDialects station_dialects;
   const RegisterDecoder& decoder;
+  // Each dialect's map as the decoder gives it, looked up at its first frame: a per-frame
+  // lookup would cost the built-in map's once-only guard every time.
+  std::array<const RegisterMap*, kDialectCount> dialect_maps{};
   Frame frame;                // the frame being handled; SessionFrame::frame points here
   ReassemblerTotals carried;  // frames delivered whole by a carrier (carried_frame)
   std::vector<std::uint8_t> carried_wire;  // a carried frame with the CRC the codec expects
@@ -154,7 +157,9 @@ void BusSession::Impl::on_frame(Direction direction, const FrameEvent& e,
     out.dialect = label.dialect;
     out.dialect_changed_from = label.changed_from;
     const RegisterMap* own = decoder.station_map(frame.station);
-    out.map = own != nullptr ? own : &decoder.map(label.dialect);
+    const RegisterMap*& of_dialect = dialect_maps[static_cast<std::size_t>(label.dialect)];
+    if (own == nullptr && of_dialect == nullptr) of_dialect = &decoder.map(label.dialect);
+    out.map = own != nullptr ? own : of_dialect;
     out.frame = &frame;
     handle_parsed(out, e);
   }

@@ -77,5 +77,32 @@ TEST(EdgeScanner, QuietLineIsOneRun) {
   EXPECT_TRUE(same(out.runs[0], {{true, 2u << 20}}));
 }
 
+TEST(EdgeScanner, EdgesAtEveryPlaceOfTheWideComparisons) {
+  // Edges just before, on and after the 8- and 32-sample strides, in chunks that cut them.
+  const std::vector<std::size_t> edges = {1, 7, 8, 9, 31, 32, 33, 63, 64, 65, 95, 200, 201, 999};
+  std::vector<std::uint8_t> samples(1000);
+  std::vector<SampleRun> expected;
+  bool level = true;
+  std::size_t from = 0;
+  for (std::size_t i = 0, e = 0; i < samples.size(); ++i) {
+    if (e < edges.size() && i == edges[e]) {
+      expected.push_back({level, i - from});
+      level = !level;
+      from = i;
+      ++e;
+    }
+    samples[i] = static_cast<std::uint8_t>((level ? 0x08 : 0) | (i % 3 == 0 ? 0x01 : 0));
+  }
+  expected.push_back({level, samples.size() - from});
+  for (std::size_t chunk : {1000u, 33u, 40u}) {
+    EdgeScanner scanner({3});
+    Collected out;
+    for (std::size_t i = 0; i < samples.size(); i += chunk)
+      scanner.scan(std::span(samples.data() + i, std::min(chunk, samples.size() - i)), 1, out);
+    scanner.finish(out);
+    EXPECT_TRUE(same(out.runs[0], expected)) << "chunk " << chunk;
+  }
+}
+
 }  // namespace
 }  // namespace pvtap::analyzer

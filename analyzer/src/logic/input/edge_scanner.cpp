@@ -1,6 +1,7 @@
 // EdgeScanner: edges found by comparing samples, runs given out per channel.
 #include "logic/input/edge_scanner.h"
 
+#include <algorithm>
 #include <cstring>
 
 namespace pvtap::analyzer {
@@ -33,26 +34,39 @@ void EdgeScanner::edge(std::uint64_t sample, RunConsumer& out) {
   last_ = sample;
 }
 
-// One byte a sample: where eight samples in a row equal the last one, they are passed over
-// in one comparison.
+// Whether the 8 * `words` samples at `p` all equal the last one in the channels' bits.
+template <int words>
+bool quiet(const std::uint8_t* p, std::uint64_t want, std::uint64_t mask8) {
+  std::uint64_t differ = 0;
+  for (int w = 0; w < words; ++w) {
+    std::uint64_t word = 0;
+    std::memcpy(&word, p + 8 * w, 8);
+    differ |= word ^ want;
+  }
+  return (differ & mask8) == 0;
+}
+
+// One byte a sample: quiet stretches are passed over 32 samples to a comparison, then 8; the
+// samples around an edge are compared one by one.
 void EdgeScanner::scan_bytes(std::span<const std::uint8_t> data, RunConsumer& out) {
   const std::uint64_t mask8 = (mask_ & 0xFF) * kEveryByte;
+  const std::uint8_t* p = data.data();
+  const std::size_t n = data.size();
+  const std::uint64_t base = position_;
   std::size_t i = 0;
-  while (i < data.size()) {
-    if (i + 8 <= data.size()) {
-      std::uint64_t word = 0;
-      std::memcpy(&word, data.data() + i, 8);
-      if ((word & mask8) == last_ * kEveryByte) {
-        i += 8;
-        position_ += 8;
-        continue;
-      }
+  while (i < n) {
+    const std::uint64_t want = last_ * kEveryByte;
+    while (i + 32 <= n && quiet<4>(p + i, want, mask8)) i += 32;
+    while (i + 8 <= n && quiet<1>(p + i, want, mask8)) i += 8;
+    for (const std::size_t stop = std::min(n, i + 8); i < stop;) {
+      const std::uint64_t s = p[i++] & mask_;
+      if (s == last_) continue;
+      position_ = base + i - 1;
+      edge(s, out);
+      break;
     }
-    const std::uint64_t s = data[i] & mask_;
-    if (s != last_) edge(s, out);
-    ++i;
-    ++position_;
   }
+  position_ = base + n;
 }
 
 void EdgeScanner::scan(std::span<const std::uint8_t> data, unsigned unitsize, RunConsumer& out) {

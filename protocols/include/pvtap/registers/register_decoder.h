@@ -168,15 +168,19 @@ struct DecodeReport {
 std::string_view describe(const DecodeReport& report);
 
 // RegisterDecoder: one table-driven decoder for every dialect. Holds one map per dialect
-// (the built-in ones unless replaced); decoding does not allocate except to grow `out`.
+// (the built-in ones unless replaced, each parsed the first time a frame of its dialect asks
+// for it); decoding does not allocate except to grow `out`.
 class RegisterDecoder {
  public:
   explicit RegisterDecoder(DecoderOptions options = {});
 
   void use_map(const RegisterMap& map);  // replaces the map of map.dialect()
   // Replaces the map of `d` (an empty map has no dialect of its own).
-  void use_map(Dialect d, const RegisterMap& map) { maps_[static_cast<std::size_t>(d)] = map; }
-  const RegisterMap& map(Dialect d) const { return maps_[static_cast<std::size_t>(d)]; }
+  void use_map(Dialect d, const RegisterMap& map) { own_maps_[static_cast<std::size_t>(d)] = map; }
+  const RegisterMap& map(Dialect d) const {
+    const std::optional<RegisterMap>& own = own_maps_[static_cast<std::size_t>(d)];
+    return own ? *own : builtin_register_map(d);
+  }
   // Decodes the GSL and plain Modbus frames of `station` with `map` (a meter's own map on a
   // bus of inverters), whatever the dialect; its values are addressed in map.dialect().
   void use_station_map(std::uint8_t station, const RegisterMap& map);
@@ -209,7 +213,7 @@ class RegisterDecoder {
                      std::span<const std::uint16_t> words, ValueOrigin origin,
                      std::vector<DecodedValue>& out) const;
 
-  std::array<RegisterMap, kDialectCount> maps_;
+  std::array<std::optional<RegisterMap>, kDialectCount> own_maps_;  // replacing the built-in
   std::vector<RegisterMap> station_maps_;
   std::array<std::uint8_t, 256> station_map_of_{};  // index + 1 into station_maps_; 0: none
   DecoderOptions options_;
