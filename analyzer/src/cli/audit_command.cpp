@@ -142,15 +142,7 @@ bool logic_inputs_fit(const AuditOptions& options, bool logic) {
 
 int audit_logic(const AuditOptions& options, const RegisterDecoder& decoder, OutputStream& out) {
   double rate = 0;
-  if (!options.logic_sample_rate.empty()) {
-    const std::optional<double> given = sample_rate_from(options.logic_sample_rate);
-    if (!given) {
-      std::fprintf(stderr, "pvtap: --samplerate %s: expected a rate such as 4000000, 4M or 500k\n",
-                   options.logic_sample_rate.c_str());
-      return kExitBadInput;
-    }
-    rate = *given;
-  }
+  if (!read_sample_rate_option(options.logic_sample_rate, rate)) return kExitBadInput;
   const LogicPlan plan = plan_logic_audit(options.captures.front(), options.logic_channels,
                                           options.logic_drivers, rate);
   if (!plan.error.empty()) {

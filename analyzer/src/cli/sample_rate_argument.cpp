@@ -1,10 +1,14 @@
-// sample_rate_from: a number with an optional k, M or G.
+// --samplerate: a number with an optional k, M or G.
 #include "cli/sample_rate_argument.h"
 
+#include <cstdio>
 #include <exception>
+#include <optional>
 
 namespace pvtap::analyzer {
+namespace {
 
+// Samples per second; nullopt when `text` is no positive rate.
 std::optional<double> sample_rate_from(const std::string& text) {
   std::size_t used = 0;
   double rate = 0;
@@ -24,6 +28,20 @@ std::optional<double> sample_rate_from(const std::string& text) {
     return std::nullopt;
   if (!(rate > 0)) return std::nullopt;
   return rate;
+}
+
+}  // namespace
+
+bool read_sample_rate_option(const std::string& text, double& rate) {
+  if (text.empty()) return true;
+  const std::optional<double> given = sample_rate_from(text);
+  if (!given) {
+    std::fprintf(stderr, "pvtap: --samplerate %s: expected a rate such as 4000000, 4M or 500k\n",
+                 text.c_str());
+    return false;
+  }
+  rate = *given;
+  return true;
 }
 
 }  // namespace pvtap::analyzer

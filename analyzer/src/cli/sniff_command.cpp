@@ -1,7 +1,5 @@
 #include "cli/sniff_command.h"
 
-#include "cli/sample_rate_argument.h"
-
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -13,6 +11,7 @@
 #include "cli/common_options.h"
 #include "cli/exit_status.h"
 #include "cli/mqtt_command_options.h"
+#include "cli/sample_rate_argument.h"
 #include "logic/input/logic_stream_source.h"
 #include "pipeline/pipeline.h"
 #include "run/run_output.h"
@@ -246,15 +245,7 @@ int run_sniff(SniffCommandLine& command) {
   o.live.line.parity = SerialLine::parity_letter(command.parity);
   o.live.search_line = command.baud == "auto";
   if (!o.live.search_line) o.baud = static_cast<std::uint32_t>(std::stoul(command.baud));
-  if (!command.sample_rate.empty()) {
-    const std::optional<double> rate = sample_rate_from(command.sample_rate);
-    if (!rate) {
-      std::fprintf(stderr, "pvtap: --samplerate %s: expected a rate such as 4000000, 4M or 500k\n",
-                   command.sample_rate.c_str());
-      return kExitBadInput;
-    }
-    o.live.sample_rate = *rate;
-  }
+  if (!read_sample_rate_option(command.sample_rate, o.live.sample_rate)) return kExitBadInput;
   o.live.status_line = ::isatty(STDERR_FILENO) == 1 && o.format_name == "text";
   return run_live_capture(o);
 }
