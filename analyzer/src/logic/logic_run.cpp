@@ -65,7 +65,8 @@ LogicRun run_logic_audit(const LogicPlan& plan, Pipeline& pipeline, EventWriter&
   if (plan.held.whole) {
     plan.held.replay(tap);
   } else {
-    run.error = read_logic_file(plan.path, tap, plan.given_rate);
+    // Read again at the rate the plan was made at, --samplerate's where one was given.
+    run.error = read_logic_file(plan.path, tap, plan.sample_rate);
   }
   tap.finish();
   run.end_time = tap.end_time();

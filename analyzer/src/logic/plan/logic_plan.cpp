@@ -122,7 +122,6 @@ LogicPlan plan_logic_audit(const std::string& path, const std::vector<std::strin
                            const std::vector<std::string>& drivers, double sample_rate) {
   LogicPlan plan;
   plan.path = path;
-  plan.given_rate = sample_rate;
   std::vector<std::vector<std::string>> groups;
   std::vector<std::string> names;
   if (const std::string why = read_groups(buses, groups, names); !why.empty()) {

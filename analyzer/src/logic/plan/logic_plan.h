@@ -17,8 +17,7 @@ bool is_logic_recording(const std::string& path);
 // LogicPlan: the channels with UART traffic (each with its line), or why there are none.
 struct LogicPlan {
   std::string path;
-  double sample_rate = 0;
-  double given_rate = 0;                // --samplerate (0: none), for reading the recording again
+  double sample_rate = 0;               // --samplerate, or else the recording's own
   std::vector<ProbedChannel> channels;  // every one has a line with traffic
   std::vector<LogicChannel> drivers;    // --de: driver-enable channels, never read as UARTs
   // The buses, as indexes into `channels`: one channel carrying both directions, or two, the
