@@ -15,7 +15,8 @@ void SampleHold::begin(const std::vector<LogicChannel>& channels, double sample_
 }
 
 void SampleHold::samples(std::span<const std::uint8_t> data, unsigned unitsize) {
-  probe_.samples(data, unitsize);
+  // Read on past a satisfied probe only to keep the rest: the tap scans it when replayed.
+  if (probe_.wants_more()) probe_.samples(data, unitsize);
   if (!keeping_) return;
   if (held_.bytes + data.size() > limit_) {
     keeping_ = false;
