@@ -88,10 +88,15 @@ void UartTap::feed_pair(Slot& s) {
   DirectionMerge& merge = pairs_[static_cast<std::size_t>(s.tapped.pair)];
   merge.advance(s.tapped.side, s.glitch_filter.held_from(read));
   merge.release(merged_);
+  feed_merged(*s.tapped.bus);
+}
+
+// The pair's characters released in time order, each a chunk stamped with its end.
+void UartTap::feed_merged(BusSession& bus) {
   for (const DirectedCharacter& d : merged_) {
     const auto byte = static_cast<std::uint8_t>(d.character.value);
     const double end = static_cast<double>(d.character.end) / sample_rate_;
-    s.tapped.bus->feed(BusChunk{std::span(&byte, 1), end, d.direction});
+    bus.feed(BusChunk{std::span(&byte, 1), end, d.direction});
   }
   merged_.clear();
 }
@@ -164,12 +169,7 @@ void UartTap::finish() {
   for (Slot& s : slots_) {
     if (s.tapped.pair < 0 || s.tapped.side != 0) continue;
     pairs_[static_cast<std::size_t>(s.tapped.pair)].finish(merged_);
-    for (const DirectedCharacter& d : merged_) {
-      const auto byte = static_cast<std::uint8_t>(d.character.value);
-      s.tapped.bus->feed(BusChunk{
-          std::span(&byte, 1), static_cast<double>(d.character.end) / sample_rate_, d.direction});
-    }
-    merged_.clear();
+    feed_merged(*s.tapped.bus);
   }
 }
 

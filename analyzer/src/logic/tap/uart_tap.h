@@ -58,6 +58,7 @@ class UartTap final : public LogicSink, private RunConsumer {
   void feed_bus(Slot& s, bool first);
   void report_line_error(const Slot& s, const UartCharacter& c);
   void feed_pair(Slot& s);
+  void feed_merged(BusSession& bus);
 
   std::vector<Slot> slots_;
   double sample_rate_;
