@@ -202,9 +202,13 @@ def mode_bad_inputs(options, checks):
                           ["No such file"], checks)
     expect_one_line_error(options, ["--write", "/nonexistent-dir/out.pcap",
                                     capture_path(d, "user0")], ["cannot write"], checks)
-    # A missing file after a good one: nothing is printed before the error.
-    expect_one_line_error(options, [capture_path(d, "user0"), os.path.join(d, "missing.pcap")],
-                          ["missing.pcap"], checks)
+    # A missing file after a good one: the good one is reported, the missing one named.
+    result = expect_one_line_error(options, [capture_path(d, "user0"),
+                                             os.path.join(d, "missing.pcap")],
+                                   ["missing.pcap", "No such file", "not read"], checks,
+                                   stdout_empty=False)
+    checks.true("the good file beside a missing one is reported",
+                "input: " + capture_path(d, "user0") in result.stdout)
     result = run(options.pvtap, ["--map", os.path.join(d, "bad_map.toml"),
                                  capture_path(d, "user0")], 2, checks)
     checks.true("a bad map names the file and line", "bad_map.toml:" in result.stderr)
@@ -362,7 +366,9 @@ def mode_threads(options, checks):
             data = f.read()
         with open(cut, "wb") as f:
             f.write(data[:len(data) * 3 // 5])  # a cut this deep falls inside a record
-        inputs = [[big], [cut], [big, capture_path(options.dir, "eth_tcp")]]
+        # big.pcap and eth_tcp.pcap begin with the same handshake: refused as repeats, alike.
+        inputs = [[big], [cut], [big, capture_path(options.dir, "eth_tcp")],
+                  [big, capture_path(options.dir, "user0")]]
         inputs += [[os.path.join(options.dir, name)] for name in sorted(os.listdir(options.dir))
                    if name.endswith((".pcap", ".pcapng"))]
         for files in inputs:

@@ -43,7 +43,12 @@ std::string footer_text() {
          "                     traffic is a bus; its baud, parity, stop bits and idle level are\n"
          "                     found from the samples (--channels names the channels), and\n"
          "                     t1.5/t3.5 are judged at the sample clock. One recording at a time.\n"
-         "  Several FILEs are read in the order given as one capture (e.g. a ring buffer).\n"
+         "  Several FILEs are one capture, read in the order of their records' times whatever\n"
+         "                     the order given (ring files: cap, cap1 .. cap10); files that\n"
+         "                     overlap in time are merged. Files that repeat each other's\n"
+         "                     records are refused; a damaged or unreadable file is named and\n"
+         "                     the others are read. A clock that steps back inside a file is a\n"
+         "                     finding (its records are moved on to follow the step).\n"
          "\nOutput on stdout: frames (and timeouts, noise, gaps) in the chosen format, then the\n"
          "report. jsonl ends with a {\"type\":\"summary\",...} line; csv holds rows only (use\n"
          "--summary-only for the report).\n"
@@ -51,8 +56,8 @@ std::string footer_text() {
          "reply as a time series (csv, jsonl or InfluxDB line protocol); --html FILE writes the\n"
          "report as one self-contained page with zoomable charts (open it from disk, no network).\n"
          "\nExit status: 0 done; 1 findings (bad checks, timeouts, exceptions) with\n"
-         "--fail-on errors; 2 usage error or unreadable input (a truncated capture still\n"
-         "prints what was read before it).\n"
+         "--fail-on errors; 2 usage error, or an input unreadable, truncated or repeated (what\n"
+         "could be read is reported first).\n"
          "\nExamples:\n"
          "  pvtap audit site.pcapng\n"
          "  pvtap audit --format jsonl --port 4001 gateway.pcap | jq 'select(.check==\"bad\")'\n"
@@ -190,7 +195,7 @@ int run_audit(AuditOptions& options) {
     out.flush();
     return out.failed() ? kExitBadInput : status;
   }
-  if (const auto error = check_inputs(options.captures, options.raw_dumps)) {
+  if (const auto error = check_raw_dumps(options.raw_dumps)) {
     std::fprintf(stderr, "pvtap: %s\n", error->c_str());
     return kExitBadInput;
   }
@@ -208,7 +213,27 @@ int run_audit(AuditOptions& options) {
   return status;
 }
 
+namespace {
+
+// False, with a line each, when the captures cannot be audited: they repeat each other's
+// records, or none of them can be read (where some can, the others are named at the end).
+bool captures_fit(const AuditOptions& options, const CapturePlan& plan) {
+  if (plan.refusal) {
+    std::fprintf(stderr, "pvtap: %s\n", plan.refusal->c_str());
+    return false;
+  }
+  if (options.captures.empty() || !plan.readable.empty()) return true;
+  for (const PlannedCapture& planned : plan.unreadable) {
+    std::fprintf(stderr, "pvtap: %s: %s\n", planned.path.c_str(), planned.error.c_str());
+  }
+  return false;
+}
+
+}  // namespace
+
 int audit(const AuditOptions& options, const RegisterDecoder& decoder, OutputStream& out) {
+  const CapturePlan plan = plan_captures(options.captures);
+  if (!captures_fit(options, plan)) return kExitBadInput;
   RunOutput output(output_settings(options), out);
   if (!output.open()) return kExitBadInput;
   PipelineSettings settings = pipeline_settings(options);
@@ -216,7 +241,7 @@ int audit(const AuditOptions& options, const RegisterDecoder& decoder, OutputStr
   Pipeline pipeline(settings, decoder, output.events());
   ProgressBar progress(options.progress, total_size(options.captures, options.raw_dumps));
   CaptureReader reader(pipeline, progress, options.threads > 1);
-  const bool complete = reader.read(options.captures, options.raw_dumps);
+  const bool complete = reader.read(plan, options.raw_dumps);
   pipeline.finish(reader.last_time());
   output.end_of_input(reader.last_time());
   progress.clear();
@@ -227,7 +252,7 @@ int audit(const AuditOptions& options, const RegisterDecoder& decoder, OutputStr
   out.flush();
   if (!output.close(report)) return kExitBadInput;
   if (!complete) {
-    reader.report_truncation();
+    reader.report_problems();
     return kExitBadInput;
   }
   return options.fail_on_errors && has_findings(report) ? kExitFindings : kExitOk;

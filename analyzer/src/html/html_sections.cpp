@@ -267,8 +267,14 @@ bool silence_is_finding(const BusReport& bus, const PollSilence& s) {
 void append_html_overview(std::string& o, const AuditReport& r) {
   o += "<ul class=\"inputs\">";
   for (const InputReport& in : r.inputs) {
-    std::string line = in.path + " (" + in.link_type + ", " + std::to_string(in.records) +
-                       " records)" + (in.truncated ? " TRUNCATED: " + in.error : "");
+    std::string line = in.unreadable
+                           ? in.path + " NOT READ: " + in.error
+                           : in.path + " (" + in.link_type + ", " + std::to_string(in.records) +
+                                 " records)" + (in.truncated ? " TRUNCATED: " + in.error : "");
+    if (in.steps_back > 0) {
+      line += "; its clock stepped back " + std::to_string(in.steps_back) +
+              " times (first at record " + std::to_string(in.first_step_back_record) + ")";
+    }
     cell(o, line, "li");
   }
   o += "</ul>\n";

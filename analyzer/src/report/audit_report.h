@@ -22,8 +22,20 @@ struct InputReport {
   std::uint64_t records = 0;  // packets (or read chunks of a raw dump)
   std::uint64_t file_bytes = 0;
   std::uint64_t read_bytes = 0;  // how far reading got
-  bool truncated = false;
-  std::string error;  // why reading stopped early
+  bool truncated = false;        // the file ended inside a record: what came before is read
+  bool unreadable = false;       // not read at all (missing, not a capture): `error` says why
+  std::string error;             // why reading stopped early, or never began
+  // The first and the last record's time, as read (after the steps back below).
+  std::optional<double> first_time;
+  double last_time = 0;
+  // The file's clock went back between two records: each step back is a finding, and the
+  // records after it are moved on by the step, so that no time and no latency runs backwards.
+  std::uint64_t steps_back = 0;
+  std::uint64_t first_step_back_record = 0;  // 1-based, in the file
+  double largest_step_back = 0;              // seconds
+
+  // Read in part or not at all: the exit status says so.
+  bool damaged() const { return truncated || unreadable; }
 };
 
 // BusFindings: one bus and its report.

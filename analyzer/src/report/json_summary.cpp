@@ -283,6 +283,43 @@ void details(std::string& o, const AuditReport& report, const BusReport& t) {
   }
 }
 
+// The files in the order read, each with how reading it went.
+void inputs(std::string& o, const AuditReport& report) {
+  append_json_key(o, "inputs");
+  o += '[';
+  for (std::size_t i = 0; i < report.inputs.size(); ++i) {
+    const InputReport& in = report.inputs[i];
+    if (i > 0) o += ',';
+    o += "{\"path\":";
+    append_json_string(o, in.path);
+    append_json_key(o, "link_type");
+    append_json_string(o, in.link_type);
+    append_json_count(o, "records", in.records);
+    append_json_count(o, "file_bytes", in.file_bytes);
+    append_json_count(o, "read_bytes", in.read_bytes);
+    if (in.first_time) {
+      append_json_key(o, "first_ts");
+      append_fixed(o, *in.first_time, 6);
+      append_json_key(o, "last_ts");
+      append_fixed(o, in.last_time, 6);
+    }
+    if (in.damaged()) {
+      append_json_key(o, "damage");
+      append_json_string(o, in.truncated ? "truncated" : "not read");
+      append_json_key(o, "error");
+      append_json_string(o, in.error);
+    }
+    if (in.steps_back > 0) {
+      append_json_count(o, "clock_steps_back", in.steps_back);
+      append_json_count(o, "first_step_back_record", in.first_step_back_record);
+      append_json_key(o, "largest_step_back_ms");
+      milliseconds(o, in.largest_step_back);
+    }
+    o += '}';
+  }
+  o += ']';
+}
+
 }  // namespace
 
 void write_json_summary(const AuditReport& report, OutputStream& out) {
@@ -305,6 +342,7 @@ void write_json_summary(const AuditReport& report, OutputStream& out) {
   unknown_station(o, t.unknown_station);
   details(o, report, t);
   buses(o, report);
+  if (!report.inputs.empty()) inputs(o, report);
   append_live_sources_json(report.live, o);
   o += "}\n";
   out.done();

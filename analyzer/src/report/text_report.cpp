@@ -47,11 +47,21 @@ std::string function_text(Dialect d, std::uint8_t function) {
 
 void inputs(const AuditReport& r, std::string& o) {
   for (const InputReport& in : r.inputs) {
+    if (in.unreadable) {
+      o += report_line("input: %s NOT READ: %s", in.path.c_str(), in.error.c_str());
+      continue;
+    }
     o += report_line("input: %s (%s, %llu records)%s", in.path.c_str(), in.link_type.c_str(),
                      u(in.records), in.truncated ? " TRUNCATED" : "");
     if (in.truncated) {
       o += report_line("  reading stopped at byte %llu of %llu: %s", u(in.read_bytes),
                        u(in.file_bytes), in.error.c_str());
+    }
+    if (in.steps_back > 0) {
+      o += report_line(
+          "  its clock stepped back %llu times (first at record %llu; the largest step %.6f "
+          "s): the records after each step are moved on to follow it",
+          u(in.steps_back), u(in.first_step_back_record), in.largest_step_back);
     }
   }
 }

@@ -33,18 +33,23 @@ std::uint64_t file_size(const std::string& path) {
   return ::stat(path.c_str(), &st) == 0 ? static_cast<std::uint64_t>(st.st_size) : 0;
 }
 
+unsigned long long u(std::uint64_t v) {
+  return static_cast<unsigned long long>(v);
+}
+
 }  // namespace
 
-std::optional<std::string> check_inputs(const std::vector<std::string>& captures,
-                                        const std::vector<std::string>& raw_dumps) {
-  for (const std::string& path : captures) {
-    CaptureFile file;
-    if (!file.open(path)) return path + ": " + file.error();
-    if (!input_kind_of(file.link_type())) {
-      return path + ": unsupported link type " + file.link_type_name() +
-             "; supported: " + supported_link_types_text();
-    }
-  }
+// Source: one file being read, holding its next record until that record's turn comes.
+struct CaptureReader::Source {
+  explicit Source(bool read_ahead) : file(read_ahead) {}
+  ReadAheadCapture file;
+  CapturedPacket packet;  // the next record; its time moved on by `offset`
+  std::size_t slot = 0;   // its InputReport in inputs_
+  bool batched = false;   // serial records that are read chunks (see Pipeline::begin_input)
+  double offset = 0;      // what the file's clock stepped back by, so far
+};
+
+std::optional<std::string> check_raw_dumps(const std::vector<std::string>& raw_dumps) {
   for (const std::string& path : raw_dumps) {
     if (auto error = check_raw_dump(path)) return error;
   }
@@ -62,77 +67,183 @@ std::uint64_t total_size(const std::vector<std::string>& captures,
 CaptureReader::CaptureReader(Pipeline& pipeline, ProgressBar& progress, bool read_ahead)
     : pipeline_(pipeline), progress_(progress), read_ahead_(read_ahead) {}
 
-bool CaptureReader::read(const std::vector<std::string>& captures,
-                         const std::vector<std::string>& raw_dumps) {
-  std::uint64_t done = 0;
-  for (const auto& path : captures) {
-    // A truncated file ends the capture: what follows it would not join up.
-    if (!read_capture(path, done)) return false;
-    done += file_size(path);
-  }
-  bool complete = true;
-  for (const auto& path : raw_dumps) {
-    complete = read_raw(path, done) && complete;
-    done += file_size(path);
-  }
-  return complete;
-}
+CaptureReader::~CaptureReader() = default;
 
-void CaptureReader::report_truncation() const {
-  const InputReport& in = inputs_.back();
-  std::fprintf(stderr,
-               "pvtap: %s: truncated capture: %s (read %llu records, %llu of %llu bytes; "
-               "results up to there are above)\n",
-               in.path.c_str(), in.error.c_str(), static_cast<unsigned long long>(in.records),
-               static_cast<unsigned long long>(in.read_bytes),
-               static_cast<unsigned long long>(in.file_bytes));
-}
-
-bool CaptureReader::read_capture(const std::string& path, std::uint64_t done_before) {
-  ReadAheadCapture file(read_ahead_);
-  InputReport in;
-  in.path = path;
-  if (!file.open(path)) {
-    in.truncated = true;
-    in.error = file.error();
+bool CaptureReader::read(const CapturePlan& plan, const std::vector<std::string>& raw_dumps) {
+  read_captures(plan);
+  for (const PlannedCapture& planned : plan.unreadable) {
+    InputReport in;
+    in.path = planned.path;
+    in.unreadable = true;
+    in.error = planned.error;
     inputs_.push_back(in);
-    return false;
   }
-  in.link_type = file.link_type_name();
+  for (const auto& path : raw_dumps) read_raw(path);
+  return !repeat_ && std::none_of(inputs_.begin(), inputs_.end(),
+                                  [](const InputReport& in) { return in.damaged(); });
+}
+
+void CaptureReader::report_problems() const {
+  for (const InputReport& in : inputs_) {
+    if (in.truncated) {
+      std::fprintf(stderr,
+                   "pvtap: %s: truncated capture: %s (read %llu records, %llu of %llu bytes; "
+                   "results up to there are above)\n",
+                   in.path.c_str(), in.error.c_str(), u(in.records), u(in.read_bytes),
+                   u(in.file_bytes));
+    } else if (in.unreadable) {
+      std::fprintf(stderr, "pvtap: %s: %s; not read (the other inputs are above)\n",
+                   in.path.c_str(), in.error.c_str());
+    }
+  }
+  if (repeat_) std::fprintf(stderr, "pvtap: %s\n", repeat_->c_str());
+}
+
+// One loop over every file's next record: the earliest goes first, and a file is opened
+// when its first record's turn comes, so that files apart in time are read one at a time.
+bool CaptureReader::read_captures(const CapturePlan& plan) {
+  std::vector<std::unique_ptr<Source>> active;
+  std::size_t next = 0;
+  std::size_t fed_slot = inputs_.size() + plan.readable.size();  // none yet
+  std::uint64_t fed = 0;
+  for (;;) {
+    open_due(plan, next, active);
+    if (active.empty()) break;
+    auto earliest = active.begin();
+    for (auto it = active.begin() + 1; it != active.end(); ++it) {
+      if ((*it)->packet.time < (*earliest)->packet.time) earliest = it;
+    }
+    Source& source = **earliest;
+    if (active.size() > 1) {
+      repeat_ = repeat_of(source, active);
+      if (repeat_) break;
+    }
+    if (source.slot != fed_slot) {
+      pipeline_.begin_input(source.file.link_type(), source.batched);
+      fed_slot = source.slot;
+    }
+    last_time_ = std::max(last_time_, source.packet.time);
+    pipeline_.record(source.packet);
+    if (++fed % kProgressEvery == 0) {
+      std::uint64_t position = done_bytes_;
+      for (const auto& s : active) position += s->file.position();
+      progress_.update(position);
+    }
+    if (!advance(source)) {
+      close(source);
+      active.erase(earliest);
+    }
+  }
+  // After repeated records the run stops: what was not read is said so.
+  for (const auto& source : active) {
+    close(*source);
+    InputReport& in = inputs_[source->slot];
+    in.error = "reading stopped at the repeated records";
+    in.read_bytes = 0;  // where the reading thread was is no fact of the capture
+  }
+  for (; next < plan.readable.size(); ++next) {
+    InputReport in;
+    in.path = plan.readable[next].path;
+    in.unreadable = true;
+    in.error = "the audit stopped at the repeated records";
+    inputs_.push_back(in);
+  }
+  return !repeat_;
+}
+
+void CaptureReader::open_due(const CapturePlan& plan, std::size_t& next,
+                             std::vector<std::unique_ptr<Source>>& active) {
+  while (next < plan.readable.size()) {
+    const PlannedCapture& planned = plan.readable[next];
+    if (!active.empty()) {
+      double head = active.front()->packet.time;
+      for (const auto& s : active) head = std::min(head, s->packet.time);
+      if (!planned.first_time || *planned.first_time > head) return;
+    }
+    ++next;
+    open(planned, active);
+  }
+}
+
+void CaptureReader::open(const PlannedCapture& planned,
+                         std::vector<std::unique_ptr<Source>>& active) {
+  auto source = std::make_unique<Source>(read_ahead_);
+  InputReport in;
+  in.path = planned.path;
+  if (!source->file.open(planned.path)) {
+    in.unreadable = true;
+    in.error = source->file.error();
+    inputs_.push_back(in);
+    return;
+  }
+  in.link_type = source->file.link_type_name();
   // Reading ahead to tell read chunks from characters costs a second open of the file: only
   // the input that decides the serial bus's timing is probed.
-  const bool probe =
-      input_kind_of(file.link_type()) == InputKind::Serial && pipeline_.serial_timing_open();
-  pipeline_.begin_input(file.link_type(),
-                        probe && largest_early_record(path, kTimingProbeRecords) > 1);
-  CapturedPacket packet;
-  for (;;) {
-    const CaptureFile::Next next = file.next(packet);
-    if (next == CaptureFile::Next::End) break;
-    if (next == CaptureFile::Next::Truncated) {
-      in.truncated = true;
-      in.error = file.error();
-      break;
-    }
-    last_time_ = std::max(last_time_, packet.time);
-    pipeline_.record(packet);
-    if (file.packets() % kProgressEvery == 0) progress_.update(done_before + file.position());
-  }
-  in.records = file.packets();
-  in.file_bytes = file.size();
-  in.read_bytes = in.truncated ? file.position() : file.size();
+  const bool probe = input_kind_of(source->file.link_type()) == InputKind::Serial &&
+                     pipeline_.serial_timing_open();
+  source->batched = probe && largest_early_record(planned.path, kTimingProbeRecords) > 1;
+  source->slot = inputs_.size();
   inputs_.push_back(in);
-  return !in.truncated;
+  if (advance(*source)) {
+    active.push_back(std::move(source));
+  } else {
+    close(*source);
+  }
 }
 
-bool CaptureReader::read_raw(const std::string& path, std::uint64_t done_before) {
+// The source's next record; false at its end. A record earlier than the one before it in
+// the same file is a step back of the file's clock: counted, and closed up.
+bool CaptureReader::advance(Source& source) {
+  const CaptureFile::Next next = source.file.next(source.packet);
+  InputReport& in = inputs_[source.slot];
+  if (next == CaptureFile::Next::Truncated) {
+    in.truncated = true;
+    in.error = source.file.error();
+  }
+  if (next != CaptureFile::Next::Packet) return false;
+  double time = source.packet.time + source.offset;
+  if (in.first_time && time < in.last_time) {
+    const double step = in.last_time - time;
+    source.offset += step;
+    time = in.last_time;
+    if (in.steps_back++ == 0) in.first_step_back_record = source.file.packets();
+    in.largest_step_back = std::max(in.largest_step_back, step);
+  }
+  if (!in.first_time) in.first_time = time;
+  in.last_time = time;
+  source.packet.time = time;
+  return true;
+}
+
+void CaptureReader::close(Source& source) {
+  InputReport& in = inputs_[source.slot];
+  in.records = source.file.packets();
+  in.file_bytes = source.file.size();
+  in.read_bytes = in.truncated ? source.file.position() : source.file.size();
+  done_bytes_ += source.file.size();
+}
+
+std::optional<std::string> CaptureReader::repeat_of(
+    const Source& source, const std::vector<std::unique_ptr<Source>>& active) const {
+  for (const auto& other : active) {
+    if (other.get() == &source || other->packet.time != source.packet.time) continue;
+    if (std::equal(source.packet.bytes.begin(), source.packet.bytes.end(),
+                   other->packet.bytes.begin(), other->packet.bytes.end())) {
+      return repeated_records_text(inputs_[source.slot].path, inputs_[other->slot].path,
+                                   source.packet.time);
+    }
+  }
+  return std::nullopt;
+}
+
+bool CaptureReader::read_raw(const std::string& path) {
   InputReport in;
   in.path = path;
   in.link_type = "plain bus bytes";
   in.file_bytes = file_size(path);
   std::FILE* f = std::fopen(path.c_str(), "rb");
   if (f == nullptr) {
-    in.truncated = true;
+    in.unreadable = true;
     in.error = std::strerror(errno);
     inputs_.push_back(in);
     return false;
@@ -145,13 +256,14 @@ bool CaptureReader::read_raw(const std::string& path, std::uint64_t done_before)
     ++in.records;
     in.read_bytes += n;
     pipeline_.raw_bytes(std::span(chunk).first(n));
-    progress_.update(done_before + in.read_bytes);
+    progress_.update(done_bytes_ + in.read_bytes);
   }
   if (std::ferror(f) != 0) {
     in.truncated = true;
     in.error = "read error";
   }
   std::fclose(f);
+  done_bytes_ += in.file_bytes;
   inputs_.push_back(in);
   return !in.truncated;
 }

@@ -1,7 +1,9 @@
-// CaptureReader: capture files (pcap, pcapng) and plain dumps of bus bytes fed into a
-// pipeline record by record, in the order given, as one capture.
+// CaptureReader: capture files (pcap, pcapng) fed into a pipeline as one capture, record by
+// record in the order of their times (files that overlap are merged), then plain dumps of bus
+// bytes in the order given. A damaged file is reported and the others are read all the same.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -9,36 +11,50 @@
 #include "console/progress_bar.h"
 #include "pipeline/pipeline.h"
 #include "report/audit_report.h"
+#include "sources/capture_order.h"
 
 namespace pvtap::analyzer {
 
-// A one-line reason why an input cannot be audited (missing, not a capture, unsupported link
-// type), checked for all inputs before any output is written; nullopt when all are fine.
-std::optional<std::string> check_inputs(const std::vector<std::string>& captures,
-                                        const std::vector<std::string>& raw_dumps);
+// A one-line reason why a plain dump (--raw) cannot be read; nullopt when all can.
+std::optional<std::string> check_raw_dumps(const std::vector<std::string>& raw_dumps);
 
 class CaptureReader {
  public:
   // `read_ahead`: capture files are read on a second thread (ReadAheadCapture).
   CaptureReader(Pipeline& pipeline, ProgressBar& progress, bool read_ahead = false);
+  ~CaptureReader();
+  CaptureReader(const CaptureReader&) = delete;
+  CaptureReader& operator=(const CaptureReader&) = delete;
 
-  // Reads every input; false when one ended early (truncated): what came before is fed.
-  bool read(const std::vector<std::string>& captures, const std::vector<std::string>& raw_dumps);
-  // The one-line stderr message for the input that ended early.
-  void report_truncation() const;
+  // Reads every input; false when one was damaged, not read, or repeated another's records
+  // (report_problems() says which): everything read before and beside it is fed.
+  bool read(const CapturePlan& plan, const std::vector<std::string>& raw_dumps);
+  // One stderr line per input that was damaged or not read, and one for repeated records.
+  void report_problems() const;
 
+  // In the order read; the files that could not be read last.
   const std::vector<InputReport>& inputs() const { return inputs_; }
   double last_time() const { return last_time_; }  // of the latest record read
 
  private:
-  bool read_capture(const std::string& path, std::uint64_t done_before);
-  bool read_raw(const std::string& path, std::uint64_t done_before);
+  struct Source;
+  bool read_captures(const CapturePlan& plan);
+  void open_due(const CapturePlan& plan, std::size_t& next,
+                std::vector<std::unique_ptr<Source>>& active);
+  void open(const PlannedCapture& planned, std::vector<std::unique_ptr<Source>>& active);
+  bool advance(Source& source);
+  void close(Source& source);
+  std::optional<std::string> repeat_of(const Source& source,
+                                       const std::vector<std::unique_ptr<Source>>& active) const;
+  bool read_raw(const std::string& path);
 
   Pipeline& pipeline_;
   ProgressBar& progress_;
   bool read_ahead_;
   std::vector<InputReport> inputs_;
+  std::optional<std::string> repeat_;
   double last_time_ = 0;
+  std::uint64_t done_bytes_ = 0;  // of the files read to their end, for the progress bar
 };
 
 // The total size of the files, for the progress bar.
