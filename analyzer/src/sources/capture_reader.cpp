@@ -6,6 +6,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 
 #include "pvtap/capture/read_ahead_capture.h"
 
@@ -47,6 +48,7 @@ struct CaptureReader::Source {
   std::size_t slot = 0;   // its InputReport in inputs_
   bool batched = false;   // serial records that are read chunks (see Pipeline::begin_input)
   double offset = 0;      // what the file's clock stepped back by, so far
+  double last_time = -std::numeric_limits<double>::infinity();  // of `packet`
 };
 
 std::optional<std::string> check_raw_dumps(const std::vector<std::string>& raw_dumps) {
@@ -105,7 +107,6 @@ bool CaptureReader::read_captures(const CapturePlan& plan) {
   std::vector<std::unique_ptr<Source>> active;
   std::size_t next = 0;
   std::size_t fed_slot = inputs_.size() + plan.readable.size();  // none yet
-  std::uint64_t fed = 0;
   for (;;) {
     open_due(plan, next, active);
     if (active.empty()) break;
@@ -122,14 +123,10 @@ bool CaptureReader::read_captures(const CapturePlan& plan) {
       pipeline_.begin_input(source.file.link_type(), source.batched);
       fed_slot = source.slot;
     }
-    last_time_ = std::max(last_time_, source.packet.time);
-    pipeline_.record(source.packet);
-    if (++fed % kProgressEvery == 0) {
-      std::uint64_t position = done_bytes_;
-      for (const auto& s : active) position += s->file.position();
-      progress_.update(position);
-    }
-    if (!advance(source)) {
+    // A file alone is fed up to the next file's first record without looking again.
+    const double until =
+        active.size() > 1 ? -std::numeric_limits<double>::infinity() : first_time_of(plan, next);
+    if (!feed_until(source, until, active)) {
       close(source);
       active.erase(earliest);
     }
@@ -149,6 +146,28 @@ bool CaptureReader::read_captures(const CapturePlan& plan) {
     inputs_.push_back(in);
   }
   return !repeat_;
+}
+
+// The source's records, at least one, while they come before `until`; false at its end.
+bool CaptureReader::feed_until(Source& source, double until,
+                               const std::vector<std::unique_ptr<Source>>& active) {
+  do {
+    pipeline_.record(source.packet);
+    if (++fed_ % kProgressEvery == 0) {
+      std::uint64_t position = done_bytes_;
+      for (const auto& s : active) position += s->file.position();
+      progress_.update(position);
+    }
+    if (!advance(source)) return false;
+  } while (source.packet.time < until);
+  return true;
+}
+
+double CaptureReader::first_time_of(const CapturePlan& plan, std::size_t next) {
+  if (next < plan.readable.size() && plan.readable[next].first_time) {
+    return *plan.readable[next].first_time;
+  }
+  return std::numeric_limits<double>::infinity();
 }
 
 void CaptureReader::open_due(const CapturePlan& plan, std::size_t& next,
@@ -185,6 +204,7 @@ void CaptureReader::open(const PlannedCapture& planned,
   source->slot = inputs_.size();
   inputs_.push_back(in);
   if (advance(*source)) {
+    inputs_[source->slot].first_time = source->packet.time;
     active.push_back(std::move(source));
   } else {
     close(*source);
@@ -195,24 +215,33 @@ void CaptureReader::open(const PlannedCapture& planned,
 // the same file is a step back of the file's clock: counted, and closed up.
 bool CaptureReader::advance(Source& source) {
   const CaptureFile::Next next = source.file.next(source.packet);
-  InputReport& in = inputs_[source.slot];
-  if (next == CaptureFile::Next::Truncated) {
-    in.truncated = true;
-    in.error = source.file.error();
+  if (next != CaptureFile::Next::Packet) [[unlikely]] {
+    return ended(source, next);
   }
-  if (next != CaptureFile::Next::Packet) return false;
   double time = source.packet.time + source.offset;
-  if (in.first_time && time < in.last_time) {
-    const double step = in.last_time - time;
-    source.offset += step;
-    time = in.last_time;
-    if (in.steps_back++ == 0) in.first_step_back_record = source.file.packets();
-    in.largest_step_back = std::max(in.largest_step_back, step);
-  }
-  if (!in.first_time) in.first_time = time;
-  in.last_time = time;
+  if (time < source.last_time) [[unlikely]]
+    time = step_back(source, time);
   source.packet.time = time;
+  source.last_time = time;
   return true;
+}
+
+// Out of advance()'s way, so that its common path stays short.
+bool CaptureReader::ended(Source& source, CaptureFile::Next next) {
+  if (next == CaptureFile::Next::Truncated) {
+    inputs_[source.slot].truncated = true;
+    inputs_[source.slot].error = source.file.error();
+  }
+  return false;
+}
+
+double CaptureReader::step_back(Source& source, double time) {
+  const double step = source.last_time - time;
+  source.offset += step;
+  InputReport& in = inputs_[source.slot];
+  if (in.steps_back++ == 0) in.first_step_back_record = source.file.packets();
+  in.largest_step_back = std::max(in.largest_step_back, step);
+  return source.last_time;
 }
 
 void CaptureReader::close(Source& source) {
@@ -220,6 +249,10 @@ void CaptureReader::close(Source& source) {
   in.records = source.file.packets();
   in.file_bytes = source.file.size();
   in.read_bytes = in.truncated ? source.file.position() : source.file.size();
+  if (in.records > 0) {
+    in.last_time = source.last_time;
+    last_time_ = std::max(last_time_, source.last_time);
+  }
   done_bytes_ += source.file.size();
 }
 

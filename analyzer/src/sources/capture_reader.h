@@ -42,7 +42,11 @@ class CaptureReader {
   void open_due(const CapturePlan& plan, std::size_t& next,
                 std::vector<std::unique_ptr<Source>>& active);
   void open(const PlannedCapture& planned, std::vector<std::unique_ptr<Source>>& active);
+  bool feed_until(Source& source, double until, const std::vector<std::unique_ptr<Source>>& active);
+  static double first_time_of(const CapturePlan& plan, std::size_t next);
   bool advance(Source& source);
+  bool ended(Source& source, CaptureFile::Next next);
+  double step_back(Source& source, double time);
   void close(Source& source);
   std::optional<std::string> repeat_of(const Source& source,
                                        const std::vector<std::unique_ptr<Source>>& active) const;
@@ -55,6 +59,7 @@ class CaptureReader {
   std::optional<std::string> repeat_;
   double last_time_ = 0;
   std::uint64_t done_bytes_ = 0;  // of the files read to their end, for the progress bar
+  std::uint64_t fed_ = 0;         // records fed, to look at the progress now and then
 };
 
 // The total size of the files, for the progress bar.
