@@ -48,7 +48,10 @@ if(TARGET epan)
   set(pvtap_series "${Wireshark_MAJOR_VERSION}.${Wireshark_MINOR_VERSION}")
   set(CPACK_DEBIAN_PACKAGE_DEPENDS
       "${PVTAP_WIRESHARK_ABI_PACKAGE} (>= ${pvtap_series}), ${PVTAP_WIRESHARK_ABI_PACKAGE} (<< ${Wireshark_MAJOR_VERSION}.${pvtap_next_minor}~)")
-  set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "wireshark | tshark")
+  set(pvtap_recommends "wireshark | tshark, ")
 endif()
+# libsigrok is loaded only to read a logic recording (dlopen), so dpkg-shlibdeps does not see
+# it: recommended, under its name before and after Debian's 64-bit time transition.
+set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "${pvtap_recommends}libsigrok4 | libsigrok4t64")
 
 include(CPack)

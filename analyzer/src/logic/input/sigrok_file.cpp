@@ -1,7 +1,7 @@
 // read_logic_file: libsigrok's session loading or its input modules, one datafeed for both.
 #include "logic/input/sigrok_file.h"
 
-#include <libsigrok/libsigrok.h>
+#include "logic/input/sigrok_library.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -14,7 +14,8 @@ constexpr std::size_t kReadChunk = 1 << 20;
 
 // Feed: what the datafeed callback needs to reach the sink.
 struct Feed {
-  explicit Feed(LogicSink& s) : sink(s) {}
+  Feed(const SigrokLibrary& l, LogicSink& s) : sr(l), sink(s) {}
+  const SigrokLibrary& sr;
   LogicSink& sink;
   sr_session* session = nullptr;
   bool begun = false;
@@ -23,19 +24,19 @@ struct Feed {
   std::vector<LogicChannel> channels;
 };
 
-double configured_rate(const sr_dev_inst* sdi) {
+double configured_rate(const SigrokLibrary& sr, const sr_dev_inst* sdi) {
   GVariant* value = nullptr;
-  sr_dev_driver* driver = sr_dev_inst_driver_get(sdi);
-  if (driver == nullptr || sr_config_get(driver, sdi, nullptr, SR_CONF_SAMPLERATE, &value) != SR_OK)
+  sr_dev_driver* driver = sr.dev_inst_driver_get(sdi);
+  if (driver == nullptr || sr.config_get(driver, sdi, nullptr, SR_CONF_SAMPLERATE, &value) != SR_OK)
     return 0;
-  const double rate = static_cast<double>(g_variant_get_uint64(value));
-  g_variant_unref(value);
+  const double rate = static_cast<double>(sr.variant_get_uint64(value));
+  sr.variant_unref(value);
   return rate;
 }
 
 void learn_channels(Feed& f, const sr_dev_inst* sdi) {
   f.channels.clear();
-  for (GSList* l = sr_dev_inst_channels_get(sdi); l != nullptr; l = l->next) {
+  for (GSList* l = f.sr.dev_inst_channels_get(sdi); l != nullptr; l = l->next) {
     const auto* ch = static_cast<const sr_channel*>(l->data);
     if (ch->type != SR_CHANNEL_LOGIC || !ch->enabled) continue;
     f.channels.push_back(LogicChannel{ch->name, static_cast<unsigned>(ch->index)});
@@ -48,14 +49,14 @@ void learn_channels(Feed& f, const sr_dev_inst* sdi) {
                                     [&](const LogicChannel& o) { return o.name == c.name; });
     if (same > 1) c.name = std::to_string(c.index);
   }
-  if (f.sample_rate == 0) f.sample_rate = configured_rate(sdi);
+  if (f.sample_rate == 0) f.sample_rate = configured_rate(f.sr, sdi);
 }
 
 void meta(Feed& f, const sr_datafeed_meta* m) {
   for (GSList* l = m->config; l != nullptr; l = l->next) {
     const auto* c = static_cast<const sr_config*>(l->data);
     if (c->key == SR_CONF_SAMPLERATE)
-      f.sample_rate = static_cast<double>(g_variant_get_uint64(c->data));
+      f.sample_rate = static_cast<double>(f.sr.variant_get_uint64(c->data));
   }
 }
 
@@ -70,28 +71,32 @@ void on_packet(const sr_dev_inst* sdi, const sr_datafeed_packet* packet, void* d
   }
   const auto* logic = static_cast<const sr_datafeed_logic*>(packet->payload);
   f.sink.samples({static_cast<const std::uint8_t*>(logic->data), logic->length}, logic->unitsize);
-  if (!f.sink.wants_more() && f.session != nullptr) sr_session_stop(f.session);
+  if (!f.sink.wants_more() && f.session != nullptr) f.sr.session_stop(f.session);
 }
 
 struct Context {
+  const SigrokLibrary& sr;
   sr_context* ctx = nullptr;
-  Context() {
-    sr_log_loglevel_set(SR_LOG_NONE);
-    if (sr_init(&ctx) != SR_OK) ctx = nullptr;
+  explicit Context(const SigrokLibrary& l) : sr(l) {
+    sr.log_loglevel_set(SR_LOG_NONE);
+    if (sr.init(&ctx) != SR_OK) ctx = nullptr;
   }
   ~Context() {
-    if (ctx != nullptr) sr_exit(ctx);
+    if (ctx != nullptr) sr.exit(ctx);
   }
+  Context(const Context&) = delete;
+  Context& operator=(const Context&) = delete;
 };
 
 std::string read_session_file(sr_session* session, Feed& feed) {
+  const SigrokLibrary& sr = feed.sr;
   feed.session = session;
-  sr_session_datafeed_callback_add(session, on_packet, &feed);
+  sr.session_datafeed_callback_add(session, on_packet, &feed);
   std::string error;
-  if (sr_session_start(session) != SR_OK || sr_session_run(session) != SR_OK) {
+  if (sr.session_start(session) != SR_OK || sr.session_run(session) != SR_OK) {
     error = "libsigrok could not read the session";
   }
-  sr_session_destroy(session);
+  sr.session_destroy(session);
   return error;
 }
 
@@ -99,47 +104,51 @@ std::string read_session_file(sr_session* session, Feed& feed) {
 // the file's header, and only then can the session carry its packets.
 std::string read_with_input(const std::string& path, const sr_input* in, sr_context* ctx,
                             Feed& feed) {
+  const SigrokLibrary& sr = feed.sr;
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), std::fclose);
   sr_session* session = nullptr;
-  if (!file || sr_session_new(ctx, &session) != SR_OK) return "cannot open the file";
-  sr_session_datafeed_callback_add(session, on_packet, &feed);
-  GString* buffer = g_string_sized_new(kReadChunk);
+  if (!file || sr.session_new(ctx, &session) != SR_OK) return "cannot open the file";
+  sr.session_datafeed_callback_add(session, on_packet, &feed);
+  GString* buffer = sr.string_sized_new(kReadChunk);
   std::vector<char> chunk(kReadChunk);
   bool added = false;
   std::string error;
   while (error.empty() && feed.sink.wants_more()) {
     const std::size_t n = std::fread(chunk.data(), 1, chunk.size(), file.get());
     if (n == 0) break;
-    g_string_truncate(buffer, 0);
-    g_string_append_len(buffer, chunk.data(), static_cast<gssize>(n));
-    if (sr_input_send(in, buffer) != SR_OK) error = "libsigrok could not read the file";
-    sr_dev_inst* sdi = sr_input_dev_inst_get(in);
-    if (!added && sdi != nullptr) added = sr_session_dev_add(session, sdi) == SR_OK;
+    sr.string_truncate(buffer, 0);
+    sr.string_append_len(buffer, chunk.data(), static_cast<gssize>(n));
+    if (sr.input_send(in, buffer) != SR_OK) error = "libsigrok could not read the file";
+    sr_dev_inst* sdi = sr.input_dev_inst_get(in);
+    if (!added && sdi != nullptr) added = sr.session_dev_add(session, sdi) == SR_OK;
   }
-  if (error.empty() && sr_input_end(in) != SR_OK) error = "libsigrok could not read the file";
-  g_string_free(buffer, TRUE);
-  sr_session_destroy(session);
+  if (error.empty() && sr.input_end(in) != SR_OK) error = "libsigrok could not read the file";
+  sr.string_free(buffer, TRUE);
+  sr.session_destroy(session);
   return error;
 }
 
 }  // namespace
 
 std::string read_logic_file(const std::string& path, LogicSink& sink, double sample_rate) {
-  Context context;
+  std::string error;
+  const SigrokLibrary* library = sigrok_library(error);
+  if (library == nullptr) return error;
+  const SigrokLibrary& sr = *library;
+  Context context(sr);
   if (context.ctx == nullptr) return "libsigrok did not start";
-  Feed feed(sink);
+  Feed feed(sr, sink);
   feed.given_rate = sample_rate;
   sr_session* session = nullptr;
-  std::string error;
-  if (sr_session_load(context.ctx, path.c_str(), &session) == SR_OK) {
+  if (sr.session_load(context.ctx, path.c_str(), &session) == SR_OK) {
     error = read_session_file(session, feed);
   } else {
     const sr_input* in = nullptr;
-    if (sr_input_scan_file(path.c_str(), &in) != SR_OK || in == nullptr) {
+    if (sr.input_scan_file(path.c_str(), &in) != SR_OK || in == nullptr) {
       return "not a sigrok session or a logic recording libsigrok reads";
     }
     error = read_with_input(path, in, context.ctx, feed);
-    sr_input_free(in);
+    sr.input_free(in);
   }
   if (error.empty() && !feed.begun) error = "the recording holds no logic samples";
   return error;
