@@ -1,5 +1,6 @@
 // pvtap: tools for the serial protocols of solar inverters on RS485 buses.
 #include <CLI/CLI.hpp>
+#include <cstdio>
 
 #include "cli/audit_command.h"
 #include "cli/exit_status.h"
@@ -34,8 +35,12 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    // Help is a success; every other parse problem is a usage error (exit 2).
-    return app.exit(e) == 0 ? pvtap::analyzer::kExitOk : pvtap::analyzer::kExitBadInput;
+    // Help is a success; every other parse problem is a usage error (exit 2), said on one
+    // line by pvtap with where the valid forms are listed.
+    if (e.get_exit_code() == 0) return app.exit(e);
+    const char* command = audit->parsed() ? "audit " : sniff->parsed() ? "sniff " : "";
+    std::fprintf(stderr, "pvtap: %s (see pvtap %s--help)\n", e.what(), command);
+    return pvtap::analyzer::kExitBadInput;
   }
   if (audit->parsed()) return pvtap::analyzer::run_audit(audit_options);
   if (sniff->parsed()) return pvtap::analyzer::run_sniff(sniff_command);

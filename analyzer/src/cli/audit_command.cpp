@@ -81,6 +81,7 @@ void add_input_options(CLI::App& audit, AuditOptions& o) {
       .add_option("--port", o.ports,
                   "gateway TCP/UDP port(s), comma-separated or repeated; other traffic is "
                   "ignored. Default: recognize the protocol on any port")
+      ->check(CLI::Range(1, 65535).description(""))
       ->type_name("PORT")
       ->delimiter(',')
       ->allow_extra_args(false);
@@ -124,7 +125,7 @@ CLI::App* add_audit_command(CLI::App& app, AuditOptions& options) {
   CLI::App* audit = app.add_subcommand("audit", kDescription);
   audit->footer(footer_text() + kMqttHelpFooter);
   add_input_options(*audit, options);
-  add_protocol_options(*audit, options, kAnyBaud);
+  add_protocol_options(*audit, options, kBaudRange);
   add_output_options(*audit, options);
   add_mqtt_options(*audit, options.mqtt);
   return audit;

@@ -117,33 +117,35 @@ void add_output_options(CLI::App& audit, CommonOptions& o) {
 }
 
 void add_values_options(CLI::App& command, CommonOptions& o) {
-  command
-      .add_option("--values", o.values_path,
-                  "also write every register value of a good reply to a good request to FILE, "
-                  "one row per value (ts, bus, station, dialect, register, key, name, value, "
-                  "unit), for duckdb, pandas, a spreadsheet or Telegraf")
-      ->type_name("FILE");
+  CLI::Option* values = command.add_option(
+      "--values", o.values_path,
+      "also write every register value of a good reply to a good request to FILE, "
+      "one row per value (ts, bus, station, dialect, register, key, name, value, "
+      "unit), for duckdb, pandas, a spreadsheet or Telegraf");
+  values->type_name("FILE");
   command
       .add_option("--values-format", o.values_format_name,
                   "format of --values: csv (with a header), jsonl, or influx (InfluxDB line "
                   "protocol: measurement pvtap, tags bus/station/dialect/key, field value, "
                   "nanosecond time; numeric registers only)")
       ->check(CLI::IsMember({"csv", "jsonl", "influx"}).description(""))
+      ->needs(values)
       ->type_name("FORMAT")
       ->default_str("csv");
 }
 
 void add_html_options(CLI::App& command, CommonOptions& o) {
-  command
-      .add_option("--html", o.html_path,
-                  "also write the report to FILE as one self-contained HTML page (no network "
-                  "needed): health tiles, stations, a timeline of every request, reply and "
-                  "finding, bus load, latency, polling and register values as zoomable charts")
-      ->type_name("FILE");
+  CLI::Option* html = command.add_option(
+      "--html", o.html_path,
+      "also write the report to FILE as one self-contained HTML page (no network "
+      "needed): health tiles, stations, a timeline of every request, reply and "
+      "finding, bus load, latency, polling and register values as zoomable charts");
+  html->type_name("FILE");
   command
       .add_option("--plot", o.plot_keys,
                   "register keys (e.g. pv_power,energy_today) the --html page charts; default: "
                   "every numeric register that changed")
+      ->needs(html)
       ->type_name("KEY,...")
       ->delimiter(',')
       ->allow_extra_args(false);

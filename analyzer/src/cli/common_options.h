@@ -17,12 +17,13 @@ class RegisterDecoder;
 
 namespace pvtap::analyzer {
 
-// The range --baud accepts: any rate for audits; a serial tap takes what termios can set.
+// The range --baud accepts, in audit and sniff alike: the rates an inverter bus runs at and
+// `sniff --baud auto` tries (a tap sets the standard ones among them).
 struct BaudRange {
   std::uint32_t min;
   std::uint32_t max;
 };
-inline constexpr BaudRange kAnyBaud{300, 4000000};
+inline constexpr BaudRange kBaudRange{1200, 115200};
 
 // --dialect, --baud, --timeout, --gsl-ids, --map.
 void add_protocol_options(CLI::App& command, CommonOptions& o, BaudRange baud_range);

@@ -20,11 +20,11 @@ const char* const kMqttHelpFooter =
     "and counted in health) and the client reconnects with backoff (1 s doubling to 30 s).\n";
 
 void add_mqtt_options(CLI::App& command, MqttOptions& o) {
-  command
-      .add_option("--mqtt", o.url,
-                  "publish values, health and events to an MQTT broker: mqtt://HOST[:1883] or "
-                  "mqtts://HOST[:8883] (TLS)")
-      ->type_name("URL");
+  CLI::Option* mqtt = command.add_option(
+      "--mqtt", o.url,
+      "publish values, health and events to an MQTT broker: mqtt://HOST[:1883] or "
+      "mqtts://HOST[:8883] (TLS)");
+  mqtt->type_name("URL");
   command.add_option("--mqtt-topic", o.topic, "topic prefix (default pvtap/<hostname>)")
       ->type_name("PREFIX");
   command
@@ -50,6 +50,10 @@ void add_mqtt_options(CLI::App& command, MqttOptions& o) {
       ->default_str("10");
   command.add_flag("--mqtt-discovery", o.discovery,
                    "publish Home Assistant discovery configs under homeassistant/");
+  // Each of them describes the --mqtt connection: alone it would do nothing.
+  for (CLI::Option* option : command.get_options()) {
+    if (option != mqtt && option->get_name().rfind("--mqtt-", 0) == 0) option->needs(mqtt);
+  }
 }
 
 }  // namespace pvtap::analyzer

@@ -73,14 +73,16 @@ void add_source_options(CLI::App& sniff, SniffCommandLine& c) {
                   "serial device of an RS485 tap, opened read-only; repeat for several buses")
       ->type_name("PATH")
       ->allow_extra_args(false);
-  sniff.add_option("--parity", c.parity, "parity of the bus's characters: none, even or odd")
-      ->check(CLI::IsMember({"none", "even", "odd"}).description(""))
-      ->type_name("PARITY")
-      ->default_str("none");
-  sniff.add_option("--stop-bits", live.line.stop_bits, "stop bits per character: 1 or 2")
-      ->check(CLI::IsMember({1, 2}).description(""))
-      ->type_name("N")
-      ->default_str("1");
+  c.parity_option =
+      sniff.add_option("--parity", c.parity, "parity of the bus's characters: none, even or odd")
+          ->check(CLI::IsMember({"none", "even", "odd"}).description(""))
+          ->type_name("PARITY")
+          ->default_str("none");
+  c.stop_bits_option =
+      sniff.add_option("--stop-bits", live.line.stop_bits, "stop bits per character: 1 or 2")
+          ->check(CLI::IsMember({1, 2}).description(""))
+          ->type_name("N")
+          ->default_str("1");
   sniff
       .add_option("--logic", live.logic_input,
                   "a logic analyzer's samples as sigrok-cli -O binary writes them (- for "
@@ -103,6 +105,7 @@ void add_source_options(CLI::App& sniff, SniffCommandLine& c) {
   sniff
       .add_option("--port", c.options.ports,
                   "gateway TCP/UDP port(s), comma-separated or repeated (with --interface)")
+      ->check(CLI::Range(1, 65535).description(""))
       ->type_name("PORT")
       ->delimiter(',')
       ->allow_extra_args(false);
@@ -231,9 +234,8 @@ CLI::App* add_sniff_command(CLI::App& app, SniffCommandLine& command) {
   CLI::App* sniff = app.add_subcommand("sniff", kDescription);
   sniff->footer(std::string(kFooter) + kMqttHelpFooter);
   add_source_options(*sniff, command);
-  const BaudRange rates{2400, 115200};
-  add_protocol_options(*sniff, command.options, rates);
-  add_baud_option(*sniff, command, rates);
+  add_protocol_options(*sniff, command.options, kBaudRange);
+  add_baud_option(*sniff, command, kBaudRange);
   add_stop_options(*sniff, command.options.live);
   add_output_options(*sniff, command.options);
   add_mqtt_options(*sniff, command.options.mqtt);
@@ -242,6 +244,16 @@ CLI::App* add_sniff_command(CLI::App& app, SniffCommandLine& command) {
 
 int run_sniff(SniffCommandLine& command) {
   SniffOptions& o = command.options;
+  if (command.baud == "auto") {
+    for (const CLI::Option* given : {command.parity_option, command.stop_bits_option}) {
+      if (given != nullptr && given->count() > 0) {
+        std::fprintf(stderr,
+                     "pvtap: --baud auto finds the parity and stop bits itself: leave out %s\n",
+                     given->get_name().c_str());
+        return kExitBadInput;
+      }
+    }
+  }
   o.live.line.parity = SerialLine::parity_letter(command.parity);
   o.live.search_line = command.baud == "auto";
   if (!o.live.search_line) o.baud = static_cast<std::uint32_t>(std::stoul(command.baud));

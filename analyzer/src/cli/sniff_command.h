@@ -5,7 +5,8 @@
 
 namespace CLI {
 class App;
-}
+class Option;
+}  // namespace CLI
 
 namespace pvtap::analyzer {
 
@@ -15,6 +16,9 @@ struct SniffCommandLine {
   std::string parity = "none";
   std::string baud = "9600";  // a rate, or "auto"
   std::string sample_rate;    // --samplerate as typed: 4000000, 4M, 500k
+  // The line's settings as options, to tell whether they were given (--baud auto finds them).
+  const CLI::Option* parity_option = nullptr;
+  const CLI::Option* stop_bits_option = nullptr;
 };
 
 // Adds `sniff` to the program's command line; parsed values land in `command`.

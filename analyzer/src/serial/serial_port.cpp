@@ -14,8 +14,8 @@
 namespace pvtap::analyzer {
 namespace {
 
-// The range (2400 to 115200): the rates inverters' RS485 ports use; 1200 only for a
-// rate search (--baud auto), which tries every standard rate.
+// The standard rates of --baud's range (1200 to 115200): those inverters' RS485 ports use,
+// and those a rate search (--baud auto) tries.
 constexpr std::array<std::pair<std::uint32_t, speed_t>, 8> kSpeeds{{
     {1200, B1200},
     {2400, B2400},

@@ -508,7 +508,7 @@ def check_bad_devices(args):
         (["--device", "/dev/ttyUSB-pvtap-missing"], ["/dev/ttyUSB-pvtap-missing",
                                                      "No such file"]),
         (["--device", regular], [regular]),
-        (["--device", pty.path, "--baud", "1200"], ["1200"]),
+        (["--device", pty.path, "--baud", "600"], ["600", "1200 to 115200"]),
         (["--device", pty.path, "--parity", "mark"], ["mark"]),
         (["--device", pty.path, "--stop-bits", "3"], ["3"]),
         (["--device", pty.path, "--port", "502"], ["--interface"]),

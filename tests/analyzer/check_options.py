@@ -1,0 +1,60 @@
+#!/usr/bin/env python3
+"""Options say when they cannot do anything: an option that needs another is refused, a value
+out of range names the range, and every parse error is one line that starts with `pvtap:`.
+One baud range for audit and sniff: 1200 (which `sniff --baud auto` tries) to 115200.
+
+Usage: check_options.py PVTAP CAPTURE
+"""
+import subprocess
+import sys
+import os
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+from checks import Checks  # noqa: E402
+
+RUN_GUARD_S = 60
+
+
+def run(pvtap, args):
+    return subprocess.run([pvtap, *args], capture_output=True, text=True, timeout=RUN_GUARD_S)
+
+
+def refused(checks, pvtap, args, words):
+    result = run(pvtap, args)
+    lines = result.stderr.strip().splitlines()
+    what = " ".join(args)
+    checks.equal(f"exit status of pvtap {what}", result.returncode, 2)
+    checks.true(f"pvtap {what}: one line on stderr ({result.stderr.strip()!r})", len(lines) == 1)
+    checks.true(f"pvtap {what}: the line starts with 'pvtap:'",
+                bool(lines) and lines[0].startswith("pvtap: "))
+    for word in words:
+        checks.true(f"pvtap {what}: the line names {word!r} ({result.stderr.strip()!r})",
+                    word in result.stderr)
+    checks.equal(f"pvtap {what}: nothing on stdout", result.stdout, "")
+
+
+def main():
+    pvtap, capture = sys.argv[1], sys.argv[2]
+    checks = Checks()
+    needs = (("--values-format", "jsonl", "--values"), ("--plot", "pv_power", "--html"),
+             ("--mqtt-password-file", "pw", "--mqtt"), ("--mqtt-topic", "site", "--mqtt"),
+             ("--mqtt-discovery", None, "--mqtt"))
+    for command in ("audit", "sniff"):
+        for option, value, needed in needs:
+            args = [command, option] + ([value] if value else []) + [capture]
+            refused(checks, pvtap, args, [option, needed])
+        refused(checks, pvtap, [command, "--port", "99999", capture], ["--port", "1 to 65535"])
+        refused(checks, pvtap, [command, "--baud", "600", capture], ["--baud", "1200 to 115200"])
+        refused(checks, pvtap, [command, "--format", "xml", capture], ["--format", "xml"])
+    for option, value in (("--parity", "even"), ("--stop-bits", "2")):
+        refused(checks, pvtap, ["sniff", "--device", "/dev/null", "--baud", "auto", option, value],
+                ["--baud auto", option])
+    for rate in ("1200", "115200"):
+        result = run(pvtap, ["audit", "--summary-only", "--baud", rate, capture])
+        checks.equal(f"audit --baud {rate}: exit status", result.returncode, 0)
+    refused(checks, pvtap, ["audit", "--timeout", "-1", capture], ["--timeout"])
+    return checks.finish()
+
+
+if __name__ == "__main__":
+    sys.exit(main())
