@@ -28,6 +28,8 @@ void SessionTimes::settle_start(SessionFrame& out) {
 void SessionTimes::add(const SessionFrame& out, const Frame& frame,
                        std::optional<std::uint8_t> station, double max_inner_gap) {
   if (!has_timestamps_) return;
+  // A frame's first byte came before the chunk that ended it: the span begins there.
+  first_ = std::min(first_, out.start_time);
   // With timestamps declared too coarse the bus gaps are never judged; requests alone give
   // the poll periods, and the gap statistics are spared the other frames.
   if (!untrusted_ || out.role == Role::Request) {

@@ -16,7 +16,8 @@ class SessionTimes {
  public:
   explicit SessionTimes(const BusSessionOptions& options);
 
-  // Input arrived at `t` (nothing is kept for an input without timestamps).
+  // Input arrived at `t` (nothing is kept for an input without timestamps). The span runs
+  // from the first byte of a frame (add) or of input to the last input.
   void seen(double t);
   bool any() const { return any_; }
   double first() const { return first_; }
