@@ -15,6 +15,11 @@ constexpr std::array<UartFormat, 4> kCandidates = {
 // one value (a clock reads as clean 0x55 characters in 8N1: a square wave is exactly that).
 constexpr std::uint64_t kMinCharacters = 4;
 
+// In a reading of the wrong polarity a frame checks only by a CRC's chance (1 in 65,536 for
+// each place the framing tries): where this many check, the other polarity is not read (on a
+// line with glitches, its noise would add a third to the probe's work).
+constexpr std::uint64_t kSureFrames = 4;
+
 bool talks(const FormatTrial& t) {
   if (t.good_frames > 0) return true;
   return t.characters >= kMinCharacters && t.line_errors * 4 <= t.characters &&
@@ -89,13 +94,10 @@ std::optional<DetectedLine> LineDetector::decide(double sample_rate, DialectSet 
   d.line.baud = baud->measured;
   // The polarity is the reading whose frames check; the idle level only breaks a tie. A bus
   // line that rests in space between frames, its drivers pulsing as they switch, idles "low".
-  // A reading whose frames check and whose every character reads clean is the line's, and the
-  // other is not tried (a fifth of the probe's work): that one reads this one's quiet stretches
-  // as space and its frames only by a CRC's chance.
   const bool idle_low = idles_low(runs_);
   try_formats(d, idle_low, runs_, dialects);
-  const bool clean = d.trial.good_frames > 0 && d.trial.line_errors == 0;
-  if (!clean && frames_at(d, !idle_low, runs_, dialects) > d.trial.good_frames) {
+  const bool sure = d.trial.good_frames >= kSureFrames;
+  if (!sure && frames_at(d, !idle_low, runs_, dialects) > d.trial.good_frames) {
     d.trial = FormatTrial{};
     try_formats(d, !idle_low, runs_, dialects);
   }
