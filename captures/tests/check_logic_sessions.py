@@ -24,6 +24,12 @@ every bus has the nominal rate, the format and the idle level; every frame whose
 is found, and no other good frame; the planted t3.5 violations, exactly; a damaged frame the
 framing cannot tell from noise (a clean glitch byte right after it, a damaged header) is
 noise, never lost.
+busline: the A-B line probed where no failsafe bias holds it (--undriven space: it falls to
+space at every driver's release, a start bit to a receiver, and rests there until a driver
+lifts it with a short pulse), beside the master's TX and RX, over the matrix's rates and
+formats and both idle levels, found alone and named with --channels A-B: the A-B bus is read
+at the polarity its frames check in, never at the level it rests at, at the nominal rate
+despite the pulses, and gives every good frame the truth has, as TX,RX does.
 long: the same bus sampled at 1 MS/s (about 11 MB of samples, which the audit reads once and
 keeps) and at 4 MS/s (about 43 MB, over what it keeps: read a second time) gives the truth's
 frames, timeouts and planted t3.5 violations both ways.
@@ -249,6 +255,34 @@ def check_matrix(checks, pvtap, sim, scratch):
                                      fmt, inverted)
 
 
+def check_busline(checks, pvtap, sim, scratch):
+    """A-B probed on a line without failsafe bias: the polarity its frames check in."""
+    seed = 200
+    for baud, fmt in MATRIX_LINES:
+        rate = "1000000" if int(baud) <= 19200 else "4000000"
+        for inverted in (False, True):
+            seed += 1
+            what = f"bus line {baud} {fmt}{' inverted' if inverted else ''}"
+            session, truth = simulate(
+                sim, scratch, "busline", "--seed", str(seed), "--meter", "20", "--baud", baud,
+                "--format", fmt, "--samplerate", rate, "--sr-channels", "bus,tx,rx",
+                "--undriven", "space", "--faults", "missing=10,slow=5,corrupt=5",
+                "--violations", "2", "--jitter", "5", "--clock-deviation", "1",
+                *(("--inverted",) if inverted else ()))
+            # Without --channels a frameless A-B beside TX,RX was no bus at all; named, it was
+            # read at the level it rests at: no frame, its bytes noise.
+            for args, buses in (((), ["A-B", "TX,RX"]), (("--channels", "A-B"), ["A-B"])):
+                result = audit(pvtap, "--format", "jsonl", *args, session)
+                rows = [json.loads(l) for l in result.stdout.splitlines()]
+                s = summary(result) or {"buses": []}
+                named = f"{what}{' ' if args else ''}{' '.join(args)}"
+                checks.equal(f"{named}: buses", [b["bus"] for b in s["buses"]], buses)
+                for bus in s["buses"]:
+                    check_matrix_bus(checks, f"{named}: {bus['bus']}", bus,
+                                     [r for r in rows if r.get("bus") == bus["bus"]], truth, baud,
+                                     fmt, inverted)
+
+
 def check_long(checks, pvtap, sim, scratch):
     """A recording kept from the probe's reading and one read twice decode alike."""
     for rate in ("1000000", "4000000"):
@@ -269,7 +303,7 @@ def main():
     os.makedirs(scratch, exist_ok=True)
     checks = Checks()
     modes = {"drivers": check_drivers, "channels": check_channels, "clock": check_clock,
-             "long": check_long, "matrix": check_matrix}
+             "long": check_long, "matrix": check_matrix, "busline": check_busline}
     modes[mode](checks, pvtap, sim, scratch)
     return checks.finish()
 

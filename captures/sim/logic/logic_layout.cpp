@@ -98,20 +98,39 @@ class Layout {
     if (!violation.empty()) out_.violations.push_back({start, violation, e.station});
     e.start = out_.origin + std::llround(start);
     e.end = out_.origin + std::llround(t);
-    if (e.kind == BusEvent::Kind::Frame)
+    if (e.kind == BusEvent::Kind::Frame) {
       drive(master ? 0 : e.station, start, t, quiet_before, quiet_after && violation.empty());
+    } else if (o_.undriven_space) {
+      // Noise comes from a driver too: without one, nothing would lift the line to show it.
+      hold_line(start - out_.bit * (1.0 + random_.unit()), t + out_.bit * random_.unit());
+    }
     return t;
+  }
+
+  // --undriven space: the line driven from `on` to `off`, with its switch-on pulse.
+  void hold_line(double on, double off) {
+    const double spike_at = on + out_.bit * (0.05 + 0.15 * random_.unit());
+    out_.driven.push_back({on, off, spike_at, out_.bit * (0.1 + 0.25 * random_.unit())});
   }
 
   // The talker's driver around its frame, and the glitches its switching makes.
   void drive(int talker, double first, double last, bool quiet_before, bool quiet_after) {
-    DriverWindow w{first - out_.bit * (0.5 + random_.unit()), 0, 0, talker};
+    // Without a failsafe bias the driver comes on a bit earlier: its switch-on pulse settles
+    // half a bit before the first start bit at the latest.
+    const double lead = o_.undriven_space ? 1.0 : 0.5;
+    DriverWindow w{first - out_.bit * (lead + random_.unit()), 0, 0, talker};
     w.release = release_of(talker, releases_, random_);
     if (o_.truncate_last_byte && talker != 0 && (first_station_ < 0 || first_station_ == talker)) {
       first_station_ = talker;
       w.release = -0.5 * out_.bit;
     }
     w.off = last + w.release;
+    if (o_.undriven_space) {
+      // The line's own switching, at every turn, in place of the glitch bytes.
+      hold_line(w.on, w.off);
+      out_.drivers.push_back(w);
+      return;
+    }
     const unsigned bits = o_.format.bits_per_char();
     if (quiet_before && random_.percent(o_.glitch_pct)) {
       // Switching on: the line in space for a whole character, stop bit included (a 0x00

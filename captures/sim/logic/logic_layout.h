@@ -35,6 +35,13 @@ struct DriverWindow {
   int talker = 0;
 };
 
+// DrivenSpan (--undriven space): the A-B line held by a driver from `on` to `off`, space
+// elsewhere. Switching on, the driver lifts the line to mark and then lets it dip back to
+// space for `spike` µs from `spike_at`: a pulse under half a bit, which opens no character.
+struct DrivenSpan {
+  double on = 0, off = 0, spike_at = 0, spike = 0;
+};
+
 struct Violation {
   double start = 0;
   std::string kind;  // "early_reply" (2.5 characters after its request), "pause_in_frame"
@@ -48,6 +55,7 @@ struct LogicLayout {
   std::vector<DrivenCharacter> characters;
   std::vector<GlitchPulse> glitches;
   std::vector<DriverWindow> drivers;
+  std::vector<DrivenSpan> driven;  // --undriven space: every event's, frames and noise
   std::vector<Violation> violations;
 };
 

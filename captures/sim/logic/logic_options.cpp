@@ -62,6 +62,11 @@ void add_logic_options(CLI::App& app, LogicOptions& logic) {
   app.add_flag("--truncate-last-byte", logic.truncate_last_byte,
                "--sr: the first inverter releases its driver before its last stop bit ends")
       ->needs(sr);
+  app.add_option("--undriven", logic.undriven,
+                 "--sr: what the A-B line reads where no driver drives it: mark (failsafe bias) "
+                 "or space (none: it falls at every release, a short pulse at every switch-on)")
+      ->check(CLI::IsMember({"mark", "space"}))
+      ->needs(sr);
 }
 
 std::string finish_logic_options(LogicOptions& logic, unsigned baud) {
@@ -70,6 +75,7 @@ std::string finish_logic_options(LogicOptions& logic, unsigned baud) {
   if (!parse_format(logic.format_text, logic.format))
     return "--format: '" + logic.format_text + "' is not one of 8N1 8E1 8O1 8N2";
   logic.format.inverted = inverted;
+  logic.undriven_space = logic.undriven == "space";
   if (logic.sample_rate < 8.0 * baud)
     return "--samplerate: under 8 samples per bit at --baud " + std::to_string(baud);
   return parse_channels(logic);

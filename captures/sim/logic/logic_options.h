@@ -21,6 +21,10 @@ struct LogicOptions {
   unsigned glitch_pct = 0;          // chance that a driver switching puts a glitch byte on the bus
   unsigned violations = 0;          // early replies, and as many requests with a pause inside
   bool truncate_last_byte = false;  // the first station releases its driver mid stop bit
+  // What the A-B line reads where no driver drives it: "mark" (failsafe bias holds it idle)
+  // or "space" (no bias: it falls at every release and only a driver lifts it).
+  std::string undriven = "mark";
+  bool undriven_space = false;  // read from `undriven` by finish_logic_options
 };
 
 void add_logic_options(CLI::App& app, LogicOptions& logic);

@@ -60,30 +60,61 @@ void put_character(SignalBuilder& b, const DrivenCharacter& c, const UartFormat&
   b.set(c.start + bit * next, !invert);  // stop bits: mark
 }
 
+// One item on a line: a character, a glitch, or a driver switching on or off (--undriven space).
 struct Timed {
   double at;
-  const DrivenCharacter* character;
-  const GlitchPulse* glitch;
+  const DrivenCharacter* character = nullptr;
+  const GlitchPulse* glitch = nullptr;
+  const DrivenSpan* span = nullptr;  // switching on at `at` (else off, when `released`)
+  bool released = false;
 };
 
+// Spans that overlap (a reply whose driver comes on before the request's is released) are one.
+std::vector<DrivenSpan> merged_spans(std::vector<DrivenSpan> spans) {
+  std::sort(spans.begin(), spans.end(),
+            [](const DrivenSpan& x, const DrivenSpan& y) { return x.on < y.on; });
+  std::vector<DrivenSpan> out;
+  for (const DrivenSpan& s : spans) {
+    if (!out.empty() && s.on <= out.back().off) {
+      out.back().off = std::max(out.back().off, s.off);
+      continue;
+    }
+    out.push_back(s);
+  }
+  return out;
+}
+
 ChannelSignal uart_channel(const std::string& name, const LogicLayout& l, const LogicOptions& o,
-                           bool master, bool slave, bool glitches, SimRandom& random) {
+                           bool master, bool slave, bool bus_line, SimRandom& random) {
   const bool inv = o.format.inverted;
-  SignalBuilder b(name, !inv, o.sample_rate, l.bit * o.jitter_pct / 100.0, random);
+  const bool undriven = bus_line && o.undriven_space;
+  SignalBuilder b(name, undriven ? inv : !inv, o.sample_rate, l.bit * o.jitter_pct / 100.0, random);
   std::vector<Timed> items;
   for (const DrivenCharacter& c : l.characters)
-    if (c.master ? master : slave) items.push_back({c.start, &c, nullptr});
-  if (glitches)
+    if (c.master ? master : slave) items.push_back({c.start, &c});
+  if (bus_line)
     for (const GlitchPulse& g : l.glitches) items.push_back({g.start, nullptr, &g});
+  const std::vector<DrivenSpan> spans =
+      undriven ? merged_spans(l.driven) : std::vector<DrivenSpan>{};
+  for (const DrivenSpan& s : spans) {
+    items.push_back({s.on, nullptr, nullptr, &s, false});
+    items.push_back({s.off, nullptr, nullptr, &s, true});
+  }
   std::stable_sort(items.begin(), items.end(),
                    [](const Timed& x, const Timed& y) { return x.at < y.at; });
   for (const Timed& t : items) {
     if (t.character) {
       put_character(b, *t.character, o.format, l.bit, inv);
-      continue;
+    } else if (t.glitch) {
+      b.set(t.at, inv);
+      b.set(t.at + l.bit * t.glitch->bits, !inv);
+    } else if (t.released) {
+      b.set(t.at, inv);  // the line falls back to space: to a receiver, a start bit
+    } else {
+      b.set(t.at, !inv);
+      b.set(t.span->spike_at, inv);
+      b.set(t.span->spike_at + t.span->spike, !inv);
     }
-    b.set(t.at, inv);
-    b.set(t.at + l.bit * t.glitch->bits, !inv);
   }
   return b.take();
 }

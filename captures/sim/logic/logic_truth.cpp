@@ -25,7 +25,9 @@ std::string session_object(const LogicLayout& l, const LogicSignals& s, const Lo
     << ",\"baud\":" << baud << ",\"format\":\"" << format_name(o.format)
     << "\",\"inverted\":" << (o.format.inverted ? "true" : "false")
     << ",\"clock_deviation_pct\":" << number(o.clock_deviation_pct)
-    << ",\"jitter_pct\":" << number(o.jitter_pct) << ",\"channels\":[";
+    << ",\"jitter_pct\":" << number(o.jitter_pct);
+  if (o.undriven_space) j << ",\"undriven\":\"space\"";
+  j << ",\"channels\":[";
   for (std::size_t i = 0; i < s.channels.size(); ++i)
     j << (i ? "," : "") << "\"" << s.channels[i].name << "\"";
   j << "]}";

@@ -13,22 +13,38 @@ constexpr std::array<std::uint32_t, 9> kStandard = {1200,  2400,  4800,  9600,  
                                                     19200, 38400, 57600, 115200};
 
 // A bit's width is common when this share of the pulses (or at least kMinPulses) lies between
-// it and a quarter more: a few glitches are shorter, and are not a bit.
+// it and a quarter more: a few glitches are shorter, and are not a bit. Nor is a pulse a driver
+// makes at every turn of a bus line, as common as 2 % of the pulses and of one width: a bit's
+// band also holds at least 1/kCrowdDivisor as many pulses as the most crowded band.
 constexpr std::size_t kCommonShareDivisor = 50;  // 2 %
+constexpr std::size_t kCrowdDivisor = 8;
 constexpr std::size_t kMinPulses = 4;
 constexpr double kBand = 1.25;
 constexpr unsigned kMaxMultiple = 10;  // the longest pulse inside a character
-constexpr int kRefineRounds = 4;
+// Refining stops once a round moves the bit by under this many samples, or after kMaxRounds.
+constexpr double kSettled = 1e-3;
+constexpr int kMaxRounds = 16;
 
-double shortest_common(const std::vector<std::uint64_t>& sorted) {
-  const std::size_t need = std::max(kMinPulses, sorted.size() / kCommonShareDivisor);
+// For each pulse (sorted), how many lie in its band: from it to a quarter more.
+std::vector<std::size_t> band_counts(const std::vector<std::uint64_t>& sorted) {
+  std::vector<std::size_t> counts(sorted.size());
   std::size_t hi = 0;
   for (std::size_t lo = 0; lo < sorted.size(); ++lo) {
     const double top = kBand * static_cast<double>(sorted[lo]);
     hi = std::max(hi, lo);
     while (hi < sorted.size() && static_cast<double>(sorted[hi]) < top) ++hi;
-    if (hi - lo >= need) return static_cast<double>(sorted[lo]);
+    counts[lo] = hi - lo;
   }
+  return counts;
+}
+
+double shortest_common(const std::vector<std::uint64_t>& sorted) {
+  const std::vector<std::size_t> counts = band_counts(sorted);
+  const std::size_t crowd = counts.empty() ? 0 : *std::max_element(counts.begin(), counts.end());
+  const std::size_t need =
+      std::max({kMinPulses, sorted.size() / kCommonShareDivisor, crowd / kCrowdDivisor});
+  for (std::size_t lo = 0; lo < sorted.size(); ++lo)
+    if (counts[lo] >= need) return static_cast<double>(sorted[lo]);
   return 0;
 }
 
@@ -74,8 +90,15 @@ std::optional<BaudEstimate> estimate_baud(std::span<const std::uint64_t> widths,
   if (bit < 1) return std::nullopt;
   // The shortest common width is the short end of the bits when edges jitter, and a band
   // around its multiples then takes the short pulses of each and leaves the long ones out.
-  // Refining from the refined bit centres the bands: a few rounds settle it.
-  for (int round = 0; round < kRefineRounds; ++round) bit = refined_bit(sorted, bit);
+  // Refining from the refined bit centres the bands. Where pulses of no whole bit (a driver's
+  // lead before a frame) crowd the short end, the first width is a fifth of a bit short and
+  // takes a few more rounds to settle.
+  for (int round = 0; round < kMaxRounds; ++round) {
+    const double next = refined_bit(sorted, bit);
+    const bool settled = std::abs(next - bit) < kSettled;
+    bit = next;
+    if (settled) break;
+  }
   return snap_baud(sample_rate / bit);
 }
 

@@ -15,13 +15,19 @@ constexpr std::array<UartFormat, 4> kCandidates = {
 // one value (a clock reads as clean 0x55 characters in 8N1: a square wave is exactly that).
 constexpr std::uint64_t kMinCharacters = 4;
 
+// In a reading of the wrong polarity a frame checks only by a CRC's chance (1 in 65,536 for
+// each place the framing tries): where this many check, the other polarity is not read (on a
+// line with glitches, its noise would add a third to the probe's work).
+constexpr std::uint64_t kSureFrames = 4;
+
 bool talks(const FormatTrial& t) {
   if (t.good_frames > 0) return true;
   return t.characters >= kMinCharacters && t.line_errors * 4 <= t.characters &&
          t.distinct_values > 1;
 }
 
-// An idle line rests at mark: the level most samples are at.
+// A line held idle rests at mark: the level most samples are at. Only a guess: a bus line
+// without failsafe bias rests in space between frames, wherever no driver holds it.
 bool idles_low(std::span<const SampleRun> runs) {
   std::uint64_t high = 0;
   std::uint64_t low = 0;
@@ -36,6 +42,32 @@ std::vector<std::uint64_t> pulse_widths(std::span<const SampleRun> runs) {
   widths.reserve(runs.size() - 2);
   for (std::size_t i = 1; i + 1 < runs.size(); ++i) widths.push_back(runs[i].count);
   return widths;
+}
+
+// Every candidate format at one polarity: the best reading into `d`.
+void try_formats(DetectedLine& d, bool inverted, std::span<const SampleRun> runs,
+                 DialectSet dialects) {
+  bool first = true;
+  for (UartFormat format : kCandidates) {
+    format.inverted = inverted;
+    UartLine line = d.line;
+    line.format = format;
+    const FormatTrial trial = try_format(line, runs, dialects);
+    if (first || trial.better_than(d.trial)) {
+      d.trial = trial;
+      d.line.format = format;
+      first = false;
+    }
+  }
+}
+
+// The frames that check at one polarity, read once at 8N1: the loosest candidate reads the
+// data bits of all four right, so its frames check wherever that polarity is the line's.
+std::uint64_t frames_at(const DetectedLine& d, bool inverted, std::span<const SampleRun> runs,
+                        DialectSet dialects) {
+  UartLine line = d.line;
+  line.format = UartFormat{8, Parity::None, 1, inverted};
+  return try_format(line, runs, dialects).good_frames;
 }
 
 }  // namespace
@@ -60,18 +92,14 @@ std::optional<DetectedLine> LineDetector::decide(double sample_rate, DialectSet 
   d.baud = *baud;
   d.line.sample_rate = sample_rate;
   d.line.baud = baud->measured;
-  const bool inverted = idles_low(runs_);
-  bool first = true;
-  for (UartFormat format : kCandidates) {
-    format.inverted = inverted;
-    UartLine line = d.line;
-    line.format = format;
-    const FormatTrial trial = try_format(line, runs_, dialects);
-    if (first || trial.better_than(d.trial)) {
-      d.trial = trial;
-      d.line.format = format;
-      first = false;
-    }
+  // The polarity is the reading whose frames check; the idle level only breaks a tie. A bus
+  // line that rests in space between frames, its drivers pulsing as they switch, idles "low".
+  const bool idle_low = idles_low(runs_);
+  try_formats(d, idle_low, runs_, dialects);
+  const bool sure = d.trial.good_frames >= kSureFrames;
+  if (!sure && frames_at(d, !idle_low, runs_, dialects) > d.trial.good_frames) {
+    d.trial = FormatTrial{};
+    try_formats(d, !idle_low, runs_, dialects);
   }
   d.has_traffic = talks(d.trial);
   return d;

@@ -170,6 +170,68 @@ TEST(LineDetector, DriverGlitchesBetweenFramesDoNotChooseTheFormat) {
   EXPECT_GT(d.trial.line_errors, 0u);
 }
 
+// A bus line without failsafe bias, probed on A/B: in space wherever no driver holds it. Each
+// driver lifts it before its frame with a short pulse (mark for an eighth of a bit, a dip to space
+// of `dip` bits, then mark for `lead` bits) and drops it when released, `release` bits after
+// its last stop bit: to a receiver, a start bit that never ends.
+std::vector<SampleRun> unbiased_conversation(double baud, UartFormat format, double dip,
+                                             std::span<const double> leads) {
+  const auto request = with_crc({0xF7, 0x03, 0x00, 0x10, 0x00, 0x02});
+  UartRuns line(kRate / baud, format);
+  line.hold(false, 50);
+  std::size_t turn = 0;
+  const auto frame = [&](std::span<const std::uint8_t> bytes) {
+    const double lead = leads[turn++ % leads.size()];
+    line.idle(0.12).hold(false, dip).idle(lead).bytes(bytes).idle(0.2).hold(false, 60);
+  };
+  for (int i = 0; i < 6; ++i) {
+    const auto reply = with_crc({0xF7, 0x03, 0x04, 0x12, static_cast<std::uint8_t>(i), 0x00,
+                                 static_cast<std::uint8_t>(0x80 | i)});
+    frame(request);
+    frame(reply);
+    line.hold(false, 140);
+  }
+  return line.runs();
+}
+
+TEST(LineDetector, BusLineRestingInSpaceIsReadAtThePolarityItsFramesCheckIn) {
+  // Most samples are in space: the idle level alone said inverted, and no frame checked.
+  const double leads[] = {1.0};
+  for (const bool inverted : {false, true}) {
+    const UartFormat format{8, Parity::None, 2, inverted};
+    const DetectedLine d = detect(unbiased_conversation(9600, format, 0.15, leads));
+    EXPECT_EQ(d.baud.baud, 9600u) << inverted;
+    EXPECT_EQ(d.line.format.inverted, inverted);
+    EXPECT_TRUE(d.has_traffic);
+    EXPECT_EQ(d.trial.good_frames, 12u) << inverted;
+  }
+}
+
+TEST(LineDetector, SwitchOnPulsesAtEveryTurnAreNoBit) {
+  // Two pulses of one width at every turn, an eighth and a sixth of a bit: 2 % of the pulses and
+  // more, as common as a bit by that share alone, and far rarer than the bits.
+  const double leads[] = {1.0};
+  const UartFormat format{8, Parity::None, 1, false};
+  const DetectedLine d = detect(unbiased_conversation(19200, format, 0.16, leads));
+  EXPECT_EQ(d.baud.baud, 19200u);
+  EXPECT_NEAR(d.baud.deviation, 0, 0.005);
+  EXPECT_EQ(d.trial.good_frames, 12u);
+}
+
+TEST(LineDetector, DriversLeadingByPartsOfABitKeepTheRate) {
+  // Jittering edges and leads of 0.45 to 1.5 bits before the first start bit crowd the short
+  // end of the bits: the first width was a fifth of a bit short, four rounds of refining left
+  // 9600 at 10085, and no frame checked.
+  const double leads[] = {0.45, 0.8, 1.3, 0.6, 1.5, 0.95, 0.5, 1.1, 0.7, 1.4, 0.55, 0.85};
+  const UartFormat format{8, Parity::None, 2, false};
+  const double baud = 9600 * 0.99;
+  const DetectedLine d =
+      detect(jittered(unbiased_conversation(baud, format, 0.3, leads), kRate / baud, 5));
+  EXPECT_EQ(d.baud.baud, 9600u);
+  EXPECT_NEAR(d.baud.deviation, -0.01, 0.003);
+  EXPECT_EQ(d.trial.good_frames, 12u);
+}
+
 TEST(LineDetector, IdleLineHasNoBit) {
   LineDetector detector;
   detector.add(SampleRun{true, 1'000'000});
