@@ -1,5 +1,7 @@
 #include "pvtap/capture/capture_file.h"
 
+#include "pvtap/capture/file_format.h"
+
 #include <pcap/pcap.h>
 #include <stdio_ext.h>
 #include <sys/stat.h>
@@ -21,11 +23,14 @@ static_assert(dlt::kNull == DLT_NULL && dlt::kEthernet == DLT_EN10MB && dlt::kRa
               dlt::kUser15 == DLT_USER15 && dlt::kIpv4 == DLT_IPV4 && dlt::kIpv6 == DLT_IPV6 &&
               dlt::kRtacSerial == DLT_RTAC_SERIAL && dlt::kUpperPdu == DLT_WIRESHARK_UPPER_PDU);
 
-// libpcap's reason for refusing a file, in the words a user needs.
-std::string open_failure(const char* pcap_reason) {
+// libpcap's reason for refusing a file, in the words a user needs: for a file of another
+// format, what its first bytes look like.
+std::string open_failure(const char* pcap_reason, const std::string& path) {
   const std::string reason = pcap_reason;
   if (reason.find("unknown file format") != std::string::npos) {
-    return "not a pcap or pcapng capture (unknown file format)";
+    std::string what = "not a pcap or pcapng capture (it begins " + first_bytes_text(path);
+    if (file_format_of(path) == FileFormat::Zip) what += ": a zip, as a sigrok session is";
+    return what + ")";
   }
   if (reason.find("truncated") != std::string::npos) {
     return "not a capture: the file is empty or ends inside its header (" + reason + ")";
@@ -76,7 +81,7 @@ bool CaptureFile::open(const std::string& path) {
   char errbuf[PCAP_ERRBUF_SIZE] = {};
   pcap_ = pcap_fopen_offline_with_tstamp_precision(file_, PCAP_TSTAMP_PRECISION_NANO, errbuf);
   if (pcap_ == nullptr) {
-    error_ = open_failure(errbuf);
+    error_ = open_failure(errbuf, path);
     return false;
   }
   link_type_ = pcap_datalink(pcap_);

@@ -3,6 +3,7 @@
 #include "logic/plan/logic_plan.h"
 
 #include "logic/plan/channel_pairing.h"
+#include "pvtap/capture/file_format.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -115,6 +116,20 @@ void form_buses(LogicPlan& plan, const std::vector<std::vector<std::string>>& gr
 }  // namespace
 
 bool is_logic_recording(const std::string& path) {
+  // The content decides; the name only where the content says nothing (text that is no VCD,
+  // a file that cannot be read, whose error then comes from the reader the name points to).
+  switch (file_format_of(path)) {
+    case FileFormat::Zip:
+    case FileFormat::Vcd:
+      return true;
+    case FileFormat::Pcap:
+    case FileFormat::Pcapng:
+      return false;
+    case FileFormat::Text:
+    case FileFormat::Unknown:
+    case FileFormat::Unreadable:
+      break;
+  }
   return ends_with(path, ".sr") || ends_with(path, ".vcd") || ends_with(path, ".csv");
 }
 
