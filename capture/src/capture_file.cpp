@@ -38,6 +38,16 @@ std::string open_failure(const char* pcap_reason, const std::string& path) {
   return reason;
 }
 
+// libpcap's reason for stopping inside the records: a file cut short, or a record that cannot
+// be true (a length beyond any capture's), said as such with where reading stopped.
+std::string damage_text(const std::string& reason, std::uint64_t at) {
+  const std::string where = " at byte " + std::to_string(at);
+  if (reason.find("truncated") != std::string::npos) {
+    return "truncated: the file ends inside a record" + where + " (" + reason + ")";
+  }
+  return "corrupt" + where + ": " + reason;
+}
+
 }  // namespace
 
 CapturedPacket packet_of(const pcap_pkthdr& header, const unsigned char* data, bool nanoseconds) {
@@ -98,7 +108,7 @@ CaptureFile::Next CaptureFile::next(CapturedPacket& packet) {
     return Next::Packet;
   }
   if (rc == PCAP_ERROR_BREAK) return Next::End;
-  error_ = pcap_geterr(pcap_);
+  error_ = damage_text(pcap_geterr(pcap_), position());
   return Next::Truncated;
 }
 

@@ -157,8 +157,14 @@ namespace {
 std::optional<RegisterMap> read_map_or_say_why(const std::string& path,
                                                const RegisterMapResult& loaded) {
   if (loaded) return loaded.value();
-  std::fprintf(stderr, "pvtap: %s: bad register map\n%s\n", path.c_str(),
-               loaded.error_text().c_str());
+  const auto& problems = loaded.diagnostics();
+  if (problems.size() == 1 && problems.front().line == 0) {
+    // The file itself (missing, no permission): no word on a map that was never read.
+    std::fprintf(stderr, "pvtap: %s: %s\n", path.c_str(), problems.front().message.c_str());
+  } else {
+    std::fprintf(stderr, "pvtap: %s: bad register map\n%s\n", path.c_str(),
+                 loaded.error_text().c_str());
+  }
   return std::nullopt;
 }
 

@@ -270,7 +270,7 @@ void append_html_overview(std::string& o, const AuditReport& r) {
     std::string line = in.unreadable
                            ? in.path + " NOT READ: " + in.error
                            : in.path + " (" + in.link_type + ", " + std::to_string(in.records) +
-                                 " records)" + (in.truncated ? " TRUNCATED: " + in.error : "");
+                                 " records)" + (in.truncated ? " DAMAGED: " + in.error : "");
     if (in.steps_back > 0) {
       line += "; its clock stepped back " + std::to_string(in.steps_back) +
               " times (first at record " + std::to_string(in.first_step_back_record) + ")";

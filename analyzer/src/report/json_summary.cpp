@@ -305,7 +305,8 @@ void inputs(std::string& o, const AuditReport& report) {
     }
     if (in.damaged()) {
       append_json_key(o, "damage");
-      append_json_string(o, in.truncated ? "truncated" : "not read");
+      const bool corrupt = in.error.rfind("corrupt", 0) == 0;
+      append_json_string(o, in.unreadable ? "not read" : corrupt ? "corrupt" : "truncated");
       append_json_key(o, "error");
       append_json_string(o, in.error);
     }

@@ -52,7 +52,7 @@ void inputs(const AuditReport& r, std::string& o) {
       continue;
     }
     o += report_line("input: %s (%s, %llu records)%s", in.path.c_str(), in.link_type.c_str(),
-                     u(in.records), in.truncated ? " TRUNCATED" : "");
+                     u(in.records), in.truncated ? " DAMAGED" : "");
     if (in.truncated) {
       o += report_line("  reading stopped at byte %llu of %llu: %s", u(in.read_bytes),
                        u(in.file_bytes), in.error.c_str());

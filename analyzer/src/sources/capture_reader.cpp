@@ -89,7 +89,7 @@ void CaptureReader::report_problems() const {
   for (const InputReport& in : inputs_) {
     if (in.truncated) {
       std::fprintf(stderr,
-                   "pvtap: %s: truncated capture: %s (read %llu records, %llu of %llu bytes; "
+                   "pvtap: %s: damaged capture, %s (read %llu records, %llu of %llu bytes; "
                    "results up to there are above)\n",
                    in.path.c_str(), in.error.c_str(), u(in.records), u(in.read_bytes),
                    u(in.file_bytes));

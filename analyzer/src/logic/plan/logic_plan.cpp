@@ -6,7 +6,9 @@
 #include "pvtap/capture/file_format.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 
 namespace pvtap::analyzer {
@@ -143,9 +145,18 @@ LogicPlan plan_logic_audit(const std::string& path, const std::vector<std::strin
     plan.error = why;
     return plan;
   }
+  // The file's own trouble (missing, a directory, no permission) in the system's words,
+  // before libsigrok would call it "not a recording".
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) {
-    plan.error = path + ": no such file";
+  const bool regular = std::filesystem::is_regular_file(path, ec);
+  if (ec || !regular) {
+    plan.error = path + ": " + (ec ? ec.message() : std::string("not a regular file"));
+    return plan;
+  }
+  if (std::FILE* f = std::fopen(path.c_str(), "rb")) {
+    std::fclose(f);
+  } else {
+    plan.error = path + ": " + std::strerror(errno);
     return plan;
   }
   LineProbe probe(names);
