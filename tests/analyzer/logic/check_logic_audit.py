@@ -285,7 +285,8 @@ def bad_inputs(checks, args):
     one_line_refusal(checks, "a file that is no recording", audit(args.pvtap, not_a_recording),
                      "not a sigrok session")
     one_line_refusal(checks, "a missing file",
-                     audit(args.pvtap, os.path.join(args.scratch, "missing.sr")), "No such file or directory")
+                     audit(args.pvtap, os.path.join(args.scratch, "missing.sr")),
+                     "No such file or directory")
     quiet = os.path.join(args.scratch, "quiet.vcd")
     write_vcd(quiet, 1, [(500, 0), (501, 1)], 100000)  # a one-sample glitch, no character
     one_line_refusal(checks, "a recording without UART traffic", audit(args.pvtap, quiet),
