@@ -55,9 +55,9 @@ std::string footer_text() {
          "\nFiles besides stdout: --values FILE writes every decoded register value of a good\n"
          "reply as a time series (csv, jsonl or InfluxDB line protocol); --html FILE writes the\n"
          "report as one self-contained page with zoomable charts (open it from disk, no network).\n"
-         "\nExit status: 0 done; 1 findings (bad checks, timeouts, exceptions) with\n"
-         "--fail-on errors; 2 usage error, or an input unreadable, truncated or repeated (what\n"
-         "could be read is reported first).\n"
+         "\nExit status: 0 done; 1 findings (bad checks, timeouts, exceptions, or no frame at\n"
+         "all) with --fail-on errors, no frame with --fail-on empty; 2 usage error, or an input\n"
+         "unreadable, damaged or repeated (what could be read is reported first).\n"
          "\nExamples:\n"
          "  pvtap audit site.pcapng\n"
          "  pvtap audit --format jsonl --port 4001 gateway.pcap | jq 'select(.check==\"bad\")'\n"
@@ -170,7 +170,7 @@ int audit_logic(const AuditOptions& options, const RegisterDecoder& decoder, Out
     std::fprintf(stderr, "pvtap: %s: %s\n", plan.path.c_str(), run.error.c_str());
     return kExitBadInput;
   }
-  return options.fail_on_errors && has_findings(report) ? kExitFindings : kExitOk;
+  return findings_status(options, report);
 }
 
 }  // namespace
@@ -256,7 +256,7 @@ int audit(const AuditOptions& options, const RegisterDecoder& decoder, OutputStr
     reader.report_problems();
     return kExitBadInput;
   }
-  return options.fail_on_errors && has_findings(report) ? kExitFindings : kExitOk;
+  return findings_status(options, report);
 }
 
 }  // namespace pvtap::analyzer

@@ -20,7 +20,7 @@ struct CommonOptions {
   std::string dialect = "auto";  // auto, ascii, hybrid or gsl
   std::string gsl_id_reading = "decimal";
   std::string format_name = "text";
-  std::string fail_on;  // empty or "errors"
+  std::string fail_on;  // empty, "errors" or "empty"
 
   DialectSet dialects = DialectSet::all();
   std::uint32_t baud = 9600;
@@ -35,6 +35,7 @@ struct CommonOptions {
   bool summary_only = false;
   std::string write_path;
   bool fail_on_errors = false;
+  bool fail_on_empty = false;  // --fail-on empty, and errors
   // --values: the decoded register values as a time series, one row per value.
   std::string values_path;
   std::string values_format_name = "csv";

@@ -7,6 +7,7 @@
 #include <string_view>
 #include <vector>
 
+#include "cli/exit_status.h"
 #include "cli/map_file.h"
 #include "cli/station_map_argument.h"
 #include "cli/user_map_folder.h"
@@ -108,10 +109,11 @@ void add_output_options(CLI::App& audit, CommonOptions& o) {
       ->type_name("FILE");
   audit
       .add_option("--fail-on", o.fail_on,
-                  "'errors': exit 1 when bad checks, timeouts or exceptions were found "
-                  "(without it, findings never change the exit status)")
-      ->check(CLI::IsMember({"errors"}).description(""))
-      ->type_name("errors");
+                  "'errors': exit 1 when bad checks, timeouts or exceptions were found, or no "
+                  "frame at all; 'empty': exit 1 only when no frame was found (without it, "
+                  "findings never change the exit status)")
+      ->check(CLI::IsMember({"errors", "empty"}).description(""))
+      ->type_name("errors|empty");
   add_values_options(audit, o);
   add_html_options(audit, o);
 }
@@ -228,6 +230,11 @@ bool load_maps(const CommonOptions& o, RegisterDecoder& decoder) {
   return true;
 }
 
+int findings_status(const CommonOptions& o, const AuditReport& report) {
+  if (o.fail_on_errors && has_findings(report)) return kExitFindings;
+  return o.fail_on_empty && found_no_frame(report) ? kExitFindings : kExitOk;
+}
+
 void apply_choices(CommonOptions& o) {
   o.dialects = dialects_named(o.dialect).value_or(DialectSet::all());
   o.gsl_ids = o.gsl_id_reading == "hex" ? GslIdReading::Hex : GslIdReading::Decimal;
@@ -235,6 +242,7 @@ void apply_choices(CommonOptions& o) {
              : o.format_name == "csv" ? OutputFormat::Csv
                                       : OutputFormat::Text;
   o.fail_on_errors = o.fail_on == "errors";
+  o.fail_on_empty = o.fail_on == "errors" || o.fail_on == "empty";
   o.values_format = o.values_format_name == "jsonl"    ? ValuesFormat::Jsonl
                     : o.values_format_name == "influx" ? ValuesFormat::Influx
                                                        : ValuesFormat::Csv;

@@ -37,6 +37,9 @@ void add_html_options(CLI::App& command, CommonOptions& o);
 // Turns the options as typed (dialect, format, ...) into their typed fields.
 void apply_choices(CommonOptions& o);
 
+// The exit status a finished run's findings give under --fail-on: kExitFindings or kExitOk.
+int findings_status(const CommonOptions& o, const AuditReport& report);
+
 // Loads the --map files into the decoder; false (after printing why) when one is bad.
 bool load_maps(const CommonOptions& o, RegisterDecoder& decoder);
 

@@ -51,8 +51,9 @@ const char* const kFooter =
     "\nOutput on stdout as frames complete; --write FILE keeps a pcap (link type 252) for\n"
     "Wireshark, flushed record by record so an abrupt end loses nothing. --values FILE\n"
     "writes the register values as they arrive; --html FILE the report page when it stops.\n"
-    "\nExit status: 0 stopped normally (also on SIGINT/SIGTERM); 1 findings with --fail-on\n"
-    "errors; 2 usage error, a device or interface that cannot be opened.\n"
+    "\nExit status: 0 stopped normally (also on SIGINT/SIGTERM); 1 findings (or no frame) with\n"
+    "--fail-on errors, no frame with --fail-on empty; 2 usage error, a device or interface\n"
+    "that cannot be opened.\n"
     "\nExamples:\n"
     "  pvtap sniff --device /dev/serial/by-id/usb-FTDI_FT232R_USB_UART_A10K1234-if00-port0\n"
     "  pvtap sniff --device /dev/ttyUSB0 --baud 19200 --parity even --format jsonl | jq .\n"
@@ -225,7 +226,7 @@ int capture(const SniffOptions& o, const RegisterDecoder& decoder, OutputStream&
   output.write_summary(report);
   out.flush();
   if (!output.close(report)) return kExitBadInput;
-  return o.fail_on_errors && has_findings(report) ? kExitFindings : kExitOk;
+  return findings_status(o, report);
 }
 
 }  // namespace

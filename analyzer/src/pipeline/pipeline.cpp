@@ -87,6 +87,8 @@ AuditReport Pipeline::report() const {
   r.settings.timeout = settings_.timeout;
   r.settings.has_timestamps = settings_.has_timestamps;
   r.settings.gsl_ids = settings_.gsl_ids;
+  r.settings.all_dialects = settings_.dialects == DialectSet::all();
+  r.settings.ports_given = !settings_.ports.empty();
   r.buses = buses_.findings();
   r.network = input_.network();
   r.flows = gateway_.stats();

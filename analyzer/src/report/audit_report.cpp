@@ -26,6 +26,31 @@ bool has_findings(const AuditReport& report) {
   return t.bytes.bad_frames > 0 || t.timeouts > 0 || t.exceptions > 0;
 }
 
+bool found_no_frame(const AuditReport& report) {
+  return report.totals().bytes.frames == 0;
+}
+
+std::string no_frame_hint(const AuditReport& report) {
+  const BusReport t = report.totals();
+  if (t.bytes.frames > 0) return {};
+  if (t.bytes.bytes_in == 0) {
+    if (report.flows.flows_ignored > 0) {
+      return "no frame: no bus bytes, and " + std::to_string(report.flows.flows_ignored) +
+             " TCP/UDP flows ignored (" + std::to_string(report.flows.ignored_bytes) + " bytes): " +
+             (report.settings.ports_given ? "is the gateway on another --port?"
+                                          : "no serial-to-TCP gateway was recognised; give "
+                                            "its port with --port PORT");
+    }
+    return "no frame: the input holds no bus bytes";
+  }
+  std::string hint = "no frame in " + std::to_string(t.bytes.bytes_in) + " bus bytes: ";
+  if (!report.settings.all_dialects) hint += "try --dialect auto (this run read only the dialects given); ";
+  return hint +
+         "check the tap's baud rate, parity and stop bits (a wrong one reads every "
+         "byte as noise); --baud " +
+         std::to_string(report.settings.baud) + " only sets the timing rules";
+}
+
 std::optional<TimeSpan> AuditReport::time_span() const {
   std::optional<TimeSpan> span;
   for (const BusFindings& b : buses) {

@@ -61,6 +61,8 @@ struct AuditSettings {
   double timeout = 1.0;
   bool has_timestamps = true;
   GslIdReading gsl_ids = GslIdReading::Decimal;  // to write GSL addresses as the reference does
+  bool all_dialects = true;  // --dialect auto: for what to try when no frame was found
+  bool ports_given = false;  // --port
 };
 
 // TimeSpan: from the first to the last byte of the input.
@@ -89,5 +91,9 @@ struct AuditReport {
 
 // Bad checks, timeouts or exceptions were found (--fail-on errors).
 bool has_findings(const AuditReport& report);
+// No frame was found at all (--fail-on empty, and --fail-on errors).
+bool found_no_frame(const AuditReport& report);
+// Why an audit may have found no frame, and what to try: empty when frames were found.
+std::string no_frame_hint(const AuditReport& report);
 
 }  // namespace pvtap::analyzer

@@ -26,6 +26,7 @@ double ms(double seconds) {
 }
 
 std::string distribution_text(const DistributionSummary& d) {
+  if (d.count == 0) return "n=0  none measured";
   char buf[256];
   std::snprintf(buf, sizeof buf,
                 "n=%llu  min %.1f  mean %.1f  p50 %.1f  p95 %.1f  p99 %.1f  max %.1f", u(d.count),
@@ -139,6 +140,9 @@ void totals(const AuditReport& r, std::string& o) {
   o += report_line("frames: %llu (%llu requests, %llu responses, %llu bad checks, %llu malformed)",
                    u(t.bytes.frames), u(t.requests), u(t.responses), u(t.bytes.bad_frames),
                    u(t.malformed_frames));
+  if (const std::string hint = no_frame_hint(r); !hint.empty()) {
+    o += report_line("  %s", hint.c_str());
+  }
   // Clock deviations only where a line's rate was measured (a logic recording), so that other
   // reports keep their shape.
   std::string clocks;
