@@ -7,6 +7,7 @@
 #include "devices/energy_meter.h"
 #include "devices/io_module.h"
 #include "devices/modbus_frames.h"
+#include "devices/test_suite_server.h"
 #include "pvtap/codec/function_codes.h"
 
 namespace pvtap::sim {
@@ -64,6 +65,8 @@ void BusMaster::add_devices() {
                                                      config_.start, plant_kw));
   if (config_.io_module_station)
     devices_.push_back(std::make_unique<IoModule>(*config_.io_module_station, config_.seed));
+  if (config_.test_server_station)
+    devices_.push_back(std::make_unique<TestSuiteServer>(*config_.test_server_station));
 }
 
 BusEvent BusMaster::device_reply(ModbusDevice& device, const Frame& request,
@@ -81,7 +84,21 @@ BusEvent BusMaster::device_reply(ModbusDevice& device, const Frame& request,
   return rep;
 }
 
+// A read to a station nobody has: the master waits out its timeout, then a peer puts that
+// station's reply on the line (late, for a request already given up).
+Micros BusMaster::late_reply_from_absent(ModbusDevice& device, const Frame& request, Micros at) {
+  const Micros request_end = wire_.put(frame_event(request), at);
+  timeline_.timeouts.push_back({at, request_end, request.station, request.function});
+  BusEvent rep = device.reply(request, request_end);
+  const Micros reply_at = timeout_after(request_end) + random_.between(20, 60) * 1000;
+  rep.latency = reply_at - request_end;
+  rep.fault = "late_reply";
+  return wire_.put(std::move(rep), reply_at) + random_.between(20, 60) * 1000;
+}
+
 Micros BusMaster::poll_device(ModbusDevice& device, const Frame& request, Micros at) {
+  if (device.answer_of(request) == ModbusDevice::Answer::LateFromAbsent)
+    return late_reply_from_absent(device, request, at);
   const std::optional<FaultKind> fault = placed(fitting(pick_fault(Dialect::Modbus), request));
   next_request_pins_ = false;
   if (fault == FaultKind::CorruptRequest) return send_damaged_requests(request, at);
