@@ -97,9 +97,9 @@ def compare_float_words(i, values, truth, bad):
 # Requests whose start and count are poll block fields: reads, and the block writes of plain
 # Modbus. A one-register or one-coil write names a start only; other requests neither.
 READ_FUNCTIONS = {"gsl": (0x03, 0x04), "hybrid": (0x11, 0x12, 0x16, 0x17, 0x1F), "ascii": (0x52,),
-                  "modbus": (0x01, 0x02, 0x03, 0x04, 0x0F, 0x10)}
+                  "modbus": (0x01, 0x02, 0x03, 0x04, 0x0F, 0x10, 0x17)}
 MODBUS_START_ONLY = (0x05, 0x06)
-MODBUS_NO_BLOCK = (0x08, 0x2B)
+MODBUS_NO_BLOCK = (0x08, 0x11, 0x2B)
 
 
 def request_block(frame):
@@ -164,11 +164,20 @@ def compare_stations(summary, truth, bad):
     """The stations are the simulated inverters and plain Modbus devices: a damaged frame's
     station byte names none. The bad checks are each counted once, under a station or the
     unknown station."""
-    stations = list(range(truth["first_station"], truth["first_station"] + truth["inverters"]))
-    stations = sorted(stations + [d["station"] for d in truth.get("devices", [])])
+    stations = set(range(truth["first_station"], truth["first_station"] + truth["inverters"]))
+    stations |= {d["station"] for d in truth.get("devices", [])}
+    # A reply with a good check names its station even when no device has it (a late reply
+    # that a peer put on the line for a station nobody has).
+    stations |= {e["station"] for e in truth["events"]
+                 if e["type"] == "frame" and e["role"] == "response" and e["check"] == "ok"}
+    stations = sorted(stations)
     found = sorted(int(key) for key in summary.get("stations", {}))
     if found != stations:
         bad.add(f"stations: audit {found}, truth {stations}")
+    for d in truth.get("devices", []):
+        name = summary.get("stations", {}).get(str(d["station"]), {}).get("device", {}).get("name")
+        if "name" in d and name != d["name"]:
+            bad.add(f"station {d['station']}: device name {name!r}, truth {d['name']!r}")
     unknown = summary.get("unknown_station", {})
     counted = sum(s["bad_checks"] for s in summary.get("stations", {}).values())
     counted += unknown.get("damaged_frames", 0)
