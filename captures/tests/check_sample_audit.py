@@ -63,6 +63,10 @@ def compare_frames(found, truth, timed, bad):
         if timed and "latency_ms" in f and not abs(f["latency_ms"] - t["latency_ms"]) < 0.002:
             bad.add(f"frame {i}: latency {f['latency_ms']} != {t['latency_ms']}")
         compare_values(i, f, t, bad)
+        # A reply one label: late, not also without a request.
+        if t.get("fault") == "late_reply" and (
+                len(f["issues"]) != 1 or not f["issues"][0].startswith("late reply")):
+            bad.add(f"frame {i}: a late reply labelled {f['issues']}")
 
 
 def compare_values(i, found, truth, bad):
