@@ -7,7 +7,9 @@ other carriers re-time the bytes.
 
 usage: check_sample_audit.py PVTAP CAPTURE TRUTH
 """
+import itertools
 import json
+import re
 import subprocess
 import sys
 
@@ -21,6 +23,27 @@ def audit(pvtap, capture):
     if run.returncode != 0:
         sys.exit(f"pvtap audit exited {run.returncode}: {run.stderr.strip()}")
     return [json.loads(line) for line in run.stdout.splitlines() if line.strip()]
+
+
+def compare_example_lists(pvtap, capture, bad):
+    """The text report's example lists under "bad checks: N" and "timeouts: N" show every one
+    or say how many of the N they show."""
+    run = subprocess.run([pvtap, "audit", "--summary-only", capture], capture_output=True,
+                         text=True, check=False)
+    lines = run.stdout.splitlines()
+    for i, line in enumerate(lines):
+        head = re.match(r"(bad checks|timeouts): (\d+)", line)
+        if not head:
+            continue
+        total = int(head.group(2))
+        below = list(itertools.takewhile(lambda x: x.startswith("  "), lines[i + 1:]))
+        said = re.fullmatch(r"  (\d+) of (\d+) shown:", below[0]) if below else None
+        shown = len(below) - (1 if said else 0)
+        if shown < total and not (said and int(said.group(1)) == shown
+                                  and int(said.group(2)) == total):
+            bad.add(f"{head.group(1)}: {total}, {shown} examples, and no \"{shown} of {total}\"")
+        if said and shown >= total:
+            bad.add(f"{head.group(1)}: all {total} shown, yet the list says {below[0].strip()!r}")
 
 
 def frame_key(frame, raw_field):
@@ -223,6 +246,7 @@ def main():
                 f"truth {len(truth['unanswered_at_end'])}")
     compare_polls(summary, [e for e in truth["events"] if e["type"] == "frame"], timed, bad)
     compare_stations(summary, truth, bad)
+    compare_example_lists(pvtap, capture, bad)
     for key in SUMMARY_KEYS:
         if summary.get(key) != truth["summary"][key]:
             bad.add(f"summary {key}: audit {summary.get(key)}, truth {truth['summary'][key]}")
