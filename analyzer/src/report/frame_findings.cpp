@@ -6,6 +6,7 @@
 #include "formatting/json_text.h"
 #include "formatting/number_text.h"
 #include "pvtap/codec/function_codes.h"
+#include "pvtap/matching/reply_rules.h"
 #include "pvtap/registers/register_format.h"
 
 namespace pvtap::analyzer {
@@ -114,7 +115,11 @@ void collect_issues(const SessionFrame& f, std::vector<std::string>& out) {
   out.clear();
   if (!f.parse_error.empty()) out.push_back("malformed: " + std::string(f.parse_error));
   if (f.frame == nullptr) return;
-  if (f.role_corrected) out.emplace_back("echo of a write, read as the reply");
+  // Read as a request, it echoes the pending one: a note only where the function's normal
+  // reply is no echo.
+  if (f.role_corrected && !reply_is_echo(f.dialect, f.frame->function)) {
+    out.emplace_back("echo of a write, read as the reply");
+  }
   if (!f.check.ok && f.role == Role::Response && f.request_id) {
     out.emplace_back("damaged reply: the slave answered, the line damaged the answer");
   }
