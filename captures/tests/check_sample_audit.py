@@ -91,6 +91,10 @@ def compare_frames(found, truth, timed, bad):
                 and t["function"] in (0x05, 0x06, 0x08, 0x15, 0x16) \
                 and any(x.startswith("echo of") for x in f["issues"]):
             bad.add(f"frame {i}: the normal echo noted: {f['issues']}")
+        # A read broadcast to address 0 is a finding (and, in the truth, no timeout).
+        if t.get("fault") == "broadcast_read" and not any(
+                x.startswith("broadcast to address 0") for x in f["issues"]):
+            bad.add(f"frame {i}: a broadcast read without its finding: {f['issues']}")
         # A reply one label: late, not also without a request.
         if t.get("fault") == "late_reply" and (
                 len(f["issues"]) != 1 or not f["issues"][0].startswith("late reply")):
@@ -202,6 +206,9 @@ def compare_stations(summary, truth, bad):
     # that a peer put on the line for a station nobody has).
     stations |= {e["station"] for e in truth["events"]
                  if e["type"] == "frame" and e["role"] == "response" and e["check"] == "ok"}
+    # A broadcast's good request is counted under address 0, as the audit counts it.
+    stations |= {0 for e in truth["events"] if e["type"] == "frame" and e["station"] == 0
+                 and e["check"] == "ok"}
     stations = sorted(stations)
     found = sorted(int(key) for key in summary.get("stations", {}))
     if found != stations:

@@ -136,6 +136,9 @@ void collect_issues(const SessionFrame& f, std::vector<std::string>& out) {
   if (f.duplicate) out.emplace_back("duplicate reply");
   if (f.count_mismatch) add_count_mismatch(*f.count_mismatch, out);
   if (f.quantity_problem) add_quantity_problem(*f.quantity_problem, out);
+  if (f.broadcast_not_allowed) {
+    out.emplace_back("broadcast to address 0, which only writes may use: no station answers it");
+  }
   if (f.dialect_changed_from) {
     std::string text = "station changed dialect: ";
     text += to_string(*f.dialect_changed_from);

@@ -257,6 +257,12 @@ void findings(const AuditReport& r, const BusReport& b, std::string& o) {
     o += report_line("requests asking a quantity out of the specification's range: %llu",
                      u(b.quantity_problems));
   }
+  if (b.forbidden_broadcasts > 0) {
+    o += report_line(
+        "requests broadcast to address 0 that only writes may use (no station answers them): "
+        "%llu",
+        u(b.forbidden_broadcasts));
+  }
   o += report_line("exceptions and error replies: %llu", u(b.exceptions));
   for (const ExceptionTally& e : b.exception_codes) {
     if (e.dialect == Dialect::Hybrid) {

@@ -97,8 +97,19 @@ Micros BusMaster::late_reply_from_absent(ModbusDevice& device, const Frame& requ
 }
 
 Micros BusMaster::poll_device(ModbusDevice& device, const Frame& request, Micros at) {
-  if (device.answer_of(request) == ModbusDevice::Answer::LateFromAbsent)
-    return late_reply_from_absent(device, request, at);
+  switch (device.answer_of(request)) {
+    case ModbusDevice::Answer::LateFromAbsent:
+      return late_reply_from_absent(device, request, at);
+    case ModbusDevice::Answer::Broadcast: {
+      // Nobody answers (the only broadcast a device asks for is a read, which the specification
+      // does not allow): the master waits its turnaround delay, and no timeout.
+      BusEvent sent = frame_event(request);
+      sent.fault = "broadcast_read";
+      return wire_.put(std::move(sent), at) + random_.between(100, 200) * 1000;
+    }
+    case ModbusDevice::Answer::Normal:
+      break;
+  }
   const std::optional<FaultKind> fault = placed(fitting(pick_fault(Dialect::Modbus), request));
   next_request_pins_ = false;
   if (fault == FaultKind::CorruptRequest) return send_damaged_requests(request, at);

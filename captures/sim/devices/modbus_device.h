@@ -25,9 +25,10 @@ class ModbusDevice {
   // A write takes effect here: a device changes only what it answers.
   virtual BusEvent reply(const Frame& request, Micros request_end) = 0;
 
-  // How a request is answered: normally (faults aside), or, for a station nobody has, by a
-  // reply a peer puts on the line after the master gave the request up (a late reply).
-  enum class Answer { Normal, LateFromAbsent };
+  // How a request is answered: normally (faults aside); for a station nobody has, by a reply
+  // a peer puts on the line after the master gave the request up (a late reply); or, sent to
+  // address 0, by nobody (a broadcast, which no station answers).
+  enum class Answer { Normal, LateFromAbsent, Broadcast };
   virtual Answer answer_of(const Frame& /*request*/) const { return Answer::Normal; }
 
  private:

@@ -58,10 +58,13 @@ std::vector<Frame> TestSuiteServer::requests(unsigned round) const {
       write_single_coil(s, 0, round % 2 == 0),
   };
   if (round == 1) out.push_back(modbus_read(absent_station(), fc::kGslReadHolding, 0, 2));
+  // A read to address 0, which the specification does not allow: no station answers it.
+  if (round == 2) out.push_back(modbus_read(fc::kModbusBroadcast, fc::kGslReadHolding, 0, 2));
   return out;
 }
 
 ModbusDevice::Answer TestSuiteServer::answer_of(const Frame& request) const {
+  if (request.station == fc::kModbusBroadcast) return Answer::Broadcast;
   return request.station == absent_station() ? Answer::LateFromAbsent : Answer::Normal;
 }
 

@@ -1,7 +1,8 @@
 // TestSuiteServer: the server of a Modbus library's own test suite, driven by that suite's
 // master: a report server ID, read/write multiple registers (0x17), writes answered by their
 // normal echoes, and a read to a station nobody has whose reply a peer puts on the line after
-// the master gave it up (a suite checking that replies for another slave are ignored).
+// the master gave it up (a suite checking that replies for another slave are ignored), and a
+// read broadcast to address 0, which the specification does not allow and nobody answers.
 #pragma once
 
 #include <array>

@@ -163,6 +163,8 @@ void register_experts(InverterProtocol& p) {
               "Request quantity out of the specification's range");
   experts.add(&p.ei.dialect_changed, prefix + "dialect_changed", PI_SEQUENCE, PI_NOTE,
               "Station changed dialect");
+  experts.add(&p.ei.broadcast_not_allowed, prefix + "broadcast_not_allowed", PI_PROTOCOL, PI_WARN,
+              "Broadcast to address 0, which only writes may use");
   experts.register_all(p.proto);
 }
 

@@ -12,6 +12,26 @@ std::optional<QuantityProblem> outside(unsigned found, unsigned max, bool write_
 
 }  // namespace
 
+bool may_broadcast(std::uint8_t function) {
+  switch (function) {
+    case fc::kWriteSingleCoil:
+    case fc::kGslWriteSingle:
+    case fc::kDiagnostics:  // force listen only mode is broadcast too
+    case fc::kWriteMultipleCoils:
+    case fc::kGslWriteMultiple:
+    case fc::kWriteFileRecord:
+    case fc::kMaskWriteRegister:
+      return true;
+    default:
+      return false;
+  }
+}
+
+bool broadcast_not_allowed(const FrameHeader& request, bool check_ok) {
+  return check_ok && modbus_family(request.dialect) && request.role == Role::Request &&
+         request.station == fc::kModbusBroadcast && !may_broadcast(request.function);
+}
+
 std::optional<unsigned> max_quantity(std::uint8_t f) {
   switch (f) {
     case fc::kReadCoils:

@@ -203,6 +203,7 @@ void BusSession::Impl::handle_parsed(SessionFrame& out, const FrameEvent& e) {
     // Only the Modbus family limits quantities: the call is skipped for the rest.
     if (e.check.ok && modbus_family(frame.dialect)) {
       out.quantity_problem = pvtap::quantity_problem(frame);
+      out.broadcast_not_allowed = pvtap::broadcast_not_allowed(frame, true);
     }
     replies.remember_request(out, frame);
   } else {

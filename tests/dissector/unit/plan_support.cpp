@@ -168,8 +168,9 @@ const char* name_of(TreeExpert expert) {
                                            "ValueNote",
                                            "ValueSuspicious",
                                            "QuantityProblem",
-                                           "DialectChanged"};
-  static_assert(std::size(kNames) == static_cast<std::size_t>(TreeExpert::DialectChanged) + 1);
+                                           "DialectChanged",
+                                           "BroadcastNotAllowed"};
+  static_assert(std::size(kNames) == static_cast<std::size_t>(TreeExpert::BroadcastNotAllowed) + 1);
   return kNames[static_cast<std::size_t>(expert)];
 }
 

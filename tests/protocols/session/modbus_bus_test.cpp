@@ -159,6 +159,15 @@ TEST_F(ModbusBus, ABroadcastWriteIsNeverATimeout) {
   EXPECT_TRUE(recorder_.timeouts.empty());
 }
 
+TEST_F(ModbusBus, ABroadcastReadIsAFindingNotATimeout) {
+  send(adu(0x00, "03 00 00 00 02"));
+  exchange(0x11, "03 00 6B 00 01", "03 02 00 64");
+  const BusReport report = finish();
+  ASSERT_EQ(recorder_.frames.size(), 3u);
+  EXPECT_TRUE(recorder_.timeouts.empty());
+  EXPECT_EQ(report.forbidden_broadcasts, 1u);
+}
+
 TEST_F(ModbusBus, AMeterBesideAGslInverterIsPlainModbus) {
   exchange(0x01, "03 04 1A 00 02", "03 04 08 FC 08 FD");  // GSL 1050..1051
   exchange(0x0A, "04 00 00 00 02", "04 04 43 66 19 9A");  // meter voltage, float32

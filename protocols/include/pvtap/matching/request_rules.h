@@ -21,6 +21,15 @@ struct QuantityProblem {
 // nullopt for a function without a quantity field; the smallest is always 1.
 std::optional<unsigned> max_quantity(std::uint8_t function);
 
+// Whether a Modbus-family request of `function` may go to every station at address 0 (writes,
+// and diagnostics' force listen only mode). No station answers a broadcast.
+bool may_broadcast(std::uint8_t function);
+
+// A request to address 0 that the specification does not allow to be broadcast (a read, say):
+// no station answers it, so it is a finding, not a timeout. Its check must be good: a damaged
+// request's address may be the damaged byte.
+bool broadcast_not_allowed(const FrameHeader& request, bool check_ok);
+
 // The quantity rule a GSL or plain Modbus request breaks, if any (section 6 of PROTOCOLS.md):
 //   0x01 0x02  1-2000     0x03 0x04  1-125     0x0F  1-1968
 //   0x10       1-123      0x17       read 1-125, write 1-121
