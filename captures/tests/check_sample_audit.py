@@ -95,6 +95,10 @@ def compare_frames(found, truth, timed, bad):
         if t.get("fault") == "broadcast_read" and not any(
                 x.startswith("broadcast to address 0") for x in f["issues"]):
             bad.add(f"frame {i}: a broadcast read without its finding: {f['issues']}")
+        # A write whose byte count disagrees with its quantity is a finding.
+        if t.get("fault") == "write_count_mismatch" and not any(
+                x.startswith("byte count") and "quantity written" in x for x in f["issues"]):
+            bad.add(f"frame {i}: a write count mismatch without its finding: {f['issues']}")
         # A reply one label: late, not also without a request.
         if t.get("fault") == "late_reply" and (
                 len(f["issues"]) != 1 or not f["issues"][0].startswith("late reply")):

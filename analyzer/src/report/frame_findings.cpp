@@ -136,6 +136,15 @@ void collect_issues(const SessionFrame& f, std::vector<std::string>& out) {
   if (f.duplicate) out.emplace_back("duplicate reply");
   if (f.count_mismatch) add_count_mismatch(*f.count_mismatch, out);
   if (f.quantity_problem) add_quantity_problem(*f.quantity_problem, out);
+  if (f.write_count_problem) {
+    std::string text = "byte count ";
+    append_uint(text, f.write_count_problem->byte_count);
+    text += ", the quantity written (";
+    append_uint(text, f.write_count_problem->quantity);
+    text += ") needs ";
+    append_uint(text, f.write_count_problem->expected);
+    out.push_back(std::move(text));
+  }
   if (f.broadcast_not_allowed) {
     out.emplace_back("broadcast to address 0, which only writes may use: no station answers it");
   }

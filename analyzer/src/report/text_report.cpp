@@ -257,6 +257,10 @@ void findings(const AuditReport& r, const BusReport& b, std::string& o) {
     o += report_line("requests asking a quantity out of the specification's range: %llu",
                      u(b.quantity_problems));
   }
+  if (b.write_count_problems > 0) {
+    o += report_line("writes whose byte count disagrees with their quantity: %llu",
+                     u(b.write_count_problems));
+  }
   if (b.forbidden_broadcasts > 0) {
     o += report_line(
         "requests broadcast to address 0 that only writes may use (no station answers them): "

@@ -96,6 +96,21 @@ Micros BusMaster::late_reply_from_absent(ModbusDevice& device, const Frame& requ
   return wire_.put(std::move(rep), reply_at) + random_.between(20, 60) * 1000;
 }
 
+// A write whose byte count is wrong: one that disagrees with its quantity and its data
+// (`write_count_mismatch`), or one that says fewer bytes than it carries (`byte_count_lies`;
+// its CRC covers all it carries). The server refuses it with exception 0x03.
+Micros BusMaster::wrong_byte_count(const Frame& request, Micros at) {
+  BusEvent sent = frame_event(request);
+  const bool lies = request.byte_count.value_or(0) != 2 * request.words.size();
+  sent.fault = lies ? "byte_count_lies" : "write_count_mismatch";
+  const Micros request_end = wire_.put(std::move(sent), at);
+  BusEvent rep = frame_event(exception_reply(request, 0x03));
+  rep.fault = std::string(to_string(FaultKind::ErrorReply));  // counted with the exceptions
+  rep.latency = random_.between(15, 60) * 1000;
+  const Micros reply_at = request_end + rep.latency;
+  return wire_.put(std::move(rep), reply_at) + random_.between(20, 60) * 1000;
+}
+
 Micros BusMaster::poll_device(ModbusDevice& device, const Frame& request, Micros at) {
   switch (device.answer_of(request)) {
     case ModbusDevice::Answer::LateFromAbsent:
@@ -107,6 +122,8 @@ Micros BusMaster::poll_device(ModbusDevice& device, const Frame& request, Micros
       sent.fault = "broadcast_read";
       return wire_.put(std::move(sent), at) + random_.between(100, 200) * 1000;
     }
+    case ModbusDevice::Answer::WrongByteCount:
+      return wrong_byte_count(request, at);
     case ModbusDevice::Answer::Normal:
       break;
   }

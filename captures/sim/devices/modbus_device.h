@@ -27,8 +27,9 @@ class ModbusDevice {
 
   // How a request is answered: normally (faults aside); for a station nobody has, by a reply
   // a peer puts on the line after the master gave the request up (a late reply); or, sent to
-  // address 0, by nobody (a broadcast, which no station answers).
-  enum class Answer { Normal, LateFromAbsent, Broadcast };
+  // address 0, by nobody (a broadcast, which no station answers); or, for a write whose byte
+  // count the master got wrong, by exception 0x03 (illegal data value), free of faults.
+  enum class Answer { Normal, LateFromAbsent, Broadcast, WrongByteCount };
   virtual Answer answer_of(const Frame& /*request*/) const { return Answer::Normal; }
 
  private:

@@ -60,11 +60,21 @@ std::vector<Frame> TestSuiteServer::requests(unsigned round) const {
   if (round == 1) out.push_back(modbus_read(absent_station(), fc::kGslReadHolding, 0, 2));
   // A read to address 0, which the specification does not allow: no station answers it.
   if (round == 2) out.push_back(modbus_read(fc::kModbusBroadcast, fc::kGslReadHolding, 0, 2));
+  if (round == 3) {
+    // Three registers in a byte count of 4 with 4 bytes.
+    Frame mismatch = write_registers(s, 12, WordList{v, v});
+    mismatch.count = 3;
+    out.push_back(mismatch);
+  }
   return out;
 }
 
 ModbusDevice::Answer TestSuiteServer::answer_of(const Frame& request) const {
   if (request.station == fc::kModbusBroadcast) return Answer::Broadcast;
+  if (request.function == fc::kGslWriteMultiple &&
+      request.byte_count != 2 * request.count.value_or(0)) {
+    return Answer::WrongByteCount;
+  }
   return request.station == absent_station() ? Answer::LateFromAbsent : Answer::Normal;
 }
 

@@ -116,6 +116,8 @@ expert_field* expert_of(ExpertFields& ei, TreeExpert expert) {
       return &ei.dialect_changed;
     case TreeExpert::BroadcastNotAllowed:
       return &ei.broadcast_not_allowed;
+    case TreeExpert::WriteCountProblem:
+      return &ei.write_count_problem;
     case TreeExpert::None:
       break;
   }

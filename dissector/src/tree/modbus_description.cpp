@@ -170,6 +170,11 @@ void add_station_findings(Builder& b, const FramePlan& plan, const FrameRecord& 
                   "A request broadcast to address 0, which only writes may use: no station "
                   "answers it");
   }
+  if (record.write_count_problem) {
+    b.expert_item(TreeExpert::WriteCountProblem, FieldSpan{},
+                  b.text("The quantity written needs a byte count of " +
+                         std::to_string(record.write_count_expected)));
+  }
   add_dialect_change(b, plan, record);
 }
 

@@ -12,6 +12,32 @@ std::optional<QuantityProblem> outside(unsigned found, unsigned max, bool write_
 
 }  // namespace
 
+std::optional<WriteCountProblem> write_count_problem(const Frame& request) {
+  if (!modbus_family(request.dialect) || request.role != Role::Request || !request.byte_count) {
+    return std::nullopt;
+  }
+  std::optional<unsigned> quantity;
+  unsigned expected = 0;
+  switch (request.function) {
+    case fc::kWriteMultipleCoils:
+      quantity = request.count;
+      if (quantity) expected = (*quantity + 7) / 8;
+      break;
+    case fc::kGslWriteMultiple:
+      quantity = request.count;
+      if (quantity) expected = 2 * *quantity;
+      break;
+    case fc::kReadWriteMultiple:
+      quantity = request.write_count;
+      if (quantity) expected = 2 * *quantity;
+      break;
+    default:
+      return std::nullopt;
+  }
+  if (!quantity || *request.byte_count == expected) return std::nullopt;
+  return WriteCountProblem{*request.byte_count, *quantity, expected};
+}
+
 bool may_broadcast(std::uint8_t function) {
   switch (function) {
     case fc::kWriteSingleCoil:

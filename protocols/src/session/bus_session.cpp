@@ -204,6 +204,7 @@ void BusSession::Impl::handle_parsed(SessionFrame& out, const FrameEvent& e) {
     if (e.check.ok && modbus_family(frame.dialect)) {
       out.quantity_problem = pvtap::quantity_problem(frame);
       out.broadcast_not_allowed = pvtap::broadcast_not_allowed(frame, true);
+      out.write_count_problem = pvtap::write_count_problem(frame);
     }
     replies.remember_request(out, frame);
   } else {

@@ -169,8 +169,9 @@ const char* name_of(TreeExpert expert) {
                                            "ValueSuspicious",
                                            "QuantityProblem",
                                            "DialectChanged",
-                                           "BroadcastNotAllowed"};
-  static_assert(std::size(kNames) == static_cast<std::size_t>(TreeExpert::BroadcastNotAllowed) + 1);
+                                           "BroadcastNotAllowed",
+                                           "WriteCountProblem"};
+  static_assert(std::size(kNames) == static_cast<std::size_t>(TreeExpert::WriteCountProblem) + 1);
   return kNames[static_cast<std::size_t>(expert)];
 }
 

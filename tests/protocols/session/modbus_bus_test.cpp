@@ -35,6 +35,7 @@ struct Seen {
   std::optional<std::uint64_t> request_id;
   std::optional<ByteCountMismatch> mismatch;
   std::optional<QuantityProblem> quantity;
+  std::optional<WriteCountProblem> write_count;
   std::optional<Dialect> changed_from;
   std::optional<std::uint16_t> first_coil;
   unsigned coils_on = 0;
@@ -50,6 +51,7 @@ struct Recorder : BusSessionSink {
     s.request_id = f.request_id;
     s.mismatch = f.count_mismatch;
     s.quantity = f.quantity_problem;
+    s.write_count = f.write_count_problem;
     s.changed_from = f.dialect_changed_from;
     if (f.frame != nullptr) {
       if (f.role == Role::Request) requests[f.frame->station] = *f.frame;
@@ -149,6 +151,20 @@ TEST_F(ModbusBus, AQuantityOutOfRangeIsAFindingOnTheRequest) {
   EXPECT_EQ(q->found, 126u);
   EXPECT_EQ(q->max, 125u);
   EXPECT_EQ(recorder_.frames[1].request_id, 0u);
+}
+
+TEST_F(ModbusBus, AWriteWhoseByteCountDisagreesWithItsQuantityIsAFinding) {
+  exchange(0x11, "10 00 0C 00 03 04 00 01 00 02", "90 03");  // 3 registers in 4 bytes
+  exchange(0x11, "10 00 0C 00 02 04 00 01 00 02", "10 00 0C 00 02");
+  const BusReport report = finish();
+  ASSERT_EQ(recorder_.frames.size(), 4u);
+  const auto& w = recorder_.frames[0].write_count;
+  ASSERT_TRUE(w);
+  EXPECT_EQ(w->byte_count, 4u);
+  EXPECT_EQ(w->quantity, 3u);
+  EXPECT_EQ(w->expected, 6u);
+  EXPECT_FALSE(recorder_.frames[2].write_count);
+  EXPECT_EQ(report.write_count_problems, 1u);
 }
 
 TEST_F(ModbusBus, ABroadcastWriteIsNeverATimeout) {
