@@ -99,6 +99,10 @@ def compare_frames(found, truth, timed, bad):
         if t.get("fault") == "write_count_mismatch" and not any(
                 x.startswith("byte count") and "quantity written" in x for x in f["issues"]):
             bad.add(f"frame {i}: a write count mismatch without its finding: {f['issues']}")
+        # A write whose byte count says fewer bytes than it carries: a malformed frame.
+        if t.get("fault") == "byte_count_lies" and not any(
+                x.startswith("malformed") for x in f["issues"]):
+            bad.add(f"frame {i}: a byte count that lies, not malformed: {f['issues']}")
         # A reply one label: late, not also without a request.
         if t.get("fault") == "late_reply" and (
                 len(f["issues"]) != 1 or not f["issues"][0].startswith("late reply")):

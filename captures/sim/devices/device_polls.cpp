@@ -38,7 +38,8 @@ std::optional<Frame> shortened(const Frame& request) {
 // Faults that need a reply of a certain shape are left out where the request has none: a count
 // one short needs a read, damage to the data alone a register read (whose header gives its
 // length; a device identification's length is inside its data).
-std::optional<FaultKind> fitting(std::optional<FaultKind> fault, const Frame& request) {
+std::optional<FaultKind> fitting(std::optional<FaultKind> fault, const Frame& request,
+                                 const ModbusDevice& device) {
   if (fault == FaultKind::CountMismatch && !shortened(request)) return std::nullopt;
   if (fault == FaultKind::CorruptData && !reads_registers(request)) return std::nullopt;
   // An echo sent twice is a third copy of the request's bytes: on a carrier without
@@ -47,6 +48,7 @@ std::optional<FaultKind> fitting(std::optional<FaultKind> fault, const Frame& re
                       request.function == fc::kGslWriteSingle ||
                       request.function == fc::kDiagnostics;
   if (fault == FaultKind::Duplicate && echoed) return std::nullopt;
+  if (fault == FaultKind::Corrupt && echoed && device.keeps_echoes_whole()) return std::nullopt;
   return fault;
 }
 
@@ -127,7 +129,8 @@ Micros BusMaster::poll_device(ModbusDevice& device, const Frame& request, Micros
     case ModbusDevice::Answer::Normal:
       break;
   }
-  const std::optional<FaultKind> fault = placed(fitting(pick_fault(Dialect::Modbus), request));
+  const std::optional<FaultKind> fault =
+      placed(fitting(pick_fault(Dialect::Modbus), request, device));
   next_request_pins_ = false;
   if (fault == FaultKind::CorruptRequest) return send_damaged_requests(request, at);
   const Micros request_end = wire_.put(frame_event(request), at);

@@ -31,6 +31,10 @@ class ModbusDevice {
   // count the master got wrong, by exception 0x03 (illegal data value), free of faults.
   enum class Answer { Normal, LateFromAbsent, Broadcast, WrongByteCount };
   virtual Answer answer_of(const Frame& /*request*/) const { return Answer::Normal; }
+  // Whether the line never damages its echoes: on a carrier without directions an echo whose
+  // station byte was damaged reads as a damaged request to another station, which no reader
+  // can tell apart (the older devices keep their samples' bytes and may damage them).
+  virtual bool keeps_echoes_whole() const { return false; }
 
  private:
   std::uint8_t station_;

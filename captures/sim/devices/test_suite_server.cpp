@@ -61,10 +61,13 @@ std::vector<Frame> TestSuiteServer::requests(unsigned round) const {
   // A read to address 0, which the specification does not allow: no station answers it.
   if (round == 2) out.push_back(modbus_read(fc::kModbusBroadcast, fc::kGslReadHolding, 0, 2));
   if (round == 3) {
-    // Three registers in a byte count of 4 with 4 bytes.
+    // Three registers in a byte count of 4 with 4 bytes, then in a byte count of 0 with 6.
     Frame mismatch = write_registers(s, 12, WordList{v, v});
     mismatch.count = 3;
     out.push_back(mismatch);
+    Frame lying = write_registers(s, 12, WordList{v, v, v});
+    lying.byte_count = 0;
+    out.push_back(lying);
   }
   return out;
 }

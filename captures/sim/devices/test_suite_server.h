@@ -20,6 +20,7 @@ class TestSuiteServer : public ModbusDevice {
   std::vector<Frame> requests(unsigned round) const override;
   BusEvent reply(const Frame& request, Micros request_end) override;
   Answer answer_of(const Frame& request) const override;
+  bool keeps_echoes_whole() const override { return true; }
 
   // The text of its report server ID reply: the name a reader should give the station.
   static constexpr std::string_view kName = "pvtap-sim test server v1";

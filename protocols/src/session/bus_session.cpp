@@ -166,24 +166,25 @@ void BusSession::Impl::on_frame(Direction direction, const FrameEvent& e,
   out.check = e.check;
   out.parse_error = parse_frame_into(wire, e.dialect, e.role, frame);
   const bool parsed = out.parse_error.empty();
-  // A damaged frame whose byte count lies does not parse, but it was sent: its header is
-  // enough to pair it and count it. So is a carried frame (TCP vouches it was sent so).
-  if (parsed || !e.check.ok || e.check.carried) {
-    if (!parsed) frame = frame_header(wire, e.dialect, e.role);
-    const auto label = station_dialects.label(frame, e.check.ok);
-    frame.dialect = label.dialect;
-    out.dialect = label.dialect;
-    out.dialect_changed_from = label.changed_from;
-    const RegisterMap* own = decoder.station_map(frame.station);
-    const RegisterMap*& of_dialect = dialect_maps[static_cast<std::size_t>(label.dialect)];
-    if (own == nullptr && of_dialect == nullptr) of_dialect = &decoder.map(label.dialect);
-    out.map = own != nullptr ? own : of_dialect;
-    out.frame = &frame;
-    handle_parsed(out, e);
-    if (out.role == Role::Request && e.check.ok) {
-      request_dialects[frame.station] =
-          static_cast<std::uint8_t>(static_cast<unsigned>(out.dialect) + 1);
-    }
+  // A frame whose byte count lies (damaged, or sent so with a good check) does not parse, but
+  // it was sent: its header is enough to pair it and count it.
+  if (!parsed) {
+    frame =
+        e.check.ok ? sent_header(wire, e.dialect, e.role) : frame_header(wire, e.dialect, e.role);
+  }
+  const auto label = station_dialects.label(frame, e.check.ok);
+  frame.dialect = label.dialect;
+  out.dialect = label.dialect;
+  out.dialect_changed_from = label.changed_from;
+  const RegisterMap* own = decoder.station_map(frame.station);
+  const RegisterMap*& of_dialect = dialect_maps[static_cast<std::size_t>(label.dialect)];
+  if (own == nullptr && of_dialect == nullptr) of_dialect = &decoder.map(label.dialect);
+  out.map = own != nullptr ? own : of_dialect;
+  out.frame = &frame;
+  handle_parsed(out, e);
+  if (out.role == Role::Request && e.check.ok) {
+    request_dialects[frame.station] =
+        static_cast<std::uint8_t>(static_cast<unsigned>(out.dialect) + 1);
   }
   tally.add_frame(out);
   sink.on_frame(out);

@@ -32,6 +32,7 @@ struct Seen {
   Role role;
   std::uint8_t function;
   bool check_ok;
+  bool malformed;
   std::optional<std::uint64_t> request_id;
   std::optional<ByteCountMismatch> mismatch;
   std::optional<QuantityProblem> quantity;
@@ -48,6 +49,7 @@ struct Recorder : BusSessionSink {
     s.role = f.role;
     s.function = f.frame ? f.frame->function : std::uint8_t{0};
     s.check_ok = f.check.ok;
+    s.malformed = !f.parse_error.empty();
     s.request_id = f.request_id;
     s.mismatch = f.count_mismatch;
     s.quantity = f.quantity_problem;
@@ -165,6 +167,23 @@ TEST_F(ModbusBus, AWriteWhoseByteCountDisagreesWithItsQuantityIsAFinding) {
   EXPECT_EQ(w->expected, 6u);
   EXPECT_FALSE(recorder_.frames[2].write_count);
   EXPECT_EQ(report.write_count_problems, 1u);
+}
+
+// A master's byte count of 0 before 6 data bytes, the CRC over all it sent: a malformed frame
+// with a good check, paired with the exception that refused it; no noise.
+TEST_F(ModbusBus, AWriteWhoseByteCountLiesIsAMalformedFramePairedWithItsReply) {
+  exchange(0x11, "03 00 6B 00 01", "03 02 00 64");
+  exchange(0x11, "10 00 0C 00 03 00 00 01 00 02 00 03", "90 03");
+  const BusReport report = finish();
+  ASSERT_EQ(recorder_.frames.size(), 4u);
+  EXPECT_EQ(recorder_.noise_bytes, 0u);
+  EXPECT_TRUE(recorder_.frames[2].check_ok);
+  EXPECT_TRUE(recorder_.frames[2].malformed);
+  EXPECT_EQ(recorder_.frames[2].role, Role::Request);
+  EXPECT_EQ(recorder_.frames[3].request_id, 2u);
+  ASSERT_TRUE(recorder_.frames[2].write_count);
+  EXPECT_EQ(recorder_.frames[2].write_count->byte_count, 0u);
+  EXPECT_EQ(report.unsolicited, 0u);
 }
 
 TEST_F(ModbusBus, ABroadcastWriteIsNeverATimeout) {
