@@ -103,6 +103,9 @@ def compare_frames(found, truth, timed, bad):
         if t.get("fault") == "byte_count_lies" and not any(
                 x.startswith("malformed") for x in f["issues"]):
             bad.add(f"frame {i}: a byte count that lies, not malformed: {f['issues']}")
+        # A user-defined code's frame is a frame of it, not noise and not malformed.
+        if t.get("fault") == "user_defined_function" and f["issues"]:
+            bad.add(f"frame {i}: a user-defined function's frame with {f['issues']}")
         # A reply one label: late, not also without a request.
         if t.get("fault") == "late_reply" and (
                 len(f["issues"]) != 1 or not f["issues"][0].startswith("late reply")):
@@ -143,7 +146,7 @@ def compare_float_words(i, values, truth, bad):
 READ_FUNCTIONS = {"gsl": (0x03, 0x04), "hybrid": (0x11, 0x12, 0x16, 0x17, 0x1F), "ascii": (0x52,),
                   "modbus": (0x01, 0x02, 0x03, 0x04, 0x0F, 0x10, 0x17)}
 MODBUS_START_ONLY = (0x05, 0x06)
-MODBUS_NO_BLOCK = (0x08, 0x11, 0x2B)
+MODBUS_NO_BLOCK = (0x08, 0x11, 0x2B) + tuple(range(0x41, 0x49)) + tuple(range(0x64, 0x6F))
 
 
 def request_block(frame):

@@ -5,7 +5,8 @@
 # ground truth gives, name the server by its server ID, find the late reply that a peer put on
 # the line for a station nobody has, take a read broadcast to address 0 and a write whose byte
 # count disagrees with its quantity for findings, and a write whose byte count says fewer bytes
-# than it carries for a malformed frame paired with its exception, on all three carriers.
+# than it carries for a malformed frame paired with its exception, and frame a user-defined
+# function's request, on all three carriers.
 #
 #   check_test_server.sh PVTAP_SIM PYTHON CHECK_SAMPLE_AUDIT PVTAP SCRATCH_DIR
 set -euo pipefail
@@ -25,7 +26,8 @@ def both(e):
     return e["type"] == "frame" and e["role"] == "response" and e["dialect"] == "modbus" \
         and e["function"] in (0x11, 0x17) and n >= 4 and n % 2 == 0
 faults = {e.get("fault") for e in events}
-wanted = {"late_reply", "broadcast_read", "write_count_mismatch", "byte_count_lies"}
+wanted = {"late_reply", "broadcast_read", "write_count_mismatch", "byte_count_lies",
+          "user_defined_function"}
 if not any(both(e) for e in events) or not wanted <= faults:
     sys.exit(f"the ground truth lacks a reply that fits Hybrid too, or one of {wanted}")
 PY

@@ -98,15 +98,19 @@ Micros BusMaster::late_reply_from_absent(ModbusDevice& device, const Frame& requ
   return wire_.put(std::move(rep), reply_at) + random_.between(20, 60) * 1000;
 }
 
-// A write whose byte count is wrong: one that disagrees with its quantity and its data
-// (`write_count_mismatch`), or one that says fewer bytes than it carries (`byte_count_lies`;
-// its CRC covers all it carries). The server refuses it with exception 0x03.
-Micros BusMaster::wrong_byte_count(const Frame& request, Micros at) {
+// A request the server refuses: a user-defined function (`user_defined_function`, exception
+// 0x01), a write whose byte count disagrees with its quantity and its data
+// (`write_count_mismatch`) or says fewer bytes than it carries (`byte_count_lies`; its CRC
+// covers all it carries), both exception 0x03.
+Micros BusMaster::refused_request(const Frame& request, Micros at) {
   BusEvent sent = frame_event(request);
+  const bool user_defined = fc::is_user_defined_function(request.function);
   const bool lies = request.byte_count.value_or(0) != 2 * request.words.size();
-  sent.fault = lies ? "byte_count_lies" : "write_count_mismatch";
+  sent.fault = user_defined ? "user_defined_function"
+               : lies       ? "byte_count_lies"
+                            : "write_count_mismatch";
   const Micros request_end = wire_.put(std::move(sent), at);
-  BusEvent rep = frame_event(exception_reply(request, 0x03));
+  BusEvent rep = frame_event(exception_reply(request, user_defined ? 0x01 : 0x03));
   rep.fault = std::string(to_string(FaultKind::ErrorReply));  // counted with the exceptions
   rep.latency = random_.between(15, 60) * 1000;
   const Micros reply_at = request_end + rep.latency;
@@ -124,8 +128,8 @@ Micros BusMaster::poll_device(ModbusDevice& device, const Frame& request, Micros
       sent.fault = "broadcast_read";
       return wire_.put(std::move(sent), at) + random_.between(100, 200) * 1000;
     }
-    case ModbusDevice::Answer::WrongByteCount:
-      return wrong_byte_count(request, at);
+    case ModbusDevice::Answer::Refused:
+      return refused_request(request, at);
     case ModbusDevice::Answer::Normal:
       break;
   }

@@ -69,14 +69,17 @@ std::vector<Frame> TestSuiteServer::requests(unsigned round) const {
     lying.byte_count = 0;
     out.push_back(lying);
   }
+  // A user-defined function the server lacks, station and code alone.
+  if (round == 4) out.push_back(make_frame(Dialect::Modbus, Role::Request, s, kUserDefined));
   return out;
 }
 
 ModbusDevice::Answer TestSuiteServer::answer_of(const Frame& request) const {
   if (request.station == fc::kModbusBroadcast) return Answer::Broadcast;
+  if (fc::is_user_defined_function(request.function)) return Answer::Refused;
   if (request.function == fc::kGslWriteMultiple &&
       request.byte_count != 2 * request.count.value_or(0)) {
-    return Answer::WrongByteCount;
+    return Answer::Refused;
   }
   return request.station == absent_station() ? Answer::LateFromAbsent : Answer::Normal;
 }

@@ -26,6 +26,7 @@ class TestSuiteServer : public ModbusDevice {
   static constexpr std::string_view kName = "pvtap-sim test server v1";
   static constexpr std::uint8_t kServerId = 0x2A;
   static constexpr std::uint16_t kRegisters = 16;
+  static constexpr std::uint8_t kUserDefined = 0x42;
 
   // The station the suite's master asks although no server has it; its reply comes late.
   std::uint8_t absent_station() const;
