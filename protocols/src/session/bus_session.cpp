@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "pvtap/codec/checksums.h"
+#include "pvtap/codec/function_codes.h"
 #include "pvtap/framing/framing_probe.h"
 #include "pvtap/matching/reply_rules.h"
 #include "pvtap/session/event_tally.h"
@@ -49,15 +50,21 @@ struct BusSession::Impl {
     return *slot;
   }
 
+  // A Hybrid reply to a station last asked in the Modbus family is read again: only such a
+  // reply may fit both (a Hybrid station's replies cost one table look-up).
   void on_frame(Direction direction, const FrameEvent& e) {
     if (e.dialect != Dialect::Hybrid || e.role != Role::Response || e.bytes.empty() ||
-        request_dialects[e.bytes[0]] == 0) {
+        !asked_in_modbus_family(e.bytes[0])) {
       on_frame(direction, e, e.bytes);
       return;
     }
     FrameEvent asked = e;
     asked.dialect = reply_dialect(e.bytes, e.role, asked_dialect(e.bytes[0]), e.dialect);
     on_frame(direction, asked, e.bytes);
+  }
+  bool asked_in_modbus_family(std::uint8_t station) const {
+    const auto asked = asked_dialect(station);
+    return asked && modbus_family(*asked);
   }
   // The dialect of the last request with a good check to `station` (request_dialects).
   std::optional<Dialect> asked_dialect(std::uint8_t station) const {
@@ -204,8 +211,12 @@ void BusSession::Impl::handle_parsed(SessionFrame& out, const FrameEvent& e) {
     // Only the Modbus family limits quantities: the call is skipped for the rest.
     if (e.check.ok && modbus_family(frame.dialect)) {
       out.quantity_problem = pvtap::quantity_problem(frame);
-      out.broadcast_not_allowed = pvtap::broadcast_not_allowed(frame, true);
-      out.write_count_problem = pvtap::write_count_problem(frame);
+      // Each rule is asked only of the frames it can concern: those to address 0, those with a
+      // byte count.
+      if (frame.station == fc::kModbusBroadcast) {
+        out.broadcast_not_allowed = pvtap::broadcast_not_allowed(frame, true);
+      }
+      if (frame.byte_count) out.write_count_problem = pvtap::write_count_problem(frame);
     }
     replies.remember_request(out, frame);
   } else {
