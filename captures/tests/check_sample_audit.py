@@ -7,7 +7,9 @@ other carriers re-time the bytes.
 
 usage: check_sample_audit.py PVTAP CAPTURE TRUTH
 """
+import itertools
 import json
+import re
 import subprocess
 import sys
 
@@ -21,6 +23,27 @@ def audit(pvtap, capture):
     if run.returncode != 0:
         sys.exit(f"pvtap audit exited {run.returncode}: {run.stderr.strip()}")
     return [json.loads(line) for line in run.stdout.splitlines() if line.strip()]
+
+
+def compare_example_lists(pvtap, capture, bad):
+    """The text report's example lists under "bad checks: N" and "timeouts: N" show every one
+    or say how many of the N they show."""
+    run = subprocess.run([pvtap, "audit", "--summary-only", capture], capture_output=True,
+                         text=True, check=False)
+    lines = run.stdout.splitlines()
+    for i, line in enumerate(lines):
+        head = re.match(r"(bad checks|timeouts): (\d+)", line)
+        if not head:
+            continue
+        total = int(head.group(2))
+        below = list(itertools.takewhile(lambda x: x.startswith("  "), lines[i + 1:]))
+        said = re.fullmatch(r"  (\d+) of (\d+) shown:", below[0]) if below else None
+        shown = len(below) - (1 if said else 0)
+        if shown < total and not (said and int(said.group(1)) == shown
+                                  and int(said.group(2)) == total):
+            bad.add(f"{head.group(1)}: {total}, {shown} examples, and no \"{shown} of {total}\"")
+        if said and shown >= total:
+            bad.add(f"{head.group(1)}: all {total} shown, yet the list says {below[0].strip()!r}")
 
 
 def frame_key(frame, raw_field):
@@ -63,6 +86,30 @@ def compare_frames(found, truth, timed, bad):
         if timed and "latency_ms" in f and not abs(f["latency_ms"] - t["latency_ms"]) < 0.002:
             bad.add(f"frame {i}: latency {f['latency_ms']} != {t['latency_ms']}")
         compare_values(i, f, t, bad)
+        # The echo of 0x05 0x06 0x08 0x15 0x16 is their normal reply: nothing to note.
+        if t["role"] == "response" and t["dialect"] in ("gsl", "modbus") \
+                and t["function"] in (0x05, 0x06, 0x08, 0x15, 0x16) \
+                and any(x.startswith("echo of") for x in f["issues"]):
+            bad.add(f"frame {i}: the normal echo noted: {f['issues']}")
+        # A read broadcast to address 0 is a finding (and, in the truth, no timeout).
+        if t.get("fault") == "broadcast_read" and not any(
+                x.startswith("broadcast to address 0") for x in f["issues"]):
+            bad.add(f"frame {i}: a broadcast read without its finding: {f['issues']}")
+        # A write whose byte count disagrees with its quantity is a finding.
+        if t.get("fault") == "write_count_mismatch" and not any(
+                x.startswith("byte count") and "quantity written" in x for x in f["issues"]):
+            bad.add(f"frame {i}: a write count mismatch without its finding: {f['issues']}")
+        # A write whose byte count says fewer bytes than it carries: a malformed frame.
+        if t.get("fault") == "byte_count_lies" and not any(
+                x.startswith("malformed") for x in f["issues"]):
+            bad.add(f"frame {i}: a byte count that lies, not malformed: {f['issues']}")
+        # A user-defined code's frame is a frame of it, not noise and not malformed.
+        if t.get("fault") == "user_defined_function" and f["issues"]:
+            bad.add(f"frame {i}: a user-defined function's frame with {f['issues']}")
+        # A reply one label: late, not also without a request.
+        if t.get("fault") == "late_reply" and (
+                len(f["issues"]) != 1 or not f["issues"][0].startswith("late reply")):
+            bad.add(f"frame {i}: a late reply labelled {f['issues']}")
 
 
 def compare_values(i, found, truth, bad):
@@ -97,9 +144,9 @@ def compare_float_words(i, values, truth, bad):
 # Requests whose start and count are poll block fields: reads, and the block writes of plain
 # Modbus. A one-register or one-coil write names a start only; other requests neither.
 READ_FUNCTIONS = {"gsl": (0x03, 0x04), "hybrid": (0x11, 0x12, 0x16, 0x17, 0x1F), "ascii": (0x52,),
-                  "modbus": (0x01, 0x02, 0x03, 0x04, 0x0F, 0x10)}
+                  "modbus": (0x01, 0x02, 0x03, 0x04, 0x0F, 0x10, 0x17)}
 MODBUS_START_ONLY = (0x05, 0x06)
-MODBUS_NO_BLOCK = (0x08, 0x2B)
+MODBUS_NO_BLOCK = (0x08, 0x11, 0x2B) + tuple(range(0x41, 0x49)) + tuple(range(0x64, 0x6F))
 
 
 def request_block(frame):
@@ -164,11 +211,23 @@ def compare_stations(summary, truth, bad):
     """The stations are the simulated inverters and plain Modbus devices: a damaged frame's
     station byte names none. The bad checks are each counted once, under a station or the
     unknown station."""
-    stations = list(range(truth["first_station"], truth["first_station"] + truth["inverters"]))
-    stations = sorted(stations + [d["station"] for d in truth.get("devices", [])])
+    stations = set(range(truth["first_station"], truth["first_station"] + truth["inverters"]))
+    stations |= {d["station"] for d in truth.get("devices", [])}
+    # A reply with a good check names its station even when no device has it (a late reply
+    # that a peer put on the line for a station nobody has).
+    stations |= {e["station"] for e in truth["events"]
+                 if e["type"] == "frame" and e["role"] == "response" and e["check"] == "ok"}
+    # A broadcast's good request is counted under address 0, as the audit counts it.
+    stations |= {0 for e in truth["events"] if e["type"] == "frame" and e["station"] == 0
+                 and e["check"] == "ok"}
+    stations = sorted(stations)
     found = sorted(int(key) for key in summary.get("stations", {}))
     if found != stations:
         bad.add(f"stations: audit {found}, truth {stations}")
+    for d in truth.get("devices", []):
+        name = summary.get("stations", {}).get(str(d["station"]), {}).get("device", {}).get("name")
+        if "name" in d and name != d["name"]:
+            bad.add(f"station {d['station']}: device name {name!r}, truth {d['name']!r}")
     unknown = summary.get("unknown_station", {})
     counted = sum(s["bad_checks"] for s in summary.get("stations", {}).values())
     counted += unknown.get("damaged_frames", 0)
@@ -210,6 +269,7 @@ def main():
                 f"truth {len(truth['unanswered_at_end'])}")
     compare_polls(summary, [e for e in truth["events"] if e["type"] == "frame"], timed, bad)
     compare_stations(summary, truth, bad)
+    compare_example_lists(pvtap, capture, bad)
     for key in SUMMARY_KEYS:
         if summary.get(key) != truth["summary"][key]:
             bad.add(f"summary {key}: audit {summary.get(key)}, truth {truth['summary'][key]}")

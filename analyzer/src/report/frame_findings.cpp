@@ -6,6 +6,7 @@
 #include "formatting/json_text.h"
 #include "formatting/number_text.h"
 #include "pvtap/codec/function_codes.h"
+#include "pvtap/matching/reply_rules.h"
 #include "pvtap/registers/register_format.h"
 
 namespace pvtap::analyzer {
@@ -114,7 +115,11 @@ void collect_issues(const SessionFrame& f, std::vector<std::string>& out) {
   out.clear();
   if (!f.parse_error.empty()) out.push_back("malformed: " + std::string(f.parse_error));
   if (f.frame == nullptr) return;
-  if (f.role_corrected) out.emplace_back("echo of a write, read as the reply");
+  // Read as a request, it echoes the pending one: a note only where the function's normal
+  // reply is no echo.
+  if (f.role_corrected && !reply_is_echo(f.dialect, f.frame->function)) {
+    out.emplace_back("echo of a write, read as the reply");
+  }
   if (!f.check.ok && f.role == Role::Response && f.request_id) {
     out.emplace_back("damaged reply: the slave answered, the line damaged the answer");
   }
@@ -131,6 +136,18 @@ void collect_issues(const SessionFrame& f, std::vector<std::string>& out) {
   if (f.duplicate) out.emplace_back("duplicate reply");
   if (f.count_mismatch) add_count_mismatch(*f.count_mismatch, out);
   if (f.quantity_problem) add_quantity_problem(*f.quantity_problem, out);
+  if (f.write_count_problem) {
+    std::string text = "byte count ";
+    append_uint(text, f.write_count_problem->byte_count);
+    text += ", the quantity written (";
+    append_uint(text, f.write_count_problem->quantity);
+    text += ") needs ";
+    append_uint(text, f.write_count_problem->expected);
+    out.push_back(std::move(text));
+  }
+  if (f.broadcast_not_allowed) {
+    out.emplace_back("broadcast to address 0, which only writes may use: no station answers it");
+  }
   if (f.dialect_changed_from) {
     std::string text = "station changed dialect: ";
     text += to_string(*f.dialect_changed_from);

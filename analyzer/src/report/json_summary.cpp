@@ -253,6 +253,12 @@ void details(std::string& o, const AuditReport& report, const BusReport& t) {
   // Findings of plain Modbus traffic: only where there are some, so that a report of
   // inverters alone keeps its shape.
   if (t.quantity_problems > 0) append_json_count(o, "quantity_problems", t.quantity_problems);
+  if (t.write_count_problems > 0) {
+    append_json_count(o, "write_count_problems", t.write_count_problems);
+  }
+  if (t.forbidden_broadcasts > 0) {
+    append_json_count(o, "forbidden_broadcasts", t.forbidden_broadcasts);
+  }
   if (t.dialect_changes > 0) append_json_count(o, "dialect_changes", t.dialect_changes);
   if (t.gateway_timeouts > 0) append_json_count(o, "gateway_timeouts", t.gateway_timeouts);
   append_json_count(o, "unanswered_at_end", t.unanswered_at_end);

@@ -95,6 +95,13 @@ void solarman_v5_lines(const NetworkStats& n, std::string& o) {
       u(v.checksum_failures), u(v.truncated), u(v.length_mismatches), u(v.broken_bytes));
 }
 
+// A list of examples shorter than the count it stands for says how many it shows.
+void examples_shown(std::size_t shown, std::uint64_t total, std::string& o) {
+  if (shown > 0 && shown < total) {
+    o += report_line("  %llu of %llu shown:", u(shown), u(total));
+  }
+}
+
 void network(const AuditReport& r, std::string& o) {
   if (!r.network) return;
   const NetworkStats& n = r.flows;
@@ -109,6 +116,7 @@ void network(const AuditReport& r, std::string& o) {
         "that lied (%llu bytes skipped)",
         u(n.mbap_flows), u(n.mbap_adus), u(n.mbap_carrier_bytes), u(n.mbap_findings),
         u(n.mbap_skipped_bytes));
+    examples_shown(n.mbap_finding_examples.size(), n.mbap_findings, o);
     for (const std::string& e : n.mbap_finding_examples) o += report_line("  %s", e.c_str());
   }
   if (n.v5_flows > 0) solarman_v5_lines(n, o);
@@ -232,12 +240,14 @@ std::string gateway_text(const BusReport& b) {
 
 void findings(const AuditReport& r, const BusReport& b, std::string& o) {
   o += report_line("bad checks: %llu", u(b.bytes.bad_frames));
+  examples_shown(b.bad_check_examples.size(), b.bytes.bad_frames, o);
   for (const FrameExample& e : b.bad_check_examples) frame_example(r, e, o);
   o += report_line(
       "timeouts: %llu good requests the slave did not answer (no reply %llu, next request "
       "first %llu%s)",
       u(b.timeouts), u(b.timeouts_by_reason[0]), u(b.timeouts_by_reason[1]),
       b.gateway_timeouts > 0 ? gateway_text(b).c_str() : "");
+  examples_shown(b.timeout_examples.size(), b.timeouts, o);
   for (const TimeoutExample& e : b.timeout_examples) {
     o += report_line("  %s  st %u  %s  %s", when(r, e.request_time).c_str(), e.timeout.station,
                      std::string(to_string(e.timeout.dialect)).c_str(),
@@ -260,6 +270,16 @@ void findings(const AuditReport& r, const BusReport& b, std::string& o) {
   if (b.quantity_problems > 0) {
     o += report_line("requests asking a quantity out of the specification's range: %llu",
                      u(b.quantity_problems));
+  }
+  if (b.write_count_problems > 0) {
+    o += report_line("writes whose byte count disagrees with their quantity: %llu",
+                     u(b.write_count_problems));
+  }
+  if (b.forbidden_broadcasts > 0) {
+    o += report_line(
+        "requests broadcast to address 0 that only writes may use (no station answers them): "
+        "%llu",
+        u(b.forbidden_broadcasts));
   }
   o += report_line("exceptions and error replies: %llu", u(b.exceptions));
   for (const ExceptionTally& e : b.exception_codes) {

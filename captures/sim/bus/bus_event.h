@@ -17,6 +17,7 @@ using Micros = std::int64_t;  // simulated time, microseconds since the Unix epo
 struct DeviceLabel {
   std::string kind;
   std::string vendor, product, revision;
+  std::string name;  // the text of its report server ID reply, when it answers one
 };
 
 // RegisterTruth: the value one register held when an inverter answered.

@@ -41,6 +41,8 @@ class BusMaster {
   // The device's reply as the fault shapes it (an exception, a count one short).
   BusEvent device_reply(ModbusDevice& device, const Frame& request, std::optional<FaultKind> fault,
                         Micros request_end);
+  Micros late_reply_from_absent(ModbusDevice& device, const Frame& request, Micros at);
+  Micros refused_request(const Frame& request, Micros at);
   void add_devices();
   std::optional<FaultKind> pick_fault(Dialect d);
   // The fault, or none where its damage could not be pinned (see BusWire::may_damage).

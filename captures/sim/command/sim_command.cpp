@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <iostream>
 
+#include "devices/test_suite_server.h"
+
 namespace pvtap::sim {
 namespace {
 
@@ -33,12 +35,20 @@ std::string station_problem(const SimConfig& c, unsigned first_station) {
   const auto taken = [&](std::optional<std::uint8_t> s) {
     return s && *s >= first_station && *s < first_station + c.inverters;
   };
-  if (c.inverters == 0 && !c.meter_station && !c.io_module_station)
-    return "--inverters 0 needs a --meter or an --io-module";
-  if (taken(c.meter_station) || taken(c.io_module_station))
-    return "--meter and --io-module need stations no inverter has";
+  if (c.inverters == 0 && !c.meter_station && !c.io_module_station && !c.test_server_station)
+    return "--inverters 0 needs a --meter, an --io-module or a --test-server";
+  if (taken(c.meter_station) || taken(c.io_module_station) || taken(c.test_server_station))
+    return "--meter, --io-module and --test-server need stations no inverter has";
   if (c.meter_station && c.meter_station == c.io_module_station)
     return "--meter and --io-module need different stations";
+  if (c.test_server_station) {
+    // The test server's master also asks the station next to it, which must stay empty.
+    const TestSuiteServer probe(*c.test_server_station);
+    const std::uint8_t absent = probe.absent_station();
+    if (c.test_server_station == c.meter_station || c.test_server_station == c.io_module_station ||
+        absent == c.meter_station || absent == c.io_module_station || taken(absent))
+      return "--test-server needs its station and the next one to itself";
+  }
   return {};
 }
 
@@ -73,6 +83,10 @@ std::optional<SimCommand> parse_sim_command(int argc, char** argv, int& exit_cod
   app.add_option("--io-module", c.io_module_station,
                  "station of a plain Modbus IO module (coils, discrete inputs, registers; "
                  "function codes 1 2 3 4 5 6 15 16) polled after the inverters")
+      ->check(CLI::Range(1, 247));
+  app.add_option("--test-server", c.test_server_station,
+                 "station of a Modbus library's test suite server: report server ID, read/write "
+                 "multiple registers (0x17), writes, a late reply for the station after it")
       ->check(CLI::Range(1, 247));
   app.add_option("--pdu", cmd.outputs.pdu, "write a link type 252 capture");
   app.add_option("--gateway", cmd.outputs.gateway, "write an Ethernet/IPv4/TCP gateway capture");

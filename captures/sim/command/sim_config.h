@@ -25,6 +25,7 @@ struct SimConfig {
   // Plain Modbus devices beside the inverters, polled after them in every round.
   std::optional<std::uint8_t> meter_station;
   std::optional<std::uint8_t> io_module_station;
+  std::optional<std::uint8_t> test_server_station;  // a Modbus library's test suite server
 };
 
 }  // namespace pvtap::sim

@@ -7,6 +7,7 @@
 #include "devices/energy_meter.h"
 #include "devices/io_module.h"
 #include "devices/modbus_frames.h"
+#include "devices/test_suite_server.h"
 #include "pvtap/codec/function_codes.h"
 
 namespace pvtap::sim {
@@ -37,7 +38,8 @@ std::optional<Frame> shortened(const Frame& request) {
 // Faults that need a reply of a certain shape are left out where the request has none: a count
 // one short needs a read, damage to the data alone a register read (whose header gives its
 // length; a device identification's length is inside its data).
-std::optional<FaultKind> fitting(std::optional<FaultKind> fault, const Frame& request) {
+std::optional<FaultKind> fitting(std::optional<FaultKind> fault, const Frame& request,
+                                 const ModbusDevice& device) {
   if (fault == FaultKind::CountMismatch && !shortened(request)) return std::nullopt;
   if (fault == FaultKind::CorruptData && !reads_registers(request)) return std::nullopt;
   // An echo sent twice is a third copy of the request's bytes: on a carrier without
@@ -46,6 +48,7 @@ std::optional<FaultKind> fitting(std::optional<FaultKind> fault, const Frame& re
                       request.function == fc::kGslWriteSingle ||
                       request.function == fc::kDiagnostics;
   if (fault == FaultKind::Duplicate && echoed) return std::nullopt;
+  if (fault == FaultKind::Corrupt && echoed && device.keeps_echoes_whole()) return std::nullopt;
   return fault;
 }
 
@@ -64,6 +67,8 @@ void BusMaster::add_devices() {
                                                      config_.start, plant_kw));
   if (config_.io_module_station)
     devices_.push_back(std::make_unique<IoModule>(*config_.io_module_station, config_.seed));
+  if (config_.test_server_station)
+    devices_.push_back(std::make_unique<TestSuiteServer>(*config_.test_server_station));
 }
 
 BusEvent BusMaster::device_reply(ModbusDevice& device, const Frame& request,
@@ -81,8 +86,55 @@ BusEvent BusMaster::device_reply(ModbusDevice& device, const Frame& request,
   return rep;
 }
 
+// A read to a station nobody has: the master waits out its timeout, then a peer puts that
+// station's reply on the line (late, for a request already given up).
+Micros BusMaster::late_reply_from_absent(ModbusDevice& device, const Frame& request, Micros at) {
+  const Micros request_end = wire_.put(frame_event(request), at);
+  timeline_.timeouts.push_back({at, request_end, request.station, request.function});
+  BusEvent rep = device.reply(request, request_end);
+  const Micros reply_at = timeout_after(request_end) + random_.between(20, 60) * 1000;
+  rep.latency = reply_at - request_end;
+  rep.fault = "late_reply";
+  return wire_.put(std::move(rep), reply_at) + random_.between(20, 60) * 1000;
+}
+
+// A request the server refuses: a user-defined function (`user_defined_function`, exception
+// 0x01), a write whose byte count disagrees with its quantity and its data
+// (`write_count_mismatch`) or says fewer bytes than it carries (`byte_count_lies`; its CRC
+// covers all it carries), both exception 0x03.
+Micros BusMaster::refused_request(const Frame& request, Micros at) {
+  BusEvent sent = frame_event(request);
+  const bool user_defined = fc::is_user_defined_function(request.function);
+  const bool lies = request.byte_count.value_or(0) != 2 * request.words.size();
+  sent.fault = user_defined ? "user_defined_function"
+               : lies       ? "byte_count_lies"
+                            : "write_count_mismatch";
+  const Micros request_end = wire_.put(std::move(sent), at);
+  BusEvent rep = frame_event(exception_reply(request, user_defined ? 0x01 : 0x03));
+  rep.fault = std::string(to_string(FaultKind::ErrorReply));  // counted with the exceptions
+  rep.latency = random_.between(15, 60) * 1000;
+  const Micros reply_at = request_end + rep.latency;
+  return wire_.put(std::move(rep), reply_at) + random_.between(20, 60) * 1000;
+}
+
 Micros BusMaster::poll_device(ModbusDevice& device, const Frame& request, Micros at) {
-  const std::optional<FaultKind> fault = placed(fitting(pick_fault(Dialect::Modbus), request));
+  switch (device.answer_of(request)) {
+    case ModbusDevice::Answer::LateFromAbsent:
+      return late_reply_from_absent(device, request, at);
+    case ModbusDevice::Answer::Broadcast: {
+      // Nobody answers (the only broadcast a device asks for is a read, which the specification
+      // does not allow): the master waits its turnaround delay, and no timeout.
+      BusEvent sent = frame_event(request);
+      sent.fault = "broadcast_read";
+      return wire_.put(std::move(sent), at) + random_.between(100, 200) * 1000;
+    }
+    case ModbusDevice::Answer::Refused:
+      return refused_request(request, at);
+    case ModbusDevice::Answer::Normal:
+      break;
+  }
+  const std::optional<FaultKind> fault =
+      placed(fitting(pick_fault(Dialect::Modbus), request, device));
   next_request_pins_ = false;
   if (fault == FaultKind::CorruptRequest) return send_damaged_requests(request, at);
   const Micros request_end = wire_.put(frame_event(request), at);

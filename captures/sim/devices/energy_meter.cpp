@@ -39,7 +39,7 @@ EnergyMeter::EnergyMeter(std::uint8_t station, std::uint64_t seed, Micros start,
 }
 
 DeviceLabel EnergyMeter::label() const {
-  return {"meter", kVendor, kProduct, kRevision};
+  return {"meter", kVendor, kProduct, kRevision, {}};
 }
 
 std::vector<Frame> EnergyMeter::requests(unsigned round) const {

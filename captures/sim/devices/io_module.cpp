@@ -14,7 +14,7 @@ IoModule::IoModule(std::uint8_t station, std::uint64_t seed)
     : ModbusDevice(station), seed_(seed ^ 0x10D0ull * (station + 1)) {}
 
 DeviceLabel IoModule::label() const {
-  return {"io_module", {}, {}, {}};
+  return {"io_module", {}, {}, {}, {}};
 }
 
 std::vector<Frame> IoModule::requests(unsigned round) const {

@@ -25,6 +25,19 @@ class ModbusDevice {
   // A write takes effect here: a device changes only what it answers.
   virtual BusEvent reply(const Frame& request, Micros request_end) = 0;
 
+  // How a request is answered: normally (faults aside); for a station nobody has, by a reply
+  // a peer puts on the line after the master gave the request up (a late reply); or, sent to
+  // address 0, by nobody (a broadcast, which no station answers); or, for a request the
+  // server refuses, free of faults: a user-defined function it lacks by exception 0x01
+  // (illegal function), a write whose byte count the master got wrong by 0x03 (illegal data
+  // value).
+  enum class Answer { Normal, LateFromAbsent, Broadcast, Refused };
+  virtual Answer answer_of(const Frame& /*request*/) const { return Answer::Normal; }
+  // Whether the line never damages its echoes: on a carrier without directions an echo whose
+  // station byte was damaged reads as a damaged request to another station, which no reader
+  // can tell apart (the older devices keep their samples' bytes and may damage them).
+  virtual bool keeps_echoes_whole() const { return false; }
+
  private:
   std::uint8_t station_;
 };

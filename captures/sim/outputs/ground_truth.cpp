@@ -90,6 +90,7 @@ void write_devices(std::ostream& o, const std::vector<DeviceTruth>& devices) {
     if (!d.label.vendor.empty())
       o << ",\"vendor\":\"" << d.label.vendor << "\",\"product\":\"" << d.label.product
         << "\",\"revision\":\"" << d.label.revision << "\"";
+    if (!d.label.name.empty()) o << ",\"name\":\"" << d.label.name << "\"";
     o << "}";
   }
   o << "]";

@@ -163,6 +163,10 @@ void register_experts(InverterProtocol& p) {
               "Request quantity out of the specification's range");
   experts.add(&p.ei.dialect_changed, prefix + "dialect_changed", PI_SEQUENCE, PI_NOTE,
               "Station changed dialect");
+  experts.add(&p.ei.broadcast_not_allowed, prefix + "broadcast_not_allowed", PI_PROTOCOL, PI_WARN,
+              "Broadcast to address 0, which only writes may use");
+  experts.add(&p.ei.write_count_problem, prefix + "write_count_mismatch", PI_PROTOCOL, PI_WARN,
+              "Byte count disagrees with the quantity written");
   experts.register_all(p.proto);
 }
 

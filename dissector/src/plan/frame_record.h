@@ -41,7 +41,10 @@ struct FrameRecord {
   CountUnit count_unit = CountUnit::Bytes;
   std::uint16_t count_expected = 0;
   std::uint16_t count_found = 0;
-  bool quantity_problem = false;  // requests: a quantity out of the specification's range
+  bool quantity_problem = false;       // requests: a quantity out of the specification's range
+  bool broadcast_not_allowed = false;  // requests: to address 0, which only writes may use
+  bool write_count_problem = false;    // writes: the byte count disagrees with the quantity
+  std::uint16_t write_count_expected = 0;
   bool quantity_write_part = false;
   std::uint16_t quantity_found = 0;
   std::uint16_t quantity_min = 0;

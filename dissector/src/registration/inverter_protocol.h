@@ -66,6 +66,8 @@ struct ExpertFields {
   expert_field value_suspicious = EI_INIT;
   expert_field quantity_problem = EI_INIT;
   expert_field dialect_changed = EI_INIT;
+  expert_field broadcast_not_allowed = EI_INIT;
+  expert_field write_count_problem = EI_INIT;
 };
 
 // Subtrees: the ett ids of a protocol's subtrees.

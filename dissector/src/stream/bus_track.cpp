@@ -69,6 +69,11 @@ void BusTrack::link(FrameRecord& r, const SessionFrame& f) const {
 // What the session found of the frame's station: a quantity out of range, a change of
 // dialect, and the name the station gave itself so far.
 void BusTrack::note_findings(FrameRecord& r, const SessionFrame& f) {
+  r.broadcast_not_allowed = f.broadcast_not_allowed;
+  if (f.write_count_problem) {
+    r.write_count_problem = true;
+    r.write_count_expected = clamp16(f.write_count_problem->expected);
+  }
   if (f.quantity_problem) {
     r.quantity_problem = true;
     r.quantity_write_part = f.quantity_problem->write_part;

@@ -114,6 +114,10 @@ expert_field* expert_of(ExpertFields& ei, TreeExpert expert) {
       return &ei.quantity_problem;
     case TreeExpert::DialectChanged:
       return &ei.dialect_changed;
+    case TreeExpert::BroadcastNotAllowed:
+      return &ei.broadcast_not_allowed;
+    case TreeExpert::WriteCountProblem:
+      return &ei.write_count_problem;
     case TreeExpert::None:
       break;
   }

@@ -165,6 +165,16 @@ void add_modbus_fields(Builder& b, const FramePlan& plan) {
 
 void add_station_findings(Builder& b, const FramePlan& plan, const FrameRecord& record) {
   add_quantity_problem(b, record);
+  if (record.broadcast_not_allowed) {
+    b.expert_item(TreeExpert::BroadcastNotAllowed, FieldSpan{},
+                  "A request broadcast to address 0, which only writes may use: no station "
+                  "answers it");
+  }
+  if (record.write_count_problem) {
+    b.expert_item(TreeExpert::WriteCountProblem, FieldSpan{},
+                  b.text("The quantity written needs a byte count of " +
+                         std::to_string(record.write_count_expected)));
+  }
   add_dialect_change(b, plan, record);
 }
 

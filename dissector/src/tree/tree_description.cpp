@@ -406,7 +406,11 @@ void add_count_mismatch(Builder& b, const FrameRecord& r) {
 }
 
 void add_matching(Builder& b, const FrameRecord& r) {
-  if (r.role_corrected) b.expert_item(TreeExpert::RoleCorrected, FieldSpan{}, nullptr);
+  // Read as a request, it echoes the pending one: a note only where the function's normal
+  // reply is no echo.
+  if (r.role_corrected && !reply_is_echo(r.dialect, r.function)) {
+    b.expert_item(TreeExpert::RoleCorrected, FieldSpan{}, nullptr);
+  }
   if (r.role == Role::Request) {
     add_request_links(b, r);
   } else {

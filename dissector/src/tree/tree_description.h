@@ -65,8 +65,10 @@ enum class TreeExpert : std::uint8_t {
   StartAssumed,
   ValueNote,
   ValueSuspicious,
-  QuantityProblem,  // a request asks a quantity out of the specification's range
-  DialectChanged,   // a station changed dialect
+  QuantityProblem,      // a request asks a quantity out of the specification's range
+  DialectChanged,       // a station changed dialect
+  BroadcastNotAllowed,  // a request to address 0 that may not be broadcast
+  WriteCountProblem,    // a write whose byte count disagrees with its quantity
 };
 
 // ItemKind: what adding the item does.

@@ -3,6 +3,7 @@
 #include "codec/ascii_codec.h"
 #include "codec/hex_digits.h"
 #include "codec/rtu_codec.h"
+#include "pvtap/codec/function_codes.h"
 
 namespace pvtap {
 
@@ -34,6 +35,18 @@ Frame frame_header(std::span<const std::uint8_t> bytes, Dialect dialect, Role ro
   if (bytes.size() > 1) {
     f.station = bytes[0];
     f.function = bytes[1];
+  }
+  return f;
+}
+
+Frame sent_header(std::span<const std::uint8_t> bytes, Dialect dialect, Role role) {
+  Frame f = frame_header(bytes, dialect, role);
+  const bool counted_write =
+      f.function == fc::kGslWriteMultiple || f.function == fc::kWriteMultipleCoils;
+  if (modbus_family(dialect) && role == Role::Request && counted_write && bytes.size() > 6) {
+    f.start = static_cast<std::uint16_t>(bytes[2] << 8 | bytes[3]);
+    f.count = static_cast<std::uint16_t>(bytes[4] << 8 | bytes[5]);
+    f.byte_count = bytes[6];
   }
   return f;
 }

@@ -140,6 +140,8 @@ ParseStatus parse_modbus_request(std::span<const std::uint8_t> b, Frame& f) {
     case fc::kEncapsulatedInterface:
       return raw(body, f);
     default:
+      // A user-defined code has no public layout: its bytes are kept as they came.
+      if (fc::is_user_defined_function(f.function)) return raw(body, f);
       return fail("not a Modbus request function code");
   }
 }
@@ -177,6 +179,7 @@ ParseStatus parse_modbus_reply(std::span<const std::uint8_t> b, Frame& f) {
     case fc::kEncapsulatedInterface:
       return raw(body, f);
     default:
+      if (fc::is_user_defined_function(f.function)) return raw(body, f);
       return fail("not a Modbus reply function code");
   }
 }
@@ -298,6 +301,10 @@ bool encode_modbus_body(const Frame& f, std::vector<std::uint8_t>& out) {
       out.insert(out.end(), f.data.begin(), f.data.end());
       return true;
     default:
+      if (fc::is_user_defined_function(f.function)) {
+        out.insert(out.end(), f.data.begin(), f.data.end());
+        return true;
+      }
       return f.role == Role::Request ? encode_request_body(f, out) : encode_reply_body(f, out);
   }
 }

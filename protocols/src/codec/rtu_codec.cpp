@@ -161,12 +161,19 @@ bool gateway_exception(std::span<const std::uint8_t> b, Dialect dialect, Role ro
          (b[2] == fc::kGatewayPathUnavailable || b[2] == fc::kGatewayTargetNoResponse);
 }
 
+// A user-defined code of plain Modbus (PROTOCOLS.md section 6): no public layout, so its
+// bytes are kept as they came; the framing finds such a frame only between pinned ends.
+bool user_defined(Dialect dialect, std::uint8_t function) {
+  return dialect == Dialect::Modbus && fc::is_user_defined_function(function);
+}
+
 }  // namespace
 
 ParseStatus parse_rtu(std::span<const std::uint8_t> b, Dialect dialect, Role role, Frame& f) {
   if (b.size() < 4) return fail("RTU frame shorter than 4 bytes");
   f = make_frame(dialect, role, b[0], b[1]);
-  if (!fc::dialect_has_function(dialect, f.function) && !gateway_exception(b, dialect, role)) {
+  if (!fc::dialect_has_function(dialect, f.function) && !gateway_exception(b, dialect, role) &&
+      !user_defined(dialect, f.function)) {
     // A code no dialect defines (Modbus/TCP carries any code whole) says so, not "another".
     return fail(fc::detail::kFunctionKinds.of[f.function] == 0
                     ? "function code without a public layout"
@@ -195,7 +202,9 @@ FrameCheck verify_rtu_check(std::span<const std::uint8_t> b) {
 }
 
 bool encode_rtu(const Frame& f, std::vector<std::uint8_t>& out) {
-  if (!fc::dialect_has_function(f.dialect, f.function)) return false;
+  if (!fc::dialect_has_function(f.dialect, f.function) && !user_defined(f.dialect, f.function)) {
+    return false;
+  }
   const std::size_t begin = out.size();
   out.push_back(f.station);
   out.push_back(f.function);

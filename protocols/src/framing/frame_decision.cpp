@@ -113,17 +113,21 @@ Evidence bad_frame_evidence(const DecisionInput& in, const FrameCandidate& c, bo
   return good_frame_inside(in, c.length) ? Evidence::No : Evidence::Yes;
 }
 
-// A pinned start that no reading fits: a frame whose length field was damaged, if the CRC
-// says so. Its end is the first proven silence, good frame or end of input after it; a
-// segment end on the way (gateways) is tried too, since the frame may end there. When no
-// repair fits, the whole span up to that end is noise: nothing inside it is pinned, and the
-// scan found no frame starting inside it, so each of its bytes would be noise on its own.
+// A pinned start that no reading fits: a frame sent with a byte count that lies or of a
+// user-defined code, if the CRC holds over the span, or one whose length field was damaged,
+// if the CRC says so. Its end is the
+// first proven silence, good frame or end of input after it; a segment end on the way (gateways) is
+// tried too, since the frame may end there. When no repair fits, the whole span up to that end is
+// noise: nothing inside it is pinned, and the scan found no frame starting inside it, so each of
+// its bytes would be noise on its own.
 Decision repaired_at(const DecisionInput& in) {
   std::size_t scanned = 1;
   const auto repaired = [&](std::size_t length) -> std::optional<Decision> {
     scanned = length;
     const auto frame = in.bytes.first(length);
-    const auto c = repaired_reading(frame, hint_at(in, 0), in.dialects);
+    auto c = lying_count_reading(frame, hint_at(in, 0), in.dialects);
+    if (!c) c = user_defined_reading(frame, hint_at(in, 0), in.dialects);
+    if (!c) c = repaired_reading(frame, hint_at(in, 0), in.dialects);
     if (!c) return std::nullopt;
     return Decision{Decision::Kind::Frame, *c, verify_check(frame, c->dialect)};
   };

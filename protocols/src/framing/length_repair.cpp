@@ -74,7 +74,43 @@ CountField count_field(std::uint8_t function) {
   return function == fc::kGslWriteMultiple ? CountField{6, 9} : CountField{2, 5};
 }
 
+// A write of several registers or coils: its request counts its data after its quantities.
+bool counted_write(std::uint8_t function) {
+  return function == fc::kGslWriteMultiple || function == fc::kWriteMultipleCoils ||
+         function == fc::kReadWriteMultiple;
+}
+
 }  // namespace
+
+std::optional<FrameCandidate> lying_count_reading(std::span<const std::uint8_t> frame,
+                                                  RoleHint hint, DialectSet dialects) {
+  if (!dialects.rtu() || frame.size() < kMinRtuFrameLength || frame.size() > kMaxRtuFrameLength ||
+      !counted_write(frame[1]) || !crc_matches(frame)) {
+    return std::nullopt;
+  }
+  const CandidateList cands = frame_candidates(frame, hint, dialects, Plausibility::Ignore);
+  for (std::size_t i = 0; i < cands.size; ++i) {
+    const FrameCandidate& c = cands.items[i];
+    if (c.dialect == Dialect::Ascii || c.role != Role::Request || c.length == frame.size()) {
+      continue;
+    }
+    return FrameCandidate{frame.size(), c.dialect, c.role, true};
+  }
+  return std::nullopt;
+}
+
+std::optional<FrameCandidate> user_defined_reading(std::span<const std::uint8_t> frame,
+                                                   RoleHint hint, DialectSet dialects) {
+  constexpr std::size_t kShortest = 4;  // station, function, CRC: a code with no data
+  if (!dialects.contains(Dialect::Modbus) || frame.size() < kShortest ||
+      frame.size() > kMaxRtuFrameLength || frame[0] == fc::kModbusBroadcast ||
+      frame[0] > fc::kLastModbusStation || !fc::is_user_defined_function(frame[1]) ||
+      !crc_matches(frame)) {
+    return std::nullopt;
+  }
+  const Role role = hint == RoleHint::Response ? Role::Response : Role::Request;
+  return FrameCandidate{frame.size(), Dialect::Modbus, role, true};
+}
 
 std::optional<FrameCandidate> repaired_reading(std::span<const std::uint8_t> frame, RoleHint hint,
                                                DialectSet dialects) {

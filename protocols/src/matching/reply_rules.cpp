@@ -92,10 +92,12 @@ bool answers(const FrameSummary& request, const FrameSummary& reply) {
   return true;
 }
 
+bool reply_is_echo(Dialect d, std::uint8_t function) {
+  return modbus_family(d) && is_echoed(function);
+}
+
 bool echoes_write(const FrameSummary& request, const FrameSummary& frame, bool frame_check_ok) {
-  const auto is_write = [](const FrameSummary& f) {
-    return modbus_family(f.dialect) && is_echoed(f.function);
-  };
+  const auto is_write = [](const FrameSummary& f) { return reply_is_echo(f.dialect, f.function); };
   if (!is_write(request) || !is_write(frame) || request.station != frame.station ||
       request.function != frame.function) {
     return false;

@@ -5,6 +5,7 @@
 
 #include "pvtap/codec/function_codes.h"
 #include "pvtap/matching/reply_rules.h"
+#include "pvtap/matching/request_rules.h"
 
 namespace pvtap {
 namespace {
@@ -13,22 +14,12 @@ bool is_broadcast_request(const FrameSummary& f) {
   return f.dialect == Dialect::Hybrid && f.station == fc::kHybridBroadcast;
 }
 
-// A Modbus write to address 0 goes to every station and is never answered. Only writes may
-// be broadcast: a read to address 0 is a request whose address was damaged.
-bool is_unanswered_broadcast(const FrameSummary& f) {
+// A Modbus request to address 0 goes to every station and is never answered: a write, or,
+// with a good check, a request that may not be broadcast (a finding of the session's). A
+// damaged read to address 0 is a request whose address may be the damaged byte.
+bool is_unanswered_broadcast(const FrameSummary& f, bool check_ok) {
   if (!modbus_family(f.dialect) || f.station != fc::kModbusBroadcast) return false;
-  switch (f.function) {
-    case fc::kWriteSingleCoil:
-    case fc::kGslWriteSingle:
-    case fc::kDiagnostics:  // force listen only mode is broadcast too
-    case fc::kWriteMultipleCoils:
-    case fc::kGslWriteMultiple:
-    case fc::kWriteFileRecord:
-    case fc::kMaskWriteRegister:
-      return true;
-    default:
-      return false;
-  }
+  return may_broadcast(f.function) || broadcast_not_allowed(f, check_ok);
 }
 
 }  // namespace
@@ -98,7 +89,7 @@ std::size_t TransactionMatcher::pending_count() const {
 }
 
 void TransactionMatcher::on_request(const ObservedFrame& in) {
-  if (is_unanswered_broadcast(in.frame)) return;
+  if (is_unanswered_broadcast(in.frame, in.check_ok)) return;
   const bool broadcast = is_broadcast_request(in.frame);
   Slot& slot = slots_[broadcast ? RequestSlots::kBroadcast : in.frame.station];
   if (slot.state == SlotState::Pending) {

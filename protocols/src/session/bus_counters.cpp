@@ -19,7 +19,7 @@ constexpr bool holds_counters(std::size_t n) {
 static_assert(holds_counters<ReassemblerTotals>(6), "add the new counter up below");
 static_assert(holds_counters<RoleCounts>(2), "add the new counter up below");
 static_assert(holds_counters<GapTally>(3), "add the new counter up below");
-static_assert(holds_counters<BusCounters>(6 + 2 + kDialectCount * 2 + 1 + 1 + 2 + 4 + 10 + 3),
+static_assert(holds_counters<BusCounters>(6 + 2 + kDialectCount * 2 + 1 + 1 + 2 + 4 + 12 + 3),
               "add the new counter up below");
 
 RoleCounts& operator+=(RoleCounts& a, const RoleCounts& b) {
@@ -72,6 +72,8 @@ BusCounters& BusCounters::operator+=(const BusCounters& o) {
   role_corrections += o.role_corrections;
   dialect_changes += o.dialect_changes;
   quantity_problems += o.quantity_problems;
+  forbidden_broadcasts += o.forbidden_broadcasts;
+  write_count_problems += o.write_count_problems;
   exceptions += o.exceptions;
   gateway_timeouts += o.gateway_timeouts;
   gaps += o.gaps;

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "pvtap/codec/checksums.h"
+#include "pvtap/codec/function_codes.h"
 #include "pvtap/framing/framing_probe.h"
 #include "pvtap/matching/reply_rules.h"
 #include "pvtap/session/event_tally.h"
@@ -49,7 +50,29 @@ struct BusSession::Impl {
     return *slot;
   }
 
-  void on_frame(Direction direction, const FrameEvent& e) { on_frame(direction, e, e.bytes); }
+  // A Hybrid reply to a station last asked in the Modbus family is read again: only such a
+  // reply may fit both (a Hybrid station's replies cost one table look-up).
+  void on_frame(Direction direction, const FrameEvent& e) {
+    if (e.dialect != Dialect::Hybrid || e.role != Role::Response || e.bytes.empty() ||
+        !asked_in_modbus_family(e.bytes[0])) {
+      on_frame(direction, e, e.bytes);
+      return;
+    }
+    FrameEvent asked = e;
+    asked.dialect = reply_dialect(e.bytes, e.role, asked_dialect(e.bytes[0]), e.dialect);
+    on_frame(direction, asked, e.bytes);
+  }
+  bool asked_in_modbus_family(std::uint8_t station) const {
+    const auto asked = asked_dialect(station);
+    return asked && modbus_family(*asked);
+  }
+  // The dialect of the last request with a good check to `station` (request_dialects).
+  std::optional<Dialect> asked_dialect(std::uint8_t station) const {
+    if (request_dialects[station] == 0) return std::nullopt;
+    return static_cast<Dialect>(request_dialects[station] - 1);
+  }
+  Dialect reply_dialect(std::span<const std::uint8_t> wire, Role role, std::optional<Dialect> asked,
+                        Dialect fallback) const;
   // `wire` is what the codec parses: the frame's bytes, with a check appended when the
   // carrier took it away.
   void on_frame(Direction direction, const FrameEvent& e, std::span<const std::uint8_t> wire);
@@ -78,8 +101,10 @@ struct BusSession::Impl {
   ReassemblerTotals carried;  // frames delivered whole by a carrier (carried_frame)
   std::vector<std::uint8_t> carried_wire;  // a carried frame with the CRC the codec expects
   bool answers_pending = false;            // the carried reply being handled was paired
-  // The dialect of the last carried request to each station, plus one (0: none yet).
-  std::array<std::uint8_t, 256> carried_requests{};
+  // The dialect of the last request with a good check to each station, plus one (0: none yet):
+  // a reply whose bytes read alike in two dialects (Hybrid and Modbus share 0x11 and 0x17)
+  // takes its request's, failing that its station's history.
+  std::array<std::uint8_t, 256> request_dialects{};
   std::uint64_t next_id = 0;
   std::uint64_t loss_boundary_id = 0;  // requests before this id were waiting during a loss
   Direction last_direction = Direction::Unknown;  // of the last chunk fed
@@ -148,20 +173,25 @@ void BusSession::Impl::on_frame(Direction direction, const FrameEvent& e,
   out.check = e.check;
   out.parse_error = parse_frame_into(wire, e.dialect, e.role, frame);
   const bool parsed = out.parse_error.empty();
-  // A damaged frame whose byte count lies does not parse, but it was sent: its header is
-  // enough to pair it and count it. So is a carried frame (TCP vouches it was sent so).
-  if (parsed || !e.check.ok || e.check.carried) {
-    if (!parsed) frame = frame_header(wire, e.dialect, e.role);
-    const auto label = station_dialects.label(frame, e.check.ok);
-    frame.dialect = label.dialect;
-    out.dialect = label.dialect;
-    out.dialect_changed_from = label.changed_from;
-    const RegisterMap* own = decoder.station_map(frame.station);
-    const RegisterMap*& of_dialect = dialect_maps[static_cast<std::size_t>(label.dialect)];
-    if (own == nullptr && of_dialect == nullptr) of_dialect = &decoder.map(label.dialect);
-    out.map = own != nullptr ? own : of_dialect;
-    out.frame = &frame;
-    handle_parsed(out, e);
+  // A frame whose byte count lies (damaged, or sent so with a good check) does not parse, but
+  // it was sent: its header is enough to pair it and count it.
+  if (!parsed) {
+    frame =
+        e.check.ok ? sent_header(wire, e.dialect, e.role) : frame_header(wire, e.dialect, e.role);
+  }
+  const auto label = station_dialects.label(frame, e.check.ok);
+  frame.dialect = label.dialect;
+  out.dialect = label.dialect;
+  out.dialect_changed_from = label.changed_from;
+  const RegisterMap* own = decoder.station_map(frame.station);
+  const RegisterMap*& of_dialect = dialect_maps[static_cast<std::size_t>(label.dialect)];
+  if (own == nullptr && of_dialect == nullptr) of_dialect = &decoder.map(label.dialect);
+  out.map = own != nullptr ? own : of_dialect;
+  out.frame = &frame;
+  handle_parsed(out, e);
+  if (out.role == Role::Request && e.check.ok) {
+    request_dialects[frame.station] =
+        static_cast<std::uint8_t>(static_cast<unsigned>(out.dialect) + 1);
   }
   tally.add_frame(out);
   sink.on_frame(out);
@@ -181,6 +211,12 @@ void BusSession::Impl::handle_parsed(SessionFrame& out, const FrameEvent& e) {
     // Only the Modbus family limits quantities: the call is skipped for the rest.
     if (e.check.ok && modbus_family(frame.dialect)) {
       out.quantity_problem = pvtap::quantity_problem(frame);
+      // Each rule is asked only of the frames it can concern: those to address 0, those with a
+      // byte count.
+      if (frame.station == fc::kModbusBroadcast) {
+        out.broadcast_not_allowed = pvtap::broadcast_not_allowed(frame, true);
+      }
+      if (frame.byte_count) out.write_count_problem = pvtap::write_count_problem(frame);
     }
     replies.remember_request(out, frame);
   } else {
@@ -212,29 +248,24 @@ void BusSession::feed(const BusChunk& chunk) {
   s.reassembler.feed(chunk);
 }
 
-namespace {
-
-// The dialect whose length rules a carried frame's bytes (with the CRC appended) fit exactly,
-// `preferred` (the dialect of the last request to its station) first: a report server ID reply
-// fits Hybrid's 0x11 as well, and only its request tells. Failing any, the Modbus family's
-// reading, which names what is wrong with it.
-Dialect carried_dialect(std::span<const std::uint8_t> wire, Role role, DialectSet enabled,
-                        std::optional<Dialect> preferred) {
+// The dialect whose length rules a frame's bytes fit exactly, `asked` (the dialect of the last
+// request to its station) first: a report server ID reply fits Hybrid's 0x11 as well, and only
+// its request tells (PROTOCOLS.md section 6, "Overlap with Hybrid V2.2"). Failing any reading,
+// `fallback`.
+Dialect BusSession::Impl::reply_dialect(std::span<const std::uint8_t> wire, Role role,
+                                        std::optional<Dialect> asked, Dialect fallback) const {
   const RoleHint hint = role == Role::Request ? RoleHint::Request : RoleHint::Response;
-  const CandidateList readings = frame_candidates(wire, hint, enabled, Plausibility::Ignore);
+  const CandidateList readings =
+      frame_candidates(wire, hint, options.reassembler.dialects, Plausibility::Ignore);
   std::optional<Dialect> first;
   for (std::size_t i = 0; i < readings.size; ++i) {
     const FrameCandidate& c = readings.items[i];
     if (c.length != wire.size() || c.role != role || c.dialect == Dialect::Ascii) continue;
-    if (preferred && same_dialect(c.dialect, *preferred)) return c.dialect;
+    if (asked && same_dialect(c.dialect, *asked)) return c.dialect;
     if (!first) first = c.dialect;
   }
-  if (first) return *first;
-  return enabled.contains(Dialect::Modbus) || !enabled.contains(Dialect::Gsl) ? Dialect::Modbus
-                                                                              : Dialect::Gsl;
+  return first.value_or(fallback);
 }
-
-}  // namespace
 
 void BusSession::carried_frame(Direction direction, std::uint64_t offset,
                                std::span<const std::uint8_t> frame, double time,
@@ -255,13 +286,13 @@ void BusSession::carried_frame(Direction direction, std::uint64_t offset,
   e.role = direction == Direction::FromSlave ? Role::Response : Role::Request;
   const std::uint8_t station = frame.empty() ? 0 : frame[0];
   std::optional<Dialect> asked;
-  if (e.role == Role::Response && m.carried_requests[station] != 0) {
-    asked = static_cast<Dialect>(m.carried_requests[station] - 1);
-  }
-  e.dialect = carried_dialect(m.carried_wire, e.role, m.options.reassembler.dialects, asked);
-  if (e.role == Role::Request) {
-    m.carried_requests[station] = static_cast<std::uint8_t>(static_cast<unsigned>(e.dialect) + 1);
-  }
+  if (e.role == Role::Response) asked = m.asked_dialect(station);
+  // Failing any reading, the Modbus family's, which names what is wrong with the frame.
+  const DialectSet enabled = m.options.reassembler.dialects;
+  const Dialect fallback = enabled.contains(Dialect::Modbus) || !enabled.contains(Dialect::Gsl)
+                               ? Dialect::Modbus
+                               : Dialect::Gsl;
+  e.dialect = m.reply_dialect(m.carried_wire, e.role, asked, fallback);
   e.check = FrameCheck{true, 0, 0, true};
   ++m.carried.frames;
   m.carried.bytes_in += frame.size();

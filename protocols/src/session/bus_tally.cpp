@@ -57,6 +57,8 @@ void BusTally::add_frame(const SessionFrame& f) {
   if (f.role_corrected) ++counts_.role_corrections;
   if (f.dialect_changed_from) ++counts_.dialect_changes;
   if (f.quantity_problem) ++counts_.quantity_problems;
+  if (f.broadcast_not_allowed) ++counts_.forbidden_broadcasts;
+  if (f.write_count_problem) ++counts_.write_count_problems;
   count_exception(f);
 }
 

@@ -17,6 +17,12 @@ const RequestRecord* ReplyValues::answered_request(SessionFrame& out,
     const DuplicateReply& d = *match.duplicate;
     return requests_.find(RequestBook::slot_of(d.dialect, d.station), d.original_request_id);
   }
+  // A late reply carries the words of the request it came too late for: it is labelled late,
+  // not also without a request.
+  if (match.unsolicited && match.unsolicited->late_for_request_id) {
+    const UnsolicitedReply& u = *match.unsolicited;
+    return requests_.find(RequestBook::slot_of(u.dialect, u.station), *u.late_for_request_id);
+  }
   return nullptr;
 }
 

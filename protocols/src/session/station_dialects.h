@@ -74,7 +74,7 @@ class StationDialects {
   // A frame with a bad check keeps its station's label: its function may be the damaged byte.
   static Dialect own_codes_only(Dialect d, std::uint8_t function, bool check_ok) {
     if (check_ok && d == Dialect::Gsl && !fc::is_gsl_function(function) &&
-        fc::is_modbus_function(function)) {
+        (fc::is_modbus_function(function) || fc::is_user_defined_function(function))) {
       return Dialect::Modbus;
     }
     return d;

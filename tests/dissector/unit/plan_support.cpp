@@ -168,8 +168,10 @@ const char* name_of(TreeExpert expert) {
                                            "ValueNote",
                                            "ValueSuspicious",
                                            "QuantityProblem",
-                                           "DialectChanged"};
-  static_assert(std::size(kNames) == static_cast<std::size_t>(TreeExpert::DialectChanged) + 1);
+                                           "DialectChanged",
+                                           "BroadcastNotAllowed",
+                                           "WriteCountProblem"};
+  static_assert(std::size(kNames) == static_cast<std::size_t>(TreeExpert::WriteCountProblem) + 1);
   return kNames[static_cast<std::size_t>(expert)];
 }
 

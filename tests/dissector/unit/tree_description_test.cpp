@@ -170,6 +170,18 @@ TEST(TreeDescription, ATimeoutAnnouncementSaysWhichTimeoutJudgedIt) {
                    "reply timeout (2500 ms)"}));
 }
 
+// A write's echo is its normal reply: read as a request and corrected, it is not noted.
+TEST(TreeDescription, NormalEchoIsNotNoted) {
+  Planner p;
+  Frame f = make_frame(Dialect::Gsl, Role::Response, 1, fc::kGslWriteSingle);
+  f.start = 1250;
+  f.words.push_back(525);
+  FrameRecord echo = record_of(Dialect::Gsl, Role::Response, 8);
+  echo.function = fc::kGslWriteSingle;
+  echo.role_corrected = true;
+  EXPECT_EQ(from(described(p, wire(f), echo), "1 !"), Lines{});
+}
+
 TEST(TreeDescription, SequenceExpertInfosOfReplies) {
   Planner p;
   FrameRecord reply = record_of(Dialect::Gsl, Role::Response, 8);

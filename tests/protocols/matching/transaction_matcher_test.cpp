@@ -182,6 +182,22 @@ TEST_F(TransactionMatcherTest, UnansweredHybridBroadcastTimesOut) {
   EXPECT_EQ(sink.timeouts[0].reason, TimeoutReason::NoReply);
 }
 
+// Reads may not be broadcast: no station answers one, so it never times out (the session
+// makes it a finding). A damaged read to address 0 may be one whose address was damaged.
+TEST_F(TransactionMatcherTest, ABroadcastReadWaitsForNoReply) {
+  matcher.on_frame(observed(
+      1, test::read_request(Dialect::Modbus, fc::kModbusBroadcast, fc::kGslReadHolding, 0, 2), 0.0,
+      0.008));
+  matcher.advance(2.0);
+  EXPECT_TRUE(sink.timeouts.empty());
+  matcher.on_frame(observed(
+      2, test::read_request(Dialect::Modbus, fc::kModbusBroadcast, fc::kGslReadHolding, 0, 2), 3.0,
+      3.008, false));
+  matcher.advance(5.0);
+  ASSERT_EQ(sink.timeouts.size(), 1u);
+  EXPECT_EQ(sink.timeouts[0].request_id, 2u);
+}
+
 TEST_F(TransactionMatcherTest, HybridErrorReplyAnswersThePendingRequest) {
   matcher.on_frame(observed(
       1, test::read_request(Dialect::Hybrid, 6, fc::kHybridRunningData, 0x1000, 0x24), 0.0, 0.008));

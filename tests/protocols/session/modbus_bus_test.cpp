@@ -32,9 +32,11 @@ struct Seen {
   Role role;
   std::uint8_t function;
   bool check_ok;
+  bool malformed;
   std::optional<std::uint64_t> request_id;
   std::optional<ByteCountMismatch> mismatch;
   std::optional<QuantityProblem> quantity;
+  std::optional<WriteCountProblem> write_count;
   std::optional<Dialect> changed_from;
   std::optional<std::uint16_t> first_coil;
   unsigned coils_on = 0;
@@ -47,9 +49,11 @@ struct Recorder : BusSessionSink {
     s.role = f.role;
     s.function = f.frame ? f.frame->function : std::uint8_t{0};
     s.check_ok = f.check.ok;
+    s.malformed = !f.parse_error.empty();
     s.request_id = f.request_id;
     s.mismatch = f.count_mismatch;
     s.quantity = f.quantity_problem;
+    s.write_count = f.write_count_problem;
     s.changed_from = f.dialect_changed_from;
     if (f.frame != nullptr) {
       if (f.role == Role::Request) requests[f.frame->station] = *f.frame;
@@ -151,12 +155,52 @@ TEST_F(ModbusBus, AQuantityOutOfRangeIsAFindingOnTheRequest) {
   EXPECT_EQ(recorder_.frames[1].request_id, 0u);
 }
 
+TEST_F(ModbusBus, AWriteWhoseByteCountDisagreesWithItsQuantityIsAFinding) {
+  exchange(0x11, "10 00 0C 00 03 04 00 01 00 02", "90 03");  // 3 registers in 4 bytes
+  exchange(0x11, "10 00 0C 00 02 04 00 01 00 02", "10 00 0C 00 02");
+  const BusReport report = finish();
+  ASSERT_EQ(recorder_.frames.size(), 4u);
+  const auto& w = recorder_.frames[0].write_count;
+  ASSERT_TRUE(w);
+  EXPECT_EQ(w->byte_count, 4u);
+  EXPECT_EQ(w->quantity, 3u);
+  EXPECT_EQ(w->expected, 6u);
+  EXPECT_FALSE(recorder_.frames[2].write_count);
+  EXPECT_EQ(report.write_count_problems, 1u);
+}
+
+// A master's byte count of 0 before 6 data bytes, the CRC over all it sent: a malformed frame
+// with a good check, paired with the exception that refused it; no noise.
+TEST_F(ModbusBus, AWriteWhoseByteCountLiesIsAMalformedFramePairedWithItsReply) {
+  exchange(0x11, "03 00 6B 00 01", "03 02 00 64");
+  exchange(0x11, "10 00 0C 00 03 00 00 01 00 02 00 03", "90 03");
+  const BusReport report = finish();
+  ASSERT_EQ(recorder_.frames.size(), 4u);
+  EXPECT_EQ(recorder_.noise_bytes, 0u);
+  EXPECT_TRUE(recorder_.frames[2].check_ok);
+  EXPECT_TRUE(recorder_.frames[2].malformed);
+  EXPECT_EQ(recorder_.frames[2].role, Role::Request);
+  EXPECT_EQ(recorder_.frames[3].request_id, 2u);
+  ASSERT_TRUE(recorder_.frames[2].write_count);
+  EXPECT_EQ(recorder_.frames[2].write_count->byte_count, 0u);
+  EXPECT_EQ(report.unsolicited, 0u);
+}
+
 TEST_F(ModbusBus, ABroadcastWriteIsNeverATimeout) {
   send(adu(0x00, "06 00 01 00 03"));
   exchange(0x11, "03 00 6B 00 01", "03 02 00 64");
   finish();
   ASSERT_EQ(recorder_.frames.size(), 3u);
   EXPECT_TRUE(recorder_.timeouts.empty());
+}
+
+TEST_F(ModbusBus, ABroadcastReadIsAFindingNotATimeout) {
+  send(adu(0x00, "03 00 00 00 02"));
+  exchange(0x11, "03 00 6B 00 01", "03 02 00 64");
+  const BusReport report = finish();
+  ASSERT_EQ(recorder_.frames.size(), 3u);
+  EXPECT_TRUE(recorder_.timeouts.empty());
+  EXPECT_EQ(report.forbidden_broadcasts, 1u);
 }
 
 TEST_F(ModbusBus, AMeterBesideAGslInverterIsPlainModbus) {

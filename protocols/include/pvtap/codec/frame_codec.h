@@ -41,6 +41,11 @@ std::string_view parse_frame_into(std::span<const std::uint8_t> bytes, Dialect d
 // ASCII frame writes as hex digits are 0 when a digit is not one.
 Frame frame_header(std::span<const std::uint8_t> bytes, Dialect dialect, Role role);
 
+// The header of a frame sent so (a good check) that does not parse because its byte count
+// lies: frame_header, and for a write of several registers or coils (0x0F 0x10) its start,
+// quantity and byte count, which sit before the data the count miscounts.
+Frame sent_header(std::span<const std::uint8_t> bytes, Dialect dialect, Role role);
+
 // Verifies the checksum (ASCII) or CRC (RTU) of one complete frame.
 // An ASCII frame whose checksum field is not hex has found = 0 and ok = false.
 FrameCheck verify_check(std::span<const std::uint8_t> bytes, Dialect dialect);

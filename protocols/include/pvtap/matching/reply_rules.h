@@ -21,6 +21,11 @@ bool same_dialect(Dialect a, Dialect b);
 // the request's start address.
 bool answers(const FrameSummary& request, const FrameSummary& reply);
 
+// Whether the normal reply of a function repeats its request unchanged (Modbus family 0x05
+// 0x06 0x08 0x15 0x16, PROTOCOLS.md sections 3 and 6): such an echo is the protocol's answer,
+// nothing to note.
+bool reply_is_echo(Dialect d, std::uint8_t function);
+
 // Whether `frame`, reported as a request, is the echo of the pending `request` of a function
 // whose reply repeats it (0x05 0x06 0x08 0x15 0x16): the same station, function and fields. A copy
 // with a bad check is also taken as the echo, since a master repeating its write would send it with

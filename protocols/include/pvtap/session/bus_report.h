@@ -137,8 +137,10 @@ struct BusCounters {
   std::uint64_t duplicates = 0;
   std::uint64_t count_mismatches = 0;
   std::uint64_t role_corrections = 0;
-  std::uint64_t dialect_changes = 0;    // a station's frames said it changed dialect
-  std::uint64_t quantity_problems = 0;  // good requests asking for a quantity out of range
+  std::uint64_t dialect_changes = 0;       // a station's frames said it changed dialect
+  std::uint64_t quantity_problems = 0;     // good requests asking for a quantity out of range
+  std::uint64_t write_count_problems = 0;  // good writes whose byte count and quantity disagree
+  std::uint64_t forbidden_broadcasts = 0;  // good requests to address 0 that may not be broadcast
   std::uint64_t exceptions = 0;
   std::uint64_t gateway_timeouts = 0;  // exceptions 0x0B (EventCounts::gateway_timeouts)
   GapTally gaps;

@@ -71,6 +71,11 @@ struct SessionFrame {
   std::optional<ByteCountMismatch> count_mismatch;
   // A request with a good check asking for a quantity its function does not allow.
   std::optional<QuantityProblem> quantity_problem;
+  // A request with a good check to address 0 that may not be broadcast (a read): no station
+  // answers it (broadcast_not_allowed).
+  bool broadcast_not_allowed = false;
+  // A write with a good check whose byte count disagrees with its quantity.
+  std::optional<WriteCountProblem> write_count_problem;
   // The request whose start address places this reply's words (its own, or the one it
   // duplicates), when that request's check was good. Values are decoded only from a frame
   // with a good check, and never placed by a request with a bad one.
