@@ -74,7 +74,8 @@ expect_same "--gsl-ids values" "$(printf '%s\n' decimal hex)" \
 expect_same "sniff --baud offers auto" "auto" "$(complete_line "$pvtap" sniff --baud a)"
 expect_same "audit --baud has no auto" "" "$(complete_line "$pvtap" audit --baud a)"
 expect_same "nothing is guessed for --timeout" "" "$(complete_line "$pvtap" audit --timeout '')"
-expect_same "--fail-on's value" "errors" "$(complete_line "$pvtap" audit --fail-on '')"
+expect_same "--fail-on's values" "$(printf '%s\n' empty errors)" \
+    "$(complete_line "$pvtap" audit --fail-on '')"
 expect_same "--mqtt offers the two schemes" "$(printf '%s\n' mqtt:// mqtts://)" \
     "$(complete_line "$pvtap" sniff --mqtt '')"
 expect_same "--parity values" "$(printf '%s\n' even none odd)" \
