@@ -1,5 +1,6 @@
 #include "pipeline/pipeline.h"
 
+#include "pvtap/capture/exported_pdu_reader.h"
 #include "pvtap/session/carrier_timing.h"
 
 namespace pvtap::analyzer {
@@ -29,8 +30,49 @@ void Pipeline::record(const CapturedPacket& packet) {
     Segment segment;
     if (input_.network_packet(packet, segment)) gateway_.on_segment(segment, packet.time);
   } else if (const std::optional<SerialBytes> serial = input_.serial_bytes(packet)) {
-    feed(serial_bus(serial->kind), *serial);
+    if (const std::optional<RecordFacts> decided = record_facts(serial->decided)) {
+      decided_record(*serial, *decided);
+    } else {
+      feed(serial_bus(serial->kind), *serial);
+    }
   }
+}
+
+// A record of pvtap's own capture: a frame or noise run on its bus, as its run decided it.
+void Pipeline::decided_record(const SerialBytes& serial, const RecordFacts& facts) {
+  if (facts.kind == RecordKind::End) {
+    // What the writing run's clock judged at its end, this run judges too.
+    buses_.idle(facts.end_time);
+    return;
+  }
+  // The run's tag comes with the first record of a bus and wherever the bus changes; a record
+  // without it is on the bus of the record before.
+  if (const std::optional<RunFacts> run = run_facts(serial.run)) {
+    if (written_bus_ == nullptr || run->bus != written_bus_name_) {
+      written_bus_name_.assign(run->bus);
+      written_bus_ = &written_bus(run);
+    }
+  } else if (written_bus_ == nullptr) {
+    written_bus_ = &written_bus(std::nullopt);
+  }
+  if (serial.lost_before) written_bus_->data_lost(facts.stream, facts.end_time, std::nullopt);
+  written_bus_->feed_decided(DecidedPiece{serial.chunk.bytes, facts.start_time, facts.end_time,
+                                          facts.stream, facts.kind == RecordKind::Noise});
+  if (serial.lost_after > 0) {
+    written_bus_->data_lost(facts.stream, facts.end_time, serial.lost_after);
+  }
+}
+
+// The bus a record of pvtap's own capture names, made with the settings of the run that wrote
+// it where the command line gave none.
+BusSession& Pipeline::written_bus(const std::optional<RunFacts>& run) {
+  if (BusSession* bus = buses_.find(written_bus_name_)) return *bus;
+  if (run) {
+    if (!settings_.given.dialects) settings_.dialects = run->dialects;
+    if (!settings_.given.baud) settings_.baud = run->baud;
+    if (!settings_.given.timeout) settings_.timeout = run->timeout;
+  }
+  return buses_.add(written_bus_name_, bus_options(InputKind::ExportedPdu));
 }
 
 BusSessionOptions Pipeline::bus_options(InputKind kind) const {
