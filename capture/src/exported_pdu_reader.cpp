@@ -58,12 +58,14 @@ std::optional<ExportedPdu> exported_pdu_record(std::span<const std::uint8_t> rec
 }
 
 std::optional<RecordFacts> record_facts(std::span<const std::uint8_t> v) {
-  if (v.size() != exported_pdu::kPvtapRecordLength || v[0] != exported_pdu::kPvtapTagVersion) {
+  const bool counted_loss = v.size() == exported_pdu::kPvtapLossRecordLength;
+  if ((v.size() != exported_pdu::kPvtapRecordLength && !counted_loss) ||
+      v[0] != exported_pdu::kPvtapTagVersion) {
     return std::nullopt;
   }
   RecordFacts f;
   if (v[1] < static_cast<std::uint8_t>(RecordKind::Frame) ||
-      v[1] > static_cast<std::uint8_t>(RecordKind::End)) {
+      v[1] > static_cast<std::uint8_t>(RecordKind::Loss)) {
     return std::nullopt;
   }
   f.kind = static_cast<RecordKind>(v[1]);
@@ -71,6 +73,10 @@ std::optional<RecordFacts> record_facts(std::span<const std::uint8_t> v) {
   f.stream = static_cast<Direction>(v[2]);
   f.start_time = be_double(v, 4);
   f.end_time = be_double(v, 12);
+  if (counted_loss) {
+    if (f.kind != RecordKind::Loss) return std::nullopt;
+    f.lost_bytes = (std::uint64_t{be32(v, 20)} << 32) | be32(v, 24);
+  }
   return f;
 }
 

@@ -43,13 +43,19 @@ std::size_t put_double(std::uint8_t* out, double v) {
 
 // pvtap's record tag: kind, stream, exact first- and last-byte times (exported_pdu_tags.h).
 std::size_t put_record_facts(std::uint8_t* out, const RecordFacts& f) {
-  std::size_t at = put_tag(out, exported_pdu::kTagPvtapRecord, exported_pdu::kPvtapRecordLength);
+  const std::uint16_t length =
+      f.lost_bytes ? exported_pdu::kPvtapLossRecordLength : exported_pdu::kPvtapRecordLength;
+  std::size_t at = put_tag(out, exported_pdu::kTagPvtapRecord, length);
   out[at++] = exported_pdu::kPvtapTagVersion;
   out[at++] = static_cast<std::uint8_t>(f.kind);
   out[at++] = static_cast<std::uint8_t>(f.stream);
   out[at++] = 0;
   at += put_double(out + at, f.start_time);
   at += put_double(out + at, f.end_time);
+  if (f.lost_bytes) {
+    at += put32(out + at, static_cast<std::uint32_t>(*f.lost_bytes >> 32));
+    at += put32(out + at, static_cast<std::uint32_t>(*f.lost_bytes));
+  }
   return at;
 }
 
@@ -116,8 +122,14 @@ void ExportedPduWriter::write_record(const RecordFacts& facts, const RunFacts* r
 }
 
 void ExportedPduWriter::write_end(double time) {
-  const RecordFacts facts{RecordKind::End, Direction::Unknown, time, time};
+  const RecordFacts facts{RecordKind::End, Direction::Unknown, time, time, {}};
   write(time, Direction::Unknown, {}, &facts, nullptr);
+}
+
+void ExportedPduWriter::write_loss(double time, Direction stream,
+                                   std::optional<std::uint64_t> lost_bytes, const RunFacts* run) {
+  const RecordFacts facts{RecordKind::Loss, stream, time, time, lost_bytes};
+  write(time, Direction::Unknown, {}, &facts, run);
 }
 
 void ExportedPduWriter::write(double time, Direction direction, std::span<const std::uint8_t> bytes,

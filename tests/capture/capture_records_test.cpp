@@ -89,9 +89,9 @@ TEST(ExportedPdu, PvtapRecordsCarryTheirRunsFactsExactly) {
   const std::string path = temp_path("pvtap_facts.pcap");
   const Bytes reply = {0x01, 0x03, 0x02, 0x00, 0x07, 0xF9, 0x87};  // its check damaged
   // Times no microsecond stamp holds: the tag keeps every bit of them.
-  const RecordFacts frame{RecordKind::Frame, Direction::Unknown, 1790000000.1234567,
-                          1790000000.1307481};
-  const RecordFacts noise{RecordKind::Noise, Direction::FromSlave, 1790000000.2, 1790000000.21};
+  const RecordFacts frame{
+      RecordKind::Frame, Direction::Unknown, 1790000000.1234567, 1790000000.1307481, {}};
+  const RecordFacts noise{RecordKind::Noise, Direction::FromSlave, 1790000000.2, 1790000000.21, {}};
   const RunFacts run{DialectSet::only(Dialect::Gsl).with(Dialect::Modbus).preferring_modbus(),
                      19200, 0.4, "10.0.0.2:4001"};
   {
@@ -99,6 +99,8 @@ TEST(ExportedPdu, PvtapRecordsCarryTheirRunsFactsExactly) {
     ASSERT_TRUE(writer.open(path)) << writer.error();
     writer.write_record(frame, &run, Direction::FromSlave, reply);
     writer.write_record(noise, nullptr, Direction::FromSlave, Bytes{0xFF, 0x00});
+    writer.write_loss(1790000001.25, Direction::ToSlave, 51, nullptr);
+    writer.write_loss(1790000001.375, Direction::Unknown, std::nullopt, nullptr);
     writer.write_end(1790000001.5);
     ASSERT_TRUE(writer.close());
   }
@@ -129,6 +131,13 @@ TEST(ExportedPdu, PvtapRecordsCarryTheirRunsFactsExactly) {
   EXPECT_EQ(record_facts(second->pvtap_record)->kind, RecordKind::Noise);
   EXPECT_EQ(record_facts(second->pvtap_record)->stream, Direction::FromSlave);
   EXPECT_TRUE(second->pvtap_run.empty()) << "the run's tag only where the bus changes";
+  for (const std::optional<std::uint64_t> lost : {std::optional<std::uint64_t>{51}, {}}) {
+    ASSERT_EQ(file.next(packet), CaptureFile::Next::Packet);
+    const auto loss = record_facts(exported_pdu_record(packet.bytes)->pvtap_record);
+    ASSERT_TRUE(loss.has_value());
+    EXPECT_EQ(loss->kind, RecordKind::Loss);
+    EXPECT_EQ(loss->lost_bytes, lost);
+  }
   ASSERT_EQ(file.next(packet), CaptureFile::Next::Packet);
   auto end = exported_pdu_record(packet.bytes);
   ASSERT_TRUE(end && record_facts(end->pvtap_record));

@@ -55,6 +55,10 @@ void Pipeline::decided_record(const SerialBytes& serial, const RecordFacts& fact
   } else if (written_bus_ == nullptr) {
     written_bus_ = &written_bus(std::nullopt);
   }
+  if (facts.kind == RecordKind::Loss) {
+    written_bus_->data_lost(facts.stream, facts.end_time, facts.lost_bytes);
+    return;
+  }
   if (serial.lost_before) written_bus_->data_lost(facts.stream, facts.end_time, std::nullopt);
   written_bus_->feed_decided(DecidedPiece{serial.chunk.bytes, facts.start_time, facts.end_time,
                                           facts.stream, facts.kind == RecordKind::Noise});

@@ -32,17 +32,20 @@ class PduCaptureOutput : public EventWriter {
     // A Modbus/TCP frame has no CRC: as a serial record it would read back as noise, and a
     // CRC added here was never on the wire. The capture itself is its record (invmbap).
     if (f.check.carried) return;
-    const RecordFacts facts{RecordKind::Frame, f.direction, f.start_time, f.end_time};
+    const RecordFacts facts{RecordKind::Frame, f.direction, f.start_time, f.end_time, {}};
     file_.write_record(facts, run_for(c.bus),
                        f.role == Role::Request ? Direction::ToSlave : Direction::FromSlave,
                        f.bytes);
   }
   void noise(const EventContext& c, const SessionNoise& n) override {
-    const RecordFacts facts{RecordKind::Noise, n.direction, n.noise.start_time, n.noise.end_time};
+    const RecordFacts facts{
+        RecordKind::Noise, n.direction, n.noise.start_time, n.noise.end_time, {}};
     file_.write_record(facts, run_for(c.bus), n.direction, n.noise.bytes);
   }
   void timeout(const EventContext&, const SessionTimeout&) override {}
-  void gap(const EventContext&, const SessionGap&) override {}
+  void gap(const EventContext& c, const SessionGap& g) override {
+    file_.write_loss(g.time, g.direction, g.lost_bytes, run_for(c.bus));
+  }
 
  private:
   // The run's tag goes with a bus's first record and wherever the bus changes: a reader takes

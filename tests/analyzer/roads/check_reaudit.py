@@ -5,7 +5,7 @@ of the run that wrote it, frame by frame (compare_verdicts.py judges, times incl
 
 usage: check_reaudit.py --pvtap PVTAP [--sim PVTAP_SIM] --scratch DIR MODE [ARG]
 modes:
-  samples DIR   every capture of the sample library in DIR
+  samples DIR [NAME...]  every capture of the sample library in DIR (or those named)
   faults        every fault class of the simulator, on each of its serial carriers
   sniff         `pvtap sniff --write` on a real pty: a damaged reply with garbage behind it,
                 and a simulated bus with every fault
@@ -85,9 +85,12 @@ class Roads:
 NOT_WRITTEN = (".mbap.pcap",)
 
 
-def check_samples(roads, directory):
-    captures = sorted(p for p in glob.glob(os.path.join(directory, "*"))
-                      if p.endswith((".pcap", ".pcapng", ".sr")))
+def check_samples(roads, directory, names):
+    if names:
+        captures = [os.path.join(directory, name) for name in names]
+    else:
+        captures = sorted(p for p in glob.glob(os.path.join(directory, "*"))
+                          if p.endswith((".pcap", ".pcapng", ".sr")))
     if not captures:
         raise SystemExit(f"no captures in {directory}")
     for capture in captures:
@@ -206,12 +209,14 @@ def main():
     parser.add_argument("--sim")
     parser.add_argument("--scratch", required=True)
     parser.add_argument("mode", choices=("samples", "faults", "sniff"))
-    parser.add_argument("arg", nargs="?")
+    parser.add_argument("arg", nargs="*")
     args = parser.parse_args()
     os.makedirs(args.scratch, exist_ok=True)
     roads = Roads(args.pvtap, args.scratch)
     if args.mode == "samples":
-        return check_samples(roads, args.arg)
+        if not args.arg:
+            parser.error("samples needs a folder")
+        return check_samples(roads, args.arg[0], args.arg[1:])
     if args.mode == "faults":
         return check_faults(roads, args.sim)
     return check_sniff(roads, args.sim)

@@ -33,6 +33,10 @@ class ExportedPduWriter {
   static constexpr std::size_t kMaxBusName = 1024;
   // The run ended at `time`, the last its clock read: a record without bytes.
   void write_end(double time);
+  // Capture data of `stream` was lost at `time` (`lost_bytes` when known): a record without
+  // bytes.
+  void write_loss(double time, Direction stream, std::optional<std::uint64_t> lost_bytes,
+                  const RunFacts* run);
   // Live capture: every record reaches the file as it is written, so that a reader (Wireshark
   // on a fifo) sees frames at once and an abrupt end loses nothing. The file header goes out
   // at once too: Wireshark waits for it before it counts down `-a duration` or shows anything.
