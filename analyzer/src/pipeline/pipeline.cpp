@@ -2,6 +2,7 @@
 
 #include "pvtap/capture/exported_pdu_reader.h"
 #include "pvtap/session/carrier_timing.h"
+#include "pvtap/statistics/bus_timing.h"
 
 namespace pvtap::analyzer {
 namespace {
@@ -32,10 +33,26 @@ void Pipeline::record(const CapturedPacket& packet) {
   } else if (const std::optional<SerialBytes> serial = input_.serial_bytes(packet)) {
     if (const std::optional<RecordFacts> decided = record_facts(serial->decided)) {
       decided_record(*serial, *decided);
+    } else if (serial->kind == InputKind::ExportedPdu) {
+      exported_pdu(*serial);
     } else {
       feed(serial_bus(serial->kind), *serial);
     }
   }
+}
+
+// A record for pvtap's dissector without pvtap's tags (an older version, the simulator, another
+// writer): by its format one frame or one noise run, stamped at its last byte. Its ends are
+// pinned, so that noise between two frames stays its own run and a damaged frame does not wait
+// for bytes of its direction; its start is taken one character time per byte before its end.
+void Pipeline::exported_pdu(const SerialBytes& serial) {
+  const BusChunk& c = serial.chunk;
+  const double start =
+      c.time - static_cast<double>(c.bytes.size()) * BusTiming(settings_.baud).char_time;
+  BusSession& bus = serial_bus(serial.kind);
+  if (serial.lost_before) bus.data_lost(c.direction, c.time, std::nullopt);
+  bus.feed_decided(DecidedPiece{c.bytes, start, c.time, c.direction, false});
+  if (serial.lost_after > 0) bus.data_lost(c.direction, c.time, serial.lost_after);
 }
 
 // A record of pvtap's own capture: a frame or noise run on its bus, as its run decided it.

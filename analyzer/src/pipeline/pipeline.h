@@ -70,6 +70,7 @@ class Pipeline : private BusProvider {
 
  private:
   BusSession& serial_bus(InputKind kind);
+  void exported_pdu(const SerialBytes& serial);
   void decided_record(const SerialBytes& serial, const RecordFacts& facts);
   BusSession& written_bus(const std::optional<RunFacts>& run);
   BusSessionOptions carrier_options(Carrier carrier) const;

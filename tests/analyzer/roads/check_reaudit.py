@@ -5,7 +5,9 @@ of the run that wrote it, frame by frame (compare_verdicts.py judges, times incl
 
 usage: check_reaudit.py --pvtap PVTAP [--sim PVTAP_SIM] --scratch DIR MODE [ARG]
 modes:
-  samples DIR [NAME...]  every capture of the sample library in DIR (or those named)
+  samples DIR [NAME...]  every capture of the sample library in DIR (or those named); and
+                the link-type-252 samples, written in the format older versions wrote (no
+                pvtap tags), hold the noise runs of their ground truth
   faults        every fault class of the simulator, on each of its serial carriers
   sniff         `pvtap sniff --write` on a real pty: a damaged reply with garbage behind it,
                 and a simulated bus with every fault
@@ -98,7 +100,27 @@ def check_samples(roads, directory, names):
             print(f"{os.path.basename(capture)}: not written by --write (Modbus/TCP ADUs)")
             continue
         roads.reaudit("sample-" + os.path.basename(capture), capture)
+        if capture.endswith(".pdu.pcap"):
+            check_old_records(roads, capture)
     return roads.exit_status("samples")
+
+
+def check_old_records(roads, capture):
+    """One record is one frame or one noise run: noise between frames stays its own run."""
+    truth_path = capture[:-len(".pdu.pcap")] + ".truth.json"
+    if not os.path.exists(truth_path):
+        return
+    with open(truth_path, encoding="utf-8") as f:
+        truth = json.load(f)
+    stem = os.path.join(roads.scratch, "old-" + os.path.basename(capture))
+    roads.audit(capture, stem + ".jsonl")
+    found = [e["raw"] for e in compare_verdicts.read_jsonl(stem + ".jsonl")
+             if e.get("type") == "noise"]
+    want = [e["hex"] for e in truth["events"] if e["type"] == "noise"]
+    roads.roads += 1
+    if found != want:
+        roads.failures.append(f"{os.path.basename(capture)}: {len(found)} noise runs, the "
+                              f"truth has {len(want)}")
 
 
 def simulate(sim, scratch, name, args):
