@@ -1,6 +1,6 @@
-// Fuzz target serial_records: the exported-PDU (link type 252) tag reader and the RTAC serial
-// (link type 250) header reader on arbitrary records. What they return must lie inside the
-// record. The first byte picks the reader; both read the rest.
+// Fuzz target serial_records: the exported-PDU (link type 252) tag reader (pvtap's own tags
+// included) and the RTAC serial (link type 250) header reader on arbitrary records. What they
+// return must lie inside the record. The first byte picks the reader; both read the rest.
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -33,6 +33,16 @@ void read_exported_pdu(std::span<const std::uint8_t> record) {
   const std::span<const std::uint8_t> name(
       reinterpret_cast<const std::uint8_t*>(r->dissector.data()), r->dissector.size());
   PVTAP_FUZZ_CHECK(inside(name, record));
+  // pvtap's own tags: their values lie inside the record, and the bus name inside the run's.
+  PVTAP_FUZZ_CHECK(inside(r->pvtap_record, record) && inside(r->pvtap_run, record));
+  if (const auto facts = pvtap::record_facts(r->pvtap_record)) {
+    PVTAP_FUZZ_CHECK(pvtap::index_of(facts->stream) < pvtap::kDirections);
+  }
+  if (const auto run = pvtap::run_facts(r->pvtap_run)) {
+    const std::span<const std::uint8_t> bus(reinterpret_cast<const std::uint8_t*>(run->bus.data()),
+                                            run->bus.size());
+    PVTAP_FUZZ_CHECK(inside(bus, r->pvtap_run));
+  }
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <pcap/pcap.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <string_view>
 
@@ -27,9 +28,56 @@ std::size_t put_tag(std::uint8_t* out, std::uint16_t tag, std::uint16_t length) 
   return 4;
 }
 
+std::size_t put32(std::uint8_t* out, std::uint32_t v) {
+  put16(out, static_cast<std::uint16_t>(v >> 16));
+  put16(out + 2, static_cast<std::uint16_t>(v));
+  return 4;
+}
+
+std::size_t put_double(std::uint8_t* out, double v) {
+  const auto bits = std::bit_cast<std::uint64_t>(v);
+  put32(out, static_cast<std::uint32_t>(bits >> 32));
+  put32(out + 4, static_cast<std::uint32_t>(bits));
+  return 8;
+}
+
+// pvtap's record tag: kind, stream, exact first- and last-byte times (exported_pdu_tags.h).
+std::size_t put_record_facts(std::uint8_t* out, const RecordFacts& f) {
+  const std::uint16_t length =
+      f.lost_bytes ? exported_pdu::kPvtapLossRecordLength : exported_pdu::kPvtapRecordLength;
+  std::size_t at = put_tag(out, exported_pdu::kTagPvtapRecord, length);
+  out[at++] = exported_pdu::kPvtapTagVersion;
+  out[at++] = static_cast<std::uint8_t>(f.kind);
+  out[at++] = static_cast<std::uint8_t>(f.stream);
+  out[at++] = 0;
+  at += put_double(out + at, f.start_time);
+  at += put_double(out + at, f.end_time);
+  if (f.lost_bytes) {
+    at += put32(out + at, static_cast<std::uint32_t>(*f.lost_bytes >> 32));
+    at += put32(out + at, static_cast<std::uint32_t>(*f.lost_bytes));
+  }
+  return at;
+}
+
+// pvtap's run tag: dialects, baud, timeout and the bus's name.
+std::size_t put_run_facts(std::uint8_t* out, const RunFacts& r) {
+  const std::size_t name = std::min(r.bus.size(), ExportedPduWriter::kMaxBusName);
+  const auto length = static_cast<std::uint16_t>(exported_pdu::kPvtapRunFixedLength + name);
+  std::size_t at = put_tag(out, exported_pdu::kTagPvtapRun, length);
+  out[at++] = exported_pdu::kPvtapTagVersion;
+  out[at++] = dialect_bits(r.dialects);
+  out[at++] = 0;
+  out[at++] = 0;
+  at += put32(out + at, r.baud);
+  at += put_double(out + at, r.timeout);
+  std::copy_n(r.bus.begin(), name, out + at);
+  return at + name;
+}
+
 // Dissector name tag ("pvtap" padded with NULs to a multiple of 4, as Wireshark writes it),
-// direction tag (when known), end tag.
-std::size_t put_tags(std::uint8_t* out, Direction direction) {
+// direction tag (when known), pvtap's tags (when given), end tag.
+std::size_t put_tags(std::uint8_t* out, Direction direction, const RecordFacts* facts,
+                     const RunFacts* run) {
   std::size_t at = 0;
   const std::string_view name = exported_pdu::kDissectorName;
   const auto padded = static_cast<std::uint16_t>((name.size() + 3) / 4 * 4);
@@ -41,10 +89,10 @@ std::size_t put_tags(std::uint8_t* out, Direction direction) {
     at += put_tag(out + at, exported_pdu::kTagP2pDirection, 4);
     const std::int32_t p2p = direction == Direction::ToSlave ? exported_pdu::kDirectionSent
                                                              : exported_pdu::kDirectionReceived;
-    const auto raw = static_cast<std::uint32_t>(p2p);
-    at += put16(out + at, static_cast<std::uint16_t>(raw >> 16));
-    at += put16(out + at, static_cast<std::uint16_t>(raw));
+    at += put32(out + at, static_cast<std::uint32_t>(p2p));
   }
+  if (facts != nullptr) at += put_record_facts(out + at, *facts);
+  if (run != nullptr) at += put_run_facts(out + at, *run);
   at += put_tag(out + at, exported_pdu::kTagEnd, 0);
   return at;
 }
@@ -68,11 +116,29 @@ void ExportedPduWriter::write_noise(double time, Direction direction,
   }
 }
 
-void ExportedPduWriter::write(double time, Direction direction,
-                              std::span<const std::uint8_t> bytes) {
+void ExportedPduWriter::write_record(const RecordFacts& facts, const RunFacts* run,
+                                     Direction direction, std::span<const std::uint8_t> bytes) {
+  write(facts.end_time, direction, bytes, &facts, run);
+}
+
+void ExportedPduWriter::write_end(double time) {
+  const RecordFacts facts{RecordKind::End, Direction::Unknown, time, time, {}};
+  write(time, Direction::Unknown, {}, &facts, nullptr);
+}
+
+void ExportedPduWriter::write_loss(double time, Direction stream,
+                                   std::optional<std::uint64_t> lost_bytes, const RunFacts* run) {
+  const RecordFacts facts{RecordKind::Loss, stream, time, time, lost_bytes};
+  write(time, Direction::Unknown, {}, &facts, run);
+}
+
+void ExportedPduWriter::write(double time, Direction direction, std::span<const std::uint8_t> bytes,
+                              const RecordFacts* facts, const RunFacts* run) {
   if (!file_.is_open()) return;
-  static_assert(sizeof(record_) >= 64 + 4096 && sizeof(record_) >= 64 + kMaxFrameLength);
-  const std::size_t tags = put_tags(record_.data(), direction);
+  constexpr std::size_t kMaxTags = 128 + kMaxBusName;
+  static_assert(sizeof(record_) >= kMaxTags + 4096 &&
+                sizeof(record_) >= kMaxTags + kMaxFrameLength);
+  const std::size_t tags = put_tags(record_.data(), direction, facts, run);
   const std::size_t length = std::min(bytes.size(), record_.size() - tags);
   std::copy_n(bytes.begin(), length, record_.begin() + static_cast<std::ptrdiff_t>(tags));
   // A capture timestamp may be any 64-bit value: held to what int64 microseconds can count.

@@ -6,9 +6,9 @@
 #include <vector>
 
 #include "pvtap/capture/capture_file.h"
+#include "pvtap/capture/exported_pdu_reader.h"
 #include "pvtap/capture/exported_pdu_writer.h"
 #include "pvtap/capture/link_types.h"
-#include "pvtap/capture/exported_pdu_reader.h"
 #include "pvtap/capture/rtac_record.h"
 
 namespace pvtap::analyzer {
@@ -83,6 +83,91 @@ TEST(ExportedPdu, WrittenFileReadsBackWithTagsAndTimes) {
   EXPECT_EQ(packet.bytes.size(), 12u + 4u + 1u);
   EXPECT_EQ(file.next(packet), CaptureFile::Next::End);
   std::remove(path.c_str());
+}
+
+TEST(ExportedPdu, PvtapRecordsCarryTheirRunsFactsExactly) {
+  const std::string path = temp_path("pvtap_facts.pcap");
+  const Bytes reply = {0x01, 0x03, 0x02, 0x00, 0x07, 0xF9, 0x87};  // its check damaged
+  // Times no microsecond stamp holds: the tag keeps every bit of them.
+  const RecordFacts frame{
+      RecordKind::Frame, Direction::Unknown, 1790000000.1234567, 1790000000.1307481, {}};
+  const RecordFacts noise{RecordKind::Noise, Direction::FromSlave, 1790000000.2, 1790000000.21, {}};
+  const RunFacts run{DialectSet::only(Dialect::Gsl).with(Dialect::Modbus).preferring_modbus(),
+                     19200, 0.4, "10.0.0.2:4001"};
+  {
+    ExportedPduWriter writer;
+    ASSERT_TRUE(writer.open(path)) << writer.error();
+    writer.write_record(frame, &run, Direction::FromSlave, reply);
+    writer.write_record(noise, nullptr, Direction::FromSlave, Bytes{0xFF, 0x00});
+    writer.write_loss(1790000001.25, Direction::ToSlave, 51, nullptr);
+    writer.write_loss(1790000001.375, Direction::Unknown, std::nullopt, nullptr);
+    writer.write_end(1790000001.5);
+    ASSERT_TRUE(writer.close());
+  }
+  CaptureFile file;
+  ASSERT_TRUE(file.open(path)) << file.error();
+  CapturedPacket packet;
+  ASSERT_EQ(file.next(packet), CaptureFile::Next::Packet);
+  EXPECT_DOUBLE_EQ(packet.time, 1790000000.130748);  // stamped at the last byte, as before
+  auto first = exported_pdu_record(packet.bytes);
+  ASSERT_TRUE(first.has_value());
+  const auto first_facts = record_facts(first->pvtap_record);
+  const auto first_run = run_facts(first->pvtap_run);
+  ASSERT_TRUE(first_facts && first_run);
+  EXPECT_EQ(first->dissector, "pvtap");
+  EXPECT_EQ(first->direction, Direction::FromSlave);
+  EXPECT_EQ(first_facts->kind, RecordKind::Frame);
+  EXPECT_EQ(first_facts->stream, Direction::Unknown);
+  EXPECT_EQ(first_facts->start_time, frame.start_time);
+  EXPECT_EQ(first_facts->end_time, frame.end_time);
+  EXPECT_EQ(first_run->dialects, run.dialects);
+  EXPECT_EQ(first_run->baud, 19200u);
+  EXPECT_EQ(first_run->timeout, 0.4);
+  EXPECT_EQ(first_run->bus, "10.0.0.2:4001");
+  EXPECT_EQ(Bytes(first->pdu.begin(), first->pdu.end()), reply);
+  ASSERT_EQ(file.next(packet), CaptureFile::Next::Packet);
+  auto second = exported_pdu_record(packet.bytes);
+  ASSERT_TRUE(second && record_facts(second->pvtap_record));
+  EXPECT_EQ(record_facts(second->pvtap_record)->kind, RecordKind::Noise);
+  EXPECT_EQ(record_facts(second->pvtap_record)->stream, Direction::FromSlave);
+  EXPECT_TRUE(second->pvtap_run.empty()) << "the run's tag only where the bus changes";
+  for (const std::optional<std::uint64_t> lost : {std::optional<std::uint64_t>{51}, {}}) {
+    ASSERT_EQ(file.next(packet), CaptureFile::Next::Packet);
+    const auto loss = record_facts(exported_pdu_record(packet.bytes)->pvtap_record);
+    ASSERT_TRUE(loss.has_value());
+    EXPECT_EQ(loss->kind, RecordKind::Loss);
+    EXPECT_EQ(loss->lost_bytes, lost);
+  }
+  ASSERT_EQ(file.next(packet), CaptureFile::Next::Packet);
+  auto end = exported_pdu_record(packet.bytes);
+  ASSERT_TRUE(end && record_facts(end->pvtap_record));
+  EXPECT_EQ(record_facts(end->pvtap_record)->kind, RecordKind::End);
+  EXPECT_EQ(record_facts(end->pvtap_record)->end_time, 1790000001.5);
+  EXPECT_TRUE(end->pdu.empty());
+  EXPECT_EQ(file.next(packet), CaptureFile::Next::End);
+  std::remove(path.c_str());
+}
+
+TEST(ExportedPdu, PvtapTagsOfAnotherVersionAreLeftUnread) {
+  Bytes record = {0x70, 0x76, 0x00, 0x14, 0x02, 0x01, 0x00, 0x00};  // version 2
+  record.resize(4 + 20, 0);
+  const Bytes tail = {0x00, 0x0C, 0x00, 0x05, 'p',  'v',  't', 'a',
+                      'p',  0x00, 0x00, 0x00, 0x00, 0x01, 0x03};
+  record.insert(record.end(), tail.begin(), tail.end());
+  const auto facts_of = [](const Bytes& r) {
+    return record_facts(exported_pdu_record(r)->pvtap_record);
+  };
+  auto pdu = exported_pdu_record(record);
+  ASSERT_TRUE(pdu.has_value());
+  EXPECT_FALSE(facts_of(record).has_value());
+  EXPECT_EQ(pdu->dissector, "pvtap");
+  record[4] = 0x01;  // version 1, but kind 9
+  record[5] = 0x09;
+  EXPECT_FALSE(facts_of(record).has_value());
+  record[5] = 0x02;
+  ASSERT_TRUE(facts_of(record).has_value());
+  EXPECT_EQ(facts_of(record)->kind, RecordKind::Noise);
+  EXPECT_FALSE(run_facts(pdu->pvtap_run).has_value()) << "no run tag";
 }
 
 TEST(CaptureFile, TellsWhatIsWrongWithAFile) {

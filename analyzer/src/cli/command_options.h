@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "mqtt/mqtt_options.h"
+#include "pipeline/protocol_choices.h"
 #include "pvtap/codec/dialect.h"
 #include "pvtap/registers/register_decoder.h"
 #include "sources/live_options.h"
@@ -25,6 +26,9 @@ struct CommonOptions {
   DialectSet dialects = DialectSet::all();
   std::uint32_t baud = 9600;
   double timeout = 1.0;  // seconds
+  // Which of --dialect, --baud and --timeout the command line gave: a capture pvtap wrote
+  // brings its run's settings, and only these override them.
+  ProtocolChoices given;
   // A silence this long between two TCP/UDP segments of one direction proves a frame
   // boundary (see ReassemblerOptions::boundary_gap); 0 never.
   double gateway_gap_ms = 50;

@@ -57,19 +57,22 @@ void add_protocol_options(CLI::App& audit, CommonOptions& o, BaudRange baud_rang
           },
           "", "dialect list"))
       ->type_name("NAME")
-      ->default_str("auto");
+      ->default_str("auto")
+      ->each([&o](const std::string&) { o.given.dialects = true; });
   const std::string baud_help = "bus baud rate (" + std::to_string(baud_range.min) + " to " +
                                 std::to_string(baud_range.max) + "), for the timing rules";
   audit.add_option("--baud", o.baud, baud_help)
       ->check(CLI::Range(baud_range.min, baud_range.max).description(""))
       ->type_name("BAUD")
-      ->default_str("9600");
+      ->default_str("9600")
+      ->each([&o](const std::string&) { o.given.baud = true; });
   audit
       .add_option("--timeout", o.timeout,
                   "seconds a request may wait for its reply before it counts as a timeout")
       ->check(CLI::Range(0.001, 3600.0).description(""))
       ->type_name("SECONDS")
-      ->default_str("1");
+      ->default_str("1")
+      ->each([&o](const std::string&) { o.given.timeout = true; });
   audit
       .add_option("--gateway-gap", o.gateway_gap_ms,
                   "milliseconds of silence between two TCP/UDP segments of one direction that "
@@ -105,7 +108,8 @@ void add_output_options(CLI::App& audit, CommonOptions& o) {
   audit
       .add_option("--write", o.write_path,
                   "also write the frames (and noise runs) to FILE as pcap with link type 252 "
-                  "(exported PDUs, dissector \"pvtap\"), for Wireshark with pvtap's plugin")
+                  "(exported PDUs, dissector \"pvtap\"), for Wireshark with pvtap's plugin; "
+                  "pvtap audit FILE gives this run's verdicts again")
       ->type_name("FILE");
   audit
       .add_option("--fail-on", o.fail_on,
@@ -259,6 +263,7 @@ PipelineSettings pipeline_settings(const CommonOptions& o) {
   s.decode_values =
       !o.summary_only || !o.values_path.empty() || !o.html_path.empty() || o.mqtt.active();
   s.gsl_ids = o.gsl_ids;
+  s.given = o.given;
   return s;
 }
 
@@ -267,6 +272,7 @@ OutputSettings output_settings(const CommonOptions& o) {
   s.format = o.format;
   s.summary_only = o.summary_only;
   s.write_path = o.write_path;
+  s.written_run = RunFacts{o.dialects, o.baud, o.timeout, {}};
   s.files = FileOutputSettings{o.values_path, o.values_format, o.html_path, o.plot_keys};
   s.mqtt = o.mqtt;
   return s;

@@ -191,6 +191,10 @@ bool capture_from(Source& source, const SniffOptions& o, Pipeline& pipeline, Run
   if (!source.open()) return false;
   LiveLoop loop(o.live, pipeline, output);
   source.run(loop, live);
+  // Requests whose timeout ran out before the stop are timeouts, whether or not the loop woke
+  // for them; the --write file carries that clock.
+  pipeline.idle(loop.last_time());
+  output.clock_ended(loop.last_time());
   pipeline.finish(loop.last_time());
   output.end_of_input(loop.last_time());
   return true;

@@ -102,6 +102,8 @@ std::optional<SerialBytes> InputRecords::exported_pdu(const CapturedPacket& pack
   SerialBytes serial;
   serial.kind = InputKind::ExportedPdu;
   serial.chunk = BusChunk{record->pdu, packet.time, record->direction};
+  serial.decided = record->pvtap_record;
+  serial.run = record->pvtap_run;
   return serial;
 }
 

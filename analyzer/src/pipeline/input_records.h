@@ -8,6 +8,7 @@
 #include "pvtap/capture/capture_file.h"
 #include "pvtap/capture/link_types.h"
 #include "pvtap/capture/network_packet.h"
+#include "pvtap/capture/pvtap_record_facts.h"
 #include "pvtap/framing/bus_chunk.h"
 #include "pvtap/session/carrier_timing.h"
 #include "report/audit_report.h"
@@ -20,6 +21,11 @@ struct SerialBytes {
   bool lost_before = false;            // bytes of unknown count were lost before these
   BusChunk chunk;
   std::uint64_t lost_after = 0;  // the record's tail, cut by the capture's snap length
+  // A record pvtap wrote: the values of its tags (exported_pdu_reader.h) with its bounds and
+  // times as the run that wrote it decided them, and that run's settings and bus; empty in
+  // files of older versions and of other writers.
+  std::span<const std::uint8_t> decided;
+  std::span<const std::uint8_t> run;
 };
 
 class InputRecords {

@@ -1,6 +1,8 @@
 #include "pipeline/pipeline.h"
 
+#include "pvtap/capture/exported_pdu_reader.h"
 #include "pvtap/session/carrier_timing.h"
+#include "pvtap/statistics/bus_timing.h"
 
 namespace pvtap::analyzer {
 namespace {
@@ -29,8 +31,69 @@ void Pipeline::record(const CapturedPacket& packet) {
     Segment segment;
     if (input_.network_packet(packet, segment)) gateway_.on_segment(segment, packet.time);
   } else if (const std::optional<SerialBytes> serial = input_.serial_bytes(packet)) {
-    feed(serial_bus(serial->kind), *serial);
+    if (const std::optional<RecordFacts> decided = record_facts(serial->decided)) {
+      decided_record(*serial, *decided);
+    } else if (serial->kind == InputKind::ExportedPdu) {
+      exported_pdu(*serial);
+    } else {
+      feed(serial_bus(serial->kind), *serial);
+    }
   }
+}
+
+// A record for pvtap's dissector without pvtap's tags (an older version, the simulator, another
+// writer): by its format one frame or one noise run, stamped at its last byte. Its ends are
+// pinned, so that noise between two frames stays its own run and a damaged frame does not wait
+// for bytes of its direction; its start is taken one character time per byte before its end.
+void Pipeline::exported_pdu(const SerialBytes& serial) {
+  const BusChunk& c = serial.chunk;
+  const double start =
+      c.time - static_cast<double>(c.bytes.size()) * BusTiming(settings_.baud).char_time;
+  BusSession& bus = serial_bus(serial.kind);
+  if (serial.lost_before) bus.data_lost(c.direction, c.time, std::nullopt);
+  bus.feed_decided(DecidedPiece{c.bytes, start, c.time, c.direction, false});
+  if (serial.lost_after > 0) bus.data_lost(c.direction, c.time, serial.lost_after);
+}
+
+// A record of pvtap's own capture: a frame or noise run on its bus, as its run decided it.
+void Pipeline::decided_record(const SerialBytes& serial, const RecordFacts& facts) {
+  if (facts.kind == RecordKind::End) {
+    // What the writing run's clock judged at its end, this run judges too.
+    buses_.idle(facts.end_time);
+    return;
+  }
+  // The run's tag comes with the first record of a bus and wherever the bus changes; a record
+  // without it is on the bus of the record before.
+  if (const std::optional<RunFacts> run = run_facts(serial.run)) {
+    if (written_bus_ == nullptr || run->bus != written_bus_name_) {
+      written_bus_name_.assign(run->bus);
+      written_bus_ = &written_bus(run);
+    }
+  } else if (written_bus_ == nullptr) {
+    written_bus_ = &written_bus(std::nullopt);
+  }
+  if (facts.kind == RecordKind::Loss) {
+    written_bus_->data_lost(facts.stream, facts.end_time, facts.lost_bytes);
+    return;
+  }
+  if (serial.lost_before) written_bus_->data_lost(facts.stream, facts.end_time, std::nullopt);
+  written_bus_->feed_decided(DecidedPiece{serial.chunk.bytes, facts.start_time, facts.end_time,
+                                          facts.stream, facts.kind == RecordKind::Noise});
+  if (serial.lost_after > 0) {
+    written_bus_->data_lost(facts.stream, facts.end_time, serial.lost_after);
+  }
+}
+
+// The bus a record of pvtap's own capture names, made with the settings of the run that wrote
+// it where the command line gave none.
+BusSession& Pipeline::written_bus(const std::optional<RunFacts>& run) {
+  if (BusSession* bus = buses_.find(written_bus_name_)) return *bus;
+  if (run) {
+    if (!settings_.given.dialects) settings_.dialects = run->dialects;
+    if (!settings_.given.baud) settings_.baud = run->baud;
+    if (!settings_.given.timeout) settings_.timeout = run->timeout;
+  }
+  return buses_.add(written_bus_name_, bus_options(InputKind::ExportedPdu));
 }
 
 BusSessionOptions Pipeline::bus_options(InputKind kind) const {

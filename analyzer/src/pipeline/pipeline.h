@@ -13,6 +13,7 @@
 #include "gateway/gateway_traffic.h"
 #include "pipeline/bus_set.h"
 #include "pipeline/input_records.h"
+#include "pipeline/protocol_choices.h"
 #include "pvtap/capture/capture_file.h"
 #include "pvtap/capture/link_types.h"
 #include "pvtap/session/bus_session.h"
@@ -31,6 +32,7 @@ struct PipelineSettings {
   bool decode_values = true;   // per-frame values for the output (not for --summary-only)
   bool has_timestamps = true;  // false for plain dumps
   GslIdReading gsl_ids = GslIdReading::Decimal;  // for the report's wording
+  ProtocolChoices given;
 };
 
 // A gateway flow gets its bus from the pipeline (BusProvider): one bus per gateway endpoint.
@@ -68,6 +70,9 @@ class Pipeline : private BusProvider {
 
  private:
   BusSession& serial_bus(InputKind kind);
+  void exported_pdu(const SerialBytes& serial);
+  void decided_record(const SerialBytes& serial, const RecordFacts& facts);
+  BusSession& written_bus(const std::optional<RunFacts>& run);
   BusSessionOptions carrier_options(Carrier carrier) const;
   BusSession& gateway_bus(const std::string& name) override;
   BusSession& logger_bus(const std::string& name) override;
@@ -76,6 +81,9 @@ class Pipeline : private BusProvider {
   BusSet buses_;
   GatewayTraffic gateway_;
   InputRecords input_;
+  // The bus of the last record of pvtap's own capture, and its name.
+  BusSession* written_bus_ = nullptr;
+  std::string written_bus_name_;
 };
 
 }  // namespace pvtap::analyzer

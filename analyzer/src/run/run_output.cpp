@@ -27,7 +27,7 @@ RunOutput::RunOutput(const OutputSettings& settings, OutputStream& out)
 bool RunOutput::open() {
   if (!settings_.write_path.empty()) {
     pcap_.emplace();
-    if (!pcap_->open(settings_.write_path, settings_.flush_each_record)) {
+    if (!pcap_->open(settings_.write_path, settings_.flush_each_record, settings_.written_run)) {
       std::fprintf(stderr, "pvtap: cannot write %s: %s\n", settings_.write_path.c_str(),
                    pcap_->error().c_str());
       return false;
@@ -82,6 +82,10 @@ void RunOutput::tick(double now) {
 
 void RunOutput::line_errors(std::string_view bus, const std::optional<LineErrorCounts>& counts) {
   if (mqtt_) mqtt_->line_errors(bus, counts);
+}
+
+void RunOutput::clock_ended(double time) {
+  if (pcap_) pcap_->end_of_input(time);
 }
 
 void RunOutput::end_of_input(double time) {

@@ -24,6 +24,7 @@ struct OutputSettings {
   OutputFormat format = OutputFormat::Text;
   bool summary_only = false;  // no per-event lines, only the report
   std::string write_path;     // --write; empty for none
+  RunFacts written_run;       // the settings --write records carry (the bus is each event's)
   bool flush_each_record = false;
   FileOutputSettings files;  // --values, --html
   MqttOptions mqtt;          // --mqtt
@@ -50,6 +51,9 @@ class RunOutput {
   std::optional<double> next_due() const { return mqtt_ ? mqtt_->next_due() : std::nullopt; }
   bool wants_line_errors() const { return mqtt_ != nullptr; }
   void line_errors(std::string_view bus, const std::optional<LineErrorCounts>& counts);
+  // A live run's clock read `time` last and judged the waiting requests by it: the --write
+  // file says so, for an audit of it to judge them alike.
+  void clock_ended(double time);
   // The input ended at `time`: the broker gets everything held.
   void end_of_input(double time);
   bool stdout_pending() const { return !out_.buffer().empty(); }

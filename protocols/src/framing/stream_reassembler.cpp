@@ -46,6 +46,9 @@ struct StreamReassembler::Impl {
   bool silence_after = false;
   bool give_up = false;     // see ReassemblerOptions::give_up_after
   bool after_frame = true;  // input starts here: as good a frame boundary as a frame's end
+  // The piece being fed by feed_decided, whose times replace the timeline's when a frame or
+  // noise run spans all of it.
+  const DecidedPiece* decided = nullptr;
 
   std::uint64_t offset_of(std::size_t index) const { return buffer_offset + index; }
   bool nothing_pending() const { return head == buffer.size() && noise_begin == head; }
@@ -77,6 +80,10 @@ struct StreamReassembler::Impl {
     const auto times = timeline.span_times(e.offset, offset_of(head - 1));
     e.start_time = times.start;
     e.end_time = times.end;
+    if (decided != nullptr && e.bytes.size() == decided->bytes.size()) {
+      e.start_time = decided->start_time;
+      e.end_time = decided->end_time;
+    }
     totals.noise_bytes += e.bytes.size();
     ++totals.noise_runs;
     sink.on_noise(e);
@@ -93,6 +100,10 @@ struct StreamReassembler::Impl {
     e.start_time = times.start;
     e.end_time = times.end;
     e.max_inner_gap = times.max_gap;
+    if (decided != nullptr && d.frame.length == decided->bytes.size()) {
+      e.start_time = decided->start_time;
+      e.end_time = decided->end_time;
+    }
     e.dialect = d.frame.dialect;
     e.role = d.frame.role;
     e.check = d.check;
@@ -190,6 +201,33 @@ void StreamReassembler::feed(const BusChunk& chunk) {
   m.buffer.insert(m.buffer.end(), window_end, chunk.bytes.end());
   m.data = m.buffer;
   m.process(false);
+}
+
+void StreamReassembler::feed_decided(const DecidedPiece& piece) {
+  if (piece.bytes.empty()) return;
+  Impl& m = *impl_;
+  if (!m.nothing_pending()) m.process(true);
+  m.reset_buffer();
+  m.totals.bytes_in += piece.bytes.size();
+  m.silence_after = false;
+  m.give_up = false;
+  m.timeline.add(m.offset_of(piece.bytes.size()), piece.bytes.size(), piece.end_time,
+                 piece.direction);
+  m.decided = &piece;
+  m.data = piece.bytes;
+  if (piece.noise) {
+    m.head = piece.bytes.size();
+    m.flush_noise();
+  } else {
+    m.after_frame = true;  // its writer decided a frame starts here
+    m.process(true);
+  }
+  m.decided = nullptr;
+  m.timeline.drop_before(m.offset_of(piece.bytes.size()));
+  m.buffer_offset += piece.bytes.size();
+  m.head = m.noise_begin = 0;
+  m.data = m.buffer;
+  m.after_frame = true;  // and one ends where it ends
 }
 
 void StreamReassembler::idle(double now) {

@@ -233,19 +233,32 @@ BusSession::BusSession(BusSessionOptions options, const RegisterDecoder& decoder
 
 BusSession::~BusSession() = default;
 
-void BusSession::feed(const BusChunk& chunk) {
+void BusSession::turn_of(Direction direction, bool previous_turn_complete) {
   // Half duplex: when one side starts talking the other has finished its turn.
   const Direction previous = impl_->last_direction;
-  impl_->last_direction = chunk.direction;
-  if (chunk.direction != Direction::Unknown && previous != Direction::Unknown &&
-      previous != chunk.direction && chunk.previous_turn_complete) {
+  impl_->last_direction = direction;
+  if (direction != Direction::Unknown && previous != Direction::Unknown && previous != direction &&
+      previous_turn_complete) {
     end_turn(previous);
   }
+}
+
+void BusSession::feed(const BusChunk& chunk) {
+  turn_of(chunk.direction, chunk.previous_turn_complete);
   if (chunk.bytes.empty()) return;
   impl_->times.seen(chunk.time);
   Impl::DirectionStream& s = impl_->stream(chunk.direction);
   s.last_feed_time = chunk.time;
   s.reassembler.feed(chunk);
+}
+
+void BusSession::feed_decided(const DecidedPiece& piece) {
+  turn_of(piece.direction, true);
+  if (piece.bytes.empty()) return;
+  impl_->times.seen(piece.end_time);
+  Impl::DirectionStream& s = impl_->stream(piece.direction);
+  s.last_feed_time = piece.end_time;
+  s.reassembler.feed_decided(piece);
 }
 
 // The dialect whose length rules a frame's bytes fit exactly, `asked` (the dialect of the last

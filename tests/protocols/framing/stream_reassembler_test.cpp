@@ -277,5 +277,66 @@ TEST(StreamReassembler, FrameSplitAtEveryPointIsReassembled) {
   }
 }
 
+// Frames and noise runs with their times, as pvtap's own capture of them gives them back.
+struct TimedSink : ReassemblerSink {
+  struct Piece {
+    bool frame;
+    std::uint64_t offset;
+    std::size_t size;
+    double start;
+    double end;
+    bool check_ok;
+  };
+  void on_frame(const FrameEvent& e) override {
+    pieces.push_back({true, e.offset, e.bytes.size(), e.start_time, e.end_time, e.check.ok});
+  }
+  void on_noise(const NoiseEvent& e) override {
+    pieces.push_back({false, e.offset, e.bytes.size(), e.start_time, e.end_time, false});
+  }
+  std::vector<Piece> pieces;
+};
+
+TEST(StreamReassembler, DecidedPiecesKeepTheirBoundsAndTimes) {
+  TimedSink sink;
+  StreamReassembler r({}, sink);
+  const std::vector<std::uint8_t> garbage = {0xFF, 0x00, 0xF0};
+  // A damaged reply whose end nothing but its record pins, noise right behind it, and noise
+  // that holds a good request (its run decided so: it stays noise), each timed to the bit.
+  r.feed_decided(DecidedPiece{kBadEcho, 10.0000001, 10.0135, Direction::Unknown, false});
+  r.feed_decided(DecidedPiece{garbage, 10.0136, 10.0167, Direction::Unknown, true});
+  r.feed_decided(
+      DecidedPiece{join({garbage, kGoodRequest}), 10.5, 10.51, Direction::Unknown, true});
+  r.feed_decided(DecidedPiece{kGoodRequest, 11.25, 11.2583, Direction::Unknown, false});
+  ASSERT_EQ(sink.pieces.size(), 4u) << "each piece is reported as it comes, whole";
+  EXPECT_TRUE(sink.pieces[0].frame);
+  EXPECT_FALSE(sink.pieces[0].check_ok);
+  EXPECT_EQ(sink.pieces[0].start, 10.0000001);
+  EXPECT_EQ(sink.pieces[0].end, 10.0135);
+  EXPECT_FALSE(sink.pieces[1].frame);
+  EXPECT_EQ(sink.pieces[1].offset, kBadEcho.size());
+  EXPECT_EQ(sink.pieces[1].start, 10.0136);
+  EXPECT_FALSE(sink.pieces[2].frame);
+  EXPECT_EQ(sink.pieces[2].size, garbage.size() + kGoodRequest.size());
+  EXPECT_EQ(sink.pieces[2].end, 10.51);
+  EXPECT_TRUE(sink.pieces[3].frame);
+  EXPECT_TRUE(sink.pieces[3].check_ok);
+  EXPECT_EQ(sink.pieces[3].offset, kBadEcho.size() + 2 * garbage.size() + kGoodRequest.size());
+  EXPECT_EQ(r.totals().bytes_in, r.totals().frame_bytes + r.totals().noise_bytes);
+  EXPECT_EQ(r.totals().noise_runs, 2u);
+}
+
+TEST(StreamReassembler, BytesPendingBeforeADecidedPieceAreDecidedFirst) {
+  TimedSink sink;
+  StreamReassembler r({}, sink);
+  r.feed(BusChunk{kBadEcho, 5.0, Direction::Unknown});
+  EXPECT_TRUE(sink.pieces.empty());
+  r.feed_decided(DecidedPiece{kGoodRequest, 6.0, 6.0083, Direction::Unknown, false});
+  ASSERT_EQ(sink.pieces.size(), 2u);
+  EXPECT_TRUE(sink.pieces[0].frame);
+  EXPECT_FALSE(sink.pieces[0].check_ok);
+  EXPECT_EQ(sink.pieces[1].offset, kBadEcho.size());
+  EXPECT_EQ(r.pending_bytes(), 0u);
+}
+
 }  // namespace
 }  // namespace pvtap

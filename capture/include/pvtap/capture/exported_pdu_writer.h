@@ -10,6 +10,7 @@
 #include <string>
 
 #include "pvtap/capture/pcap_writer.h"
+#include "pvtap/capture/pvtap_record_facts.h"
 #include "pvtap/codec/dialect.h"
 #include "pvtap/framing/bus_chunk.h"
 
@@ -23,6 +24,19 @@ class ExportedPduWriter {
   void write_frame(double time, Role role, std::span<const std::uint8_t> frame);
   // A noise run; its direction tag is left out when the direction is unknown.
   void write_noise(double time, Direction direction, std::span<const std::uint8_t> noise);
+  // A frame or noise run as a pvtap run decided it, with what a later audit needs to give
+  // that run's verdicts (pvtap_record_facts.h): stamped at its last byte, direction tag
+  // `direction` (a frame's role, a noise run's stream); the run's tag when `run` is given (a
+  // bus name of at most kMaxBusName bytes).
+  void write_record(const RecordFacts& facts, const RunFacts* run, Direction direction,
+                    std::span<const std::uint8_t> bytes);
+  static constexpr std::size_t kMaxBusName = 1024;
+  // The run ended at `time`, the last its clock read: a record without bytes.
+  void write_end(double time);
+  // Capture data of `stream` was lost at `time` (`lost_bytes` when known): a record without
+  // bytes.
+  void write_loss(double time, Direction stream, std::optional<std::uint64_t> lost_bytes,
+                  const RunFacts* run);
   // Live capture: every record reaches the file as it is written, so that a reader (Wireshark
   // on a fifo) sees frames at once and an abrupt end loses nothing. The file header goes out
   // at once too: Wireshark waits for it before it counts down `-a duration` or shows anything.
@@ -39,9 +53,11 @@ class ExportedPduWriter {
   PcapWriter file_;
   std::uint64_t records_ = 0;
   bool flush_each_record_ = false;
-  void write(double time, Direction direction, std::span<const std::uint8_t> bytes);
+  void write(double time, Direction direction, std::span<const std::uint8_t> bytes,
+             const RecordFacts* facts = nullptr, const RunFacts* run = nullptr);
 
-  std::array<std::uint8_t, 8192> record_{};  // tags + the largest frame or noise run, reused
+  // tags (a bus name included) + the largest frame or noise run, reused
+  std::array<std::uint8_t, 8192> record_{};
 };
 
 }  // namespace pvtap

@@ -39,6 +39,17 @@ struct NoiseEvent {
   double end_time = 0.0;
 };
 
+// DecidedPiece: bytes whose bounds an earlier run already decided (pvtap's own capture of
+// them, read again): one frame or one noise run, with the true times of its first byte's start
+// and its last byte's end. `bytes` need only live for the call.
+struct DecidedPiece {
+  std::span<const std::uint8_t> bytes;
+  double start_time = 0.0;
+  double end_time = 0.0;
+  Direction direction = Direction::Unknown;  // of the stream it was read from
+  bool noise = false;
+};
+
 // ReassemblerSink: receives the reassembler's events in bus order.
 class ReassemblerSink {
  public:
@@ -98,6 +109,10 @@ class StreamReassembler {
   StreamReassembler& operator=(const StreamReassembler&) = delete;
 
   void feed(const BusChunk& chunk);
+  // A piece decided before: whatever was pending is decided first, then the piece is a noise
+  // run as it stands, or a frame read between its pinned ends (its check decides good or
+  // bad), timed as the piece says. Nothing after it joins it.
+  void feed_decided(const DecidedPiece& piece);
   // The bus has been silent up to `now` (live capture); may resolve pending bytes.
   void idle(double now);
   // When idle() can next decide something: with bytes pending, the moment the silence after

@@ -149,6 +149,9 @@ class BusSession {
   // Half duplex: a chunk of known direction after one of the other known direction ends the
   // other's turn (end_turn), unless the chunk says that turn is not complete.
   void feed(const BusChunk& chunk);
+  // A frame or noise run an earlier run decided (StreamReassembler::feed_decided), in the
+  // stream of `piece.direction`; ends the other direction's turn as feed does.
+  void feed_decided(const DecidedPiece& piece);
   // A frame a carrier delivered whole and without a check of its own (a Modbus/TCP ADU):
   // `frame` is its station byte and PDU, at `offset` in `direction`'s stream, sent at `time`.
   // It bypasses the reassembler; its check says the carrier vouched for it (FrameCheck). Its
@@ -183,6 +186,7 @@ class BusSession {
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
+  void turn_of(Direction direction, bool previous_turn_complete);
 };
 
 }  // namespace pvtap
