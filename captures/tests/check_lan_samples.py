@@ -166,7 +166,7 @@ def check_v5(path, truth, problems):
                 if asked:
                     asked["reply"] = ("response", rtu.hex())
                 if late:
-                    counts["late_replies"] += 1
+                    counts["replies_after_next_request"] += 1
                     latency = (f["ts"] - asked["ts"]) * 1e3
                     problems.check(abs(latency - t["latency_ms"]) < 0.002,
                                    f"{where}: latency {latency} ms, truth {t['latency_ms']}")
@@ -338,7 +338,8 @@ def check_stick(sim, scratch, problems):
     with open(truth_path, encoding="utf-8") as f:
         truth = json.load(f)
     check_v5(capture, truth, problems)
-    for key in ("stick_timeouts", "refused_requests", "late_replies", "dropped_replies"):
+    for key in ("stick_timeouts", "refused_requests", "replies_after_next_request",
+                "dropped_replies"):
         problems.check(truth["v5"][key] > 0, f"{capture}: no {key} in the truth")
     # No --heartbeat: each heartbeat (but one merged with a reply) is where a reply was due,
     # and the reply comes late, after the client's next request.

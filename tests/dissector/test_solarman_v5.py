@@ -3,6 +3,7 @@ verdicts, the RTU frames handed to invrtu, the same verdicts as pvtap audit in o
 two, frames across and within segments, and Modbus/TCP left to mbtcp."""
 
 import json
+import os
 import subprocess
 import unittest
 
@@ -18,6 +19,31 @@ from v5_frames import (REQUEST, RESPONSE, SERIAL, broken_stick, request_payload,
 V5_COUNTS = {"frames": "invv5.control", "bad_checksums": "invv5.checksum.bad",
              "quirk_frames": "invv5.quirk", "truncated_frames": "invv5.truncated",
              "length_mismatches": "invv5.length_mismatch"}
+
+
+# A stick as real ones behave (issue 35), from pvtap-sim with its truth: codes 05 (no reply on
+# the bus) and 06 (a client that addressed another serial), heartbeats where a reply was due
+# and replies after the client's next request, besides the carrier faults of the samples.
+STICK_FAULTS = ("stick_code=50,wrong_serial=8,late=10,beat_first=10,quirk=20,drop=3,"
+                "bad_checksum=2,split=10,merge=3")
+# pvtap audit's summary key of the stick's codes, and the invv5 field or expert that says each.
+STICK_COUNTS = {"stick_codes": "invv5.stick_code", "stick_timeouts": "invv5.stick_no_reply",
+                "refused_requests": "invv5.stick_refused",
+                "other_stick_codes": "invv5.stick_code_other"}
+
+
+def simulated_stick(directory):
+    """The capture and its ground truth."""
+    sim = os.environ.get("PVTAP_SIM")
+    if not sim or not os.access(sim, os.X_OK):
+        raise RuntimeError("PVTAP_SIM must name the built pvtap-sim (got %r)" % sim)
+    capture, truth = os.path.join(directory, "stick.v5.pcap"), os.path.join(directory, "t.json")
+    subprocess.run([sim, "--seed", "35", "--dialect", "gsl,hybrid", "--inverters", "4",
+                    "--duration", "120", "--period", "5", "--faults", "missing=10,corrupt=3",
+                    "--v5", capture, "--v5-faults", STICK_FAULTS, "--truth", truth],
+                   check=True, timeout=120)
+    with open(truth) as f:
+        return capture, json.load(f)
 
 
 def audit_v5(capture):
@@ -137,6 +163,33 @@ class SolarmanV5(PluginTestCase, unittest.TestCase):
             (["0x1510"], ["0x0001"]),
             (["0x1510"], ["0x0003"]),
         ])
+
+    def test_a_simulated_stick_gets_the_verdicts_of_pvtap_audit_and_its_truth(self):
+        capture, truth = simulated_stick(self.tshark.home)
+        self.tshark._hand_over()
+        self.assert_agrees_with_audit(capture)
+        want = {"stick_codes": truth["v5"]["stick_codes"],
+                "stick_timeouts": truth["v5"]["stick_timeouts"],
+                "refused_requests": truth["v5"]["refused_requests"], "other_stick_codes": 0}
+        self.assertGreater(want["stick_timeouts"], 0)
+        self.assertGreater(want["refused_requests"], 0)
+        for passes in (1, 2):
+            out = self.tshark.run(["-r", capture] + (["-2"] if passes == 2 else []) +
+                                  ["-Y", "invv5.stick_code", "-T", "json",
+                                   "--no-duplicate-keys"]).stdout
+            counts = {}
+            for packet in json.loads(out):
+                field_counts(packet["_source"]["layers"].get("invv5", []), counts)
+            with self.subTest(passes=passes):
+                self.assertEqual({k: counts.get(f, 0) for k, f in STICK_COUNTS.items()}, want)
+        refusals = self.tshark.fields(capture, ["_ws.expert.message"], "invv5.stick_refused")
+        self.assertEqual(len(refusals), want["refused_requests"])
+        for row in refusals:
+            self.assertIn("The stick refused it: the client addressed logger 2111130827; the "
+                          "stick is 2712345678", row[0])
+        # The bus is the stick's: no second bus named after the serial the client addressed.
+        self.assertEqual(self.tshark.fields(capture, ["invv5.serial"],
+                                            "invv5.serial == 2111130827 && invrtu"), [])
 
     def test_header_fields_are_filterable(self):
         serials = self.tshark.fields(self.reads, ["invv5.serial"], "invv5.control == 0x4710")

@@ -24,7 +24,8 @@ struct V5Counts {
   std::uint64_t frames = 0, requests = 0, responses = 0, heartbeats = 0, data_reports = 0,
                 client_answers = 0, carrier_bytes = 0, rtu_bytes = 0, quirk_bytes = 0,
                 bad_checksums = 0, dropped_replies = 0, split_frames = 0, shared_segments = 0,
-                stick_codes = 0, stick_timeouts = 0, refused_requests = 0, late_replies = 0;
+                stick_codes = 0, stick_timeouts = 0, refused_requests = 0,
+                replies_after_next_request = 0;
 };
 
 // The kinds of --v5-faults whose counts the truth names only when one of them is asked for
@@ -248,7 +249,7 @@ std::uint8_t V5Planner::send_request(std::span<const std::uint8_t> rtu,
   send(at, true, r);
   if (late_) {
     send_reply(*late_, at + 2 * kMs, false);  // after the stick acknowledged the request
-    ++n_.late_replies;
+    ++n_.replies_after_next_request;
     late_.reset();
   }
   return seq0;
@@ -339,10 +340,11 @@ LanCapture V5Planner::finish(std::uint64_t dropped) {
                        {"split_frames", n_.split_frames},
                        {"shared_segments", n_.shared_segments}};
   if (stick_behaviour(options_.faults)) {
-    out_.truth.counts.insert(out_.truth.counts.end(), {{"stick_codes", n_.stick_codes},
-                                                       {"stick_timeouts", n_.stick_timeouts},
-                                                       {"refused_requests", n_.refused_requests},
-                                                       {"late_replies", n_.late_replies}});
+    out_.truth.counts.insert(out_.truth.counts.end(),
+                             {{"stick_codes", n_.stick_codes},
+                              {"stick_timeouts", n_.stick_timeouts},
+                              {"refused_requests", n_.refused_requests},
+                              {"replies_after_next_request", n_.replies_after_next_request}});
   }
   return std::move(out_);
 }
