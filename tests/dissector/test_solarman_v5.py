@@ -12,7 +12,7 @@ from pcap_writer import Pcap, TcpFlow
 from test_sample_library import PROTOCOLS, Verdicts, add_pdu, audit_verdicts, pvtap_binary
 from tshark_runner import PluginTestCase
 from v5_frames import (REQUEST, RESPONSE, SERIAL, broken_stick, request_payload,
-                       response_payload, stick_reads, v5_frame)
+                       response_payload, stick_reads, threads_stick, v5_frame)
 
 # What pvtap audit's summary says of the sticks, and the invv5 field or expert that says the
 # same in the plugin: each is counted once per occurrence.
@@ -190,6 +190,22 @@ class SolarmanV5(PluginTestCase, unittest.TestCase):
         # The bus is the stick's: no second bus named after the serial the client addressed.
         self.assertEqual(self.tshark.fields(capture, ["invv5.serial"],
                                             "invv5.serial == 2111130827 && invrtu"), [])
+
+    def test_the_issue_threads_stick_gets_the_verdicts_of_pvtap_audit(self):
+        """Paired by sequence byte (latencies 200, 600 and 600 ms less the replies' time on
+        the wire), code 05 a timeout, 06 a refusal, text before a V5 frame apart."""
+        pcap = Pcap()
+        threads_stick(pcap)
+        capture = self.tshark.write("threads.pcap", pcap)
+        self.assert_agrees_with_audit(capture)
+        latencies = self.tshark.fields(capture, ["invrtu.response_time"],
+                                       "invrtu.role == 1 && invrtu.response_time")
+        self.assertEqual([round(float(r[0][0]), 3) for r in latencies],
+                         [0.193, 0.593, 0.593])
+        coded = self.tshark.fields(capture, ["invv5.stick_code"], "invv5.stick_no_reply")
+        self.assertEqual(coded, [[["0x05"]]])
+        refused = self.tshark.fields(capture, ["invv5.stick_code"], "invv5.stick_refused")
+        self.assertEqual(refused, [[["0x06"]]])
 
     def test_header_fields_are_filterable(self):
         serials = self.tshark.fields(self.reads, ["invv5.serial"], "invv5.control == 0x4710")

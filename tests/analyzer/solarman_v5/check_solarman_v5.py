@@ -5,7 +5,8 @@ audit: captures written here (tests/dissector/v5_frames.py encodes V5 independen
 core): 30 reads through a stick, every fifth reply with the two extra zeros, a heartbeat and
 its answer, one reply dropped, one V5 checksum broken; the same on a --port; beside an RTU
 gateway and other traffic; a stick whose lengths lie and whose last reply is cut. The summary
-counts must be exactly the script's. The library's V5 samples: the stick's counts must be the
+counts must be exactly the script's. The stick of V5 client libraries' issue threads: replies
+paired by sequence byte, the stick's codes 05 and 06, text before a V5 frame. The library's V5 samples: the stick's counts must be the
 simulator's truth.
 
 sniff: the same script played over real TCP on lo between a client and a stick written here,
@@ -31,7 +32,8 @@ sys.path.insert(0, os.path.join(HERE, "..", "..", "dissector"))
 
 from bus_frames import gsl_read_reply, rtu_read_request  # noqa: E402
 from pcap_writer import Pcap, TcpFlow  # noqa: E402
-from v5_frames import SERIAL, broken_stick, stick_reads, stick_script  # noqa: E402
+from v5_frames import (SERIAL, VERSION_TEXT, broken_stick, stick_reads,  # noqa: E402
+                       stick_script, threads_stick)
 
 SKIP = 77
 RUN_GUARD_S = 120  # the longest one pvtap run may take: a guard, not a timing check
@@ -129,6 +131,44 @@ def check_audit(args):
         script = broken_stick(pcap)
         expect_counts("broken", run_audit(args.pvtap, write(pcap, tmp, "broken.pcap")), script,
                       bad)
+        bad += check_threads_stick(args, tmp)
+    return bad
+
+
+def check_threads_stick(args, tmp):
+    """Latencies 200, 600 and 600 ms at the LAN side (less each reply's 7 bytes on the wire at
+    9600 baud, as pvtap times a stick's frames); code 05 a timeout with its reason; the
+    refusal said plainly, on no bus of its own; the text counted apart."""
+    bad = []
+    pcap = Pcap()
+    threads_stick(pcap)
+    events = run_audit(args.pvtap, write(pcap, tmp, "threads.pcap"))
+    summary, wire_ms = events[-1], 7 * 10 * 1000 / 9600
+    latencies = [e.get("latency_ms") for e in events
+                 if e.get("type") == "frame" and e.get("role") == "response"]
+    want = [round(ms - wire_ms, 3) for ms in (200, 600, 600)]
+    if [round(x or 0, 3) for x in latencies] != want:
+        bad.append("threads: latencies %s, expected %s" % (latencies, want))
+    timeouts = [e for e in events if e.get("type") == "timeout"]
+    if [(t["reason"], t.get("carrier_reason")) for t in timeouts] != \
+            [("carrier_no_reply", "the stick answered code 05")]:
+        bad.append("threads: timeouts %s, expected the one code 05 answered" % timeouts)
+    if (summary.get("timeouts"), summary.get("gateway_timeouts"), summary.get("noise_bytes"),
+            summary.get("requests"), summary.get("responses")) != (1, 1, 0, 4, 3):
+        bad.append("threads: summary timeouts, gateway_timeouts, noise_bytes, requests, "
+                   "responses %s" % ([summary.get(k) for k in ("timeouts", "gateway_timeouts",
+                                      "noise_bytes", "requests", "responses")],))
+    if [b["bus"] for b in summary["buses"]] != ["v5:4068039735"]:
+        bad.append("threads: buses %s" % [b["bus"] for b in summary["buses"]])
+    v5 = summary["network"]["solarman_v5"]
+    got = {k: v5.get(k) for k in ("stick_codes", "stick_timeouts", "refused_requests",
+                                  "replies_after_next_request", "noise_bytes", "stick_findings")}
+    expected = {"stick_codes": 2, "stick_timeouts": 1, "refused_requests": 1,
+                "replies_after_next_request": 1, "noise_bytes": len(VERSION_TEXT),
+                "stick_findings": ["the client addressed logger 2111130827; the stick is "
+                                   "4068039735"]}
+    if got != expected:
+        bad.append("threads: solarman_v5 %s, expected %s" % (got, expected))
     return bad
 
 
