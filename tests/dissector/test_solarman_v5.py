@@ -207,6 +207,19 @@ class SolarmanV5(PluginTestCase, unittest.TestCase):
         refused = self.tshark.fields(capture, ["invv5.stick_code"], "invv5.stick_refused")
         self.assertEqual(refused, [[["0x06"]]])
 
+    def test_a_lost_segment_gets_the_verdicts_of_pvtap_audit(self):
+        """A reply's segment the capture lost: the request it answered waited during a loss."""
+        pcap = Pcap()
+        flow = TcpFlow(pcap, client=("10.0.0.1", 50900), server=("10.0.0.14", 8899), time=800.0)
+        for i in range(4):
+            flow.request(v5_frame(REQUEST, i, request_payload(rtu_read_request(1, 0x03, 1050,
+                                                                               1))), after=0.5)
+            flow.reply(v5_frame(RESPONSE, i, response_payload(gsl_read_reply(1, [2300 + i]))),
+                       after=0.05)
+            if i == 1:
+                pcap.records.pop()  # lost
+        self.assert_agrees_with_audit(self.tshark.write("lost.pcap", pcap))
+
     def test_header_fields_are_filterable(self):
         serials = self.tshark.fields(self.reads, ["invv5.serial"], "invv5.control == 0x4710")
         self.assertEqual(serials, [[[str(SERIAL)]]])

@@ -56,6 +56,8 @@ SegmentedBus::CallSpan SolarmanV5Track::show(Direction d, std::uint64_t from,
   const std::uint64_t handed_to = std::clamp(s.fed_to, from, end);
   if (from > s.fed_to) {
     keep(d, s.reader.discontinuity(), time);
+    // As pvtap audit's flow: the bus is told once it has one.
+    if (bus_started_) session_.data_lost(d, time, from - s.fed_to);
     s.shift += from - s.fed_to;
     s.fed_to = from;
   }
@@ -106,13 +108,17 @@ void SolarmanV5Track::release(const v5::Release& r) {
   if (r.kind == Kind::Request || r.kind == Kind::Reply) {
     Side& s = sides_[index_of(d)];
     feeding_ = piece != nullptr ? piece->rtu : nullptr;
+    bus_started_ = true;
     feeding_from_ = s.rtu_fed;
     session_.whole_frame(BusChunk{r.rtu, r.time, d}, r.answers_request);
     s.rtu_fed += r.rtu.size();
     feeding_ = nullptr;
     return;
   }
-  if (r.kind == Kind::NoReply) session_.carrier_no_reply(r.time, r.code);
+  if (r.kind == Kind::NoReply) {
+    bus_started_ = true;
+    session_.carrier_no_reply(r.time, r.code);
+  }
   if (r.kind == Kind::Refused) {
     const V5Piece* request = piece_at(Direction::ToSlave, r.request_offset);
     if (request != nullptr && request->rtu != nullptr) request->rtu->refused = true;

@@ -94,6 +94,7 @@ class SolarmanV5Track final : solarman_v5::ReleaseSink, BusSessionSink {
   // The RTU bytes being fed to the session, and their first stream position there.
   V5Rtu* feeding_ = nullptr;
   std::uint64_t feeding_from_ = 0;
+  bool bus_started_ = false;  // a frame reached the session (pvtap audit's bus exists)
   std::vector<FrameRecord*> by_id_;
   TimeoutQueue timeouts_;
   StationNames names_;
