@@ -19,7 +19,7 @@ struct Release {
   enum class Kind : std::uint8_t {
     Request,  // an RTU request, for the bus
     Reply,    // an RTU reply
-    NoReply,  // code 05: the request handed on just before got no reply from the bus
+    NoReply,  // code 05: the last request handed on got no reply from the bus
     Refused,  // code 06 to a request naming another serial: the request never reached a bus
     Code,     // any other code, or a code that answers no request waiting: only a code
   };
@@ -29,7 +29,7 @@ struct Release {
   std::uint64_t offset = 0;           // of that V5 frame in its direction's stream
   std::uint8_t sequence = 0;          // the sequence byte the client chose (and the stick echoes)
   std::uint32_t serial = 0;           // the logger serial in the frame's header
-  // Reply: the request handed on just before is the one it answers.
+  // Reply: it answers the last request handed on (the one whose sequence byte it echoes).
   bool answers_request = false;
   bool late = false;  // Reply: the client had sent a newer request before it came
   std::uint8_t code = 0;
