@@ -126,7 +126,9 @@ def check_v5(path, truth, problems):
     problems.check(len(frames) == len(expected),
                    f"{path}: {len(frames)} V5 frames, truth {len(expected)}")
     events = truth["events"]
-    carried, counts, last_request_seq = [], dict.fromkeys(truth["v5"], 0), None
+    # Requests in the order sent, each with the reply that echoes its sequence byte; a reply
+    # to a request older than the last one sent is late.
+    exchanges, waiting, counts = [], {}, dict.fromkeys(truth["v5"], 0)
     for f, t in zip(frames, expected):
         where = f"{path}: V5 frame at {f['ts']:.6f}"
         problems.check(f["ends_right"], f"{where}: its length does not hold")
@@ -141,20 +143,37 @@ def check_v5(path, truth, problems):
         counts["shared_segments"] += f["shared"] and f["from"] == "stick" and \
             f["control"] == CONTROL["response"]
         rtu, quirk = b"", 0
-        if f["control"] in (CONTROL["request"], CONTROL["response"]):
-            rtu, quirk = rtu_of(f, t.get("quirk_bytes", 0))
-            problems.check(quirk == t.get("quirk_bytes", 0), f"{where}: {quirk} quirk bytes")
-            role = "request" if f["control"] == CONTROL["request"] else "response"
-            carried.append((role, rtu.hex(), f["sequence"]))
-            counts[role + "s"] += 1
-            if role == "request":
-                last_request_seq = f["sequence"]
+        if f["control"] == CONTROL["request"]:
+            rtu, quirk = rtu_of(f, 0)
+            counts["requests"] += 1
+            exchange = {"request": ("request", rtu.hex()), "ts": f["ts"], "reply": None,
+                        "refused": t.get("refused", False)}
+            exchanges.append(exchange)
+            waiting[f["sequence"][:2]] = exchange
+        elif f["control"] == CONTROL["response"]:
+            newest = exchanges[-1] if exchanges else None
+            asked = waiting.pop(f["sequence"][:2], None)
+            problems.check(asked is not None,
+                           f"{where}: reply sequence {f['sequence']} echoes no request waiting")
+            if "stick_code" in t:
+                check_stick_code(f, t, asked, truth, counts, problems, where)
             else:
-                problems.check(f["sequence"][:2] == last_request_seq[:2],
-                               f"{where}: reply sequence {f['sequence']}, request "
-                               f"{last_request_seq}")
+                counts["responses"] += 1
+                rtu, quirk = rtu_of(f, t.get("quirk_bytes", 0))
+                late = asked is not None and asked is not newest
+                problems.check(late == t.get("late", False),
+                               f"{where}: late {late}, truth {t.get('late', False)}")
+                if asked:
+                    asked["reply"] = ("response", rtu.hex())
+                if late:
+                    counts["replies_after_next_request"] += 1
+                    latency = (f["ts"] - asked["ts"]) * 1e3
+                    problems.check(abs(latency - t["latency_ms"]) < 0.002,
+                                   f"{where}: latency {latency} ms, truth {t['latency_ms']}")
+            problems.check(quirk == t.get("quirk_bytes", 0), f"{where}: {quirk} quirk bytes")
+        if "event" in t:
             ev = events[t["event"]]
-            problems.check((ev["role"], ev["hex"]) == (role, rtu.hex()),
+            problems.check(ev["hex"] == rtu.hex(),
                            f"{where}: carries {rtu.hex()}, truth event {t['event']} {ev['hex']}")
         counts["heartbeats"] += f["control"] == CONTROL["heartbeat"]
         counts["data_reports"] += f["control"] == CONTROL["data_report"]
@@ -163,22 +182,48 @@ def check_v5(path, truth, problems):
         counts["rtu_bytes"] += len(rtu)
         counts["quirk_bytes"] += quirk
         counts["carrier_bytes"] += len(f["bytes"]) - len(rtu) - quirk
-    problems.check([(e["role"], e["hex"]) for e in events] == [c[:2] for c in carried],
+    carried = []
+    for x in exchanges:
+        if not x["refused"]:
+            carried += [x["request"]] + ([x["reply"]] if x["reply"] else [])
+    problems.check([(e["role"], e["hex"]) for e in events] == carried,
                    f"{path}: the RTU frames inside the V5 frames are not the truth's frames")
     counts["stick_frames"] = counts["heartbeats"] + counts["data_reports"]
     for key in ("logger_serial", "port", "dropped_replies"):
         counts[key] = truth["v5"][key]
-    problems.check(all(int.from_bytes(f["bytes"][7:11], "little") == counts["logger_serial"]
-                       for f in frames), f"{path}: a frame of another logger serial")
+    for f, t in zip(frames, expected):
+        serial = int.from_bytes(f["bytes"][7:11], "little")
+        problems.check((serial == counts["logger_serial"]) != t.get("refused", False),
+                       f"{path}: frame at {f['ts']:.6f} addresses logger {serial}")
     problems.check(counts == truth["v5"], f"{path}: counts {counts}, truth {truth['v5']}")
-    check_unanswered(path, truth, carried, problems)
+    check_unanswered(path, truth, exchanges, problems)
 
 
-def check_unanswered(path, truth, carried, problems):
-    """Requests with no reply before the next request: the truth's timeouts and the requests
-    still waiting at the end, and nothing else."""
-    unanswered = [c for i, c in enumerate(carried) if c[0] == "request" and
-                  (i + 1 == len(carried) or carried[i + 1][0] != "response")]
+def check_stick_code(f, t, asked, truth, counts, problems, where):
+    """A response whose payload carries the stick's two-byte code in place of an RTU frame:
+    05 answers a request the bus left unanswered (a truth timeout with the stick's reason), 06
+    refuses a request addressed to another serial (a request the truth says was refused)."""
+    code = f["bytes"][11 + 14:-2]
+    problems.check(len(code) == 2 and code[1] == 0 and code[:1].hex() == t["stick_code"],
+                   f"{where}: stick code {code.hex()}, truth {t['stick_code']}")
+    counts["stick_codes"] += 1
+    if asked is None:
+        return
+    if t["stick_code"] == "05":
+        counts["stick_timeouts"] += 1
+        problems.check(any(abs(x["request_ts"] - asked["ts"]) < 0.01 and
+                           x.get("reason") == "the stick answered code 05"
+                           for x in truth["timeouts"]),
+                       f"{where}: code 05 to a request that is no truth timeout with its reason")
+    elif t["stick_code"] == "06":
+        counts["refused_requests"] += 1
+        problems.check(asked["refused"], f"{where}: code 06 to a request the truth did not refuse")
+
+
+def check_unanswered(path, truth, exchanges, problems):
+    """Requests that got no RTU reply and were not refused: the truth's timeouts and the
+    requests still waiting at the end, and nothing else."""
+    unanswered = [x for x in exchanges if not x["reply"] and not x["refused"]]
     waiting = len(truth["timeouts"]) + len(truth["unanswered_at_end"])
     problems.check(len(unanswered) == waiting,
                    f"{path}: {len(unanswered)} requests unanswered, truth {waiting}")
@@ -266,11 +311,46 @@ def check_simulator(sim, scratch, problems):
     lies = sum(field != length for field, length in said)
     problems.check(lies == truth["mbap"]["lying_lengths"] and lies > 0,
                    f"lying lengths: {lies} in the capture, truth {truth['mbap']['lying_lengths']}")
+    check_stick(sim, scratch, problems)
     for bad in (["--v5", "x", "--faults", "noise=5"], ["--mbap", "x", "--faults", "corrupt=5"],
                 ["--v5", "x", "--pdu", "y"], ["--v5", "x", "--mbap", "y"],
                 ["--v5", "x", "--dialect", "ascii"], ["--v5", "x", "--v5-faults", "lost=5"]):
         run = subprocess.run([sim] + bad, cwd=scratch, capture_output=True, text=True)
         problems.check(run.returncode == 2, f"pvtap-sim {' '.join(bad)}: exit {run.returncode}")
+
+
+# Real sticks' ways (issue 35): codes 05 and 06 in place of RTU frames, a client with a wrong
+# serial, heartbeats where a reply was due and replies after the client's next request; with
+# the carrier faults of the samples besides.
+STICK_FAULTS = "stick_code=50,wrong_serial=8,late=10,beat_first=10,quirk=20,drop=3," \
+               "bad_checksum=2,split=10,merge=3"
+
+
+def check_stick(sim, scratch, problems):
+    """A stick with every behaviour of STICK_FAULTS: the capture holds what its truth says,
+    and each behaviour happened."""
+    capture, truth_path = (os.path.join(scratch, "stick.v5.pcap"),
+                           os.path.join(scratch, "stick.truth.json"))
+    subprocess.run([sim, "--seed", "35", "--dialect", "gsl,hybrid", "--inverters", "4",
+                    "--duration", "120", "--period", "5", "--faults", "missing=10,corrupt=3",
+                    "--v5", capture, "--v5-faults", STICK_FAULTS, "--truth", truth_path],
+                   check=True)
+    with open(truth_path, encoding="utf-8") as f:
+        truth = json.load(f)
+    check_v5(capture, truth, problems)
+    for key in ("stick_timeouts", "refused_requests", "replies_after_next_request",
+                "dropped_replies"):
+        problems.check(truth["v5"][key] > 0, f"{capture}: no {key} in the truth")
+    # No --heartbeat: each heartbeat (but one merged with a reply) is where a reply was due,
+    # and the reply comes late, after the client's next request.
+    frames = [f for f in truth["v5_frames"] if not f.get("shared_segment")]
+    beats = [i for i, f in enumerate(frames) if f["control"] == "0x4710"]
+    problems.check(beats, f"{capture}: no heartbeat where a reply was due")
+    for i in beats:
+        after = [(f["from"], f["control"], f.get("late", False)) for f in frames[i + 1:i + 4]]
+        problems.check(after == [("client", "0x1710", False), ("client", "0x4510", False),
+                                 ("stick", "0x1510", True)],
+                       f"{capture}: heartbeat at {frames[i]['ts']} followed by {after}")
 
 
 def main():

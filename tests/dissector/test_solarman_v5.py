@@ -3,6 +3,7 @@ verdicts, the RTU frames handed to invrtu, the same verdicts as pvtap audit in o
 two, frames across and within segments, and Modbus/TCP left to mbtcp."""
 
 import json
+import os
 import subprocess
 import unittest
 
@@ -11,13 +12,38 @@ from pcap_writer import Pcap, TcpFlow
 from test_sample_library import PROTOCOLS, Verdicts, add_pdu, audit_verdicts, pvtap_binary
 from tshark_runner import PluginTestCase
 from v5_frames import (REQUEST, RESPONSE, SERIAL, broken_stick, request_payload,
-                       response_payload, stick_reads, v5_frame)
+                       response_payload, stick_reads, threads_stick, v5_frame)
 
 # What pvtap audit's summary says of the sticks, and the invv5 field or expert that says the
 # same in the plugin: each is counted once per occurrence.
 V5_COUNTS = {"frames": "invv5.control", "bad_checksums": "invv5.checksum.bad",
              "quirk_frames": "invv5.quirk", "truncated_frames": "invv5.truncated",
              "length_mismatches": "invv5.length_mismatch"}
+
+
+# A stick as real ones behave (issue 35), from pvtap-sim with its truth: codes 05 (no reply on
+# the bus) and 06 (a client that addressed another serial), heartbeats where a reply was due
+# and replies after the client's next request, besides the carrier faults of the samples.
+STICK_FAULTS = ("stick_code=50,wrong_serial=8,late=10,beat_first=10,quirk=20,drop=3,"
+                "bad_checksum=2,split=10,merge=3")
+# pvtap audit's summary key of the stick's codes, and the invv5 field or expert that says each.
+STICK_COUNTS = {"stick_codes": "invv5.stick_code", "stick_timeouts": "invv5.stick_no_reply",
+                "refused_requests": "invv5.stick_refused",
+                "other_stick_codes": "invv5.stick_code_other"}
+
+
+def simulated_stick(directory):
+    """The capture and its ground truth."""
+    sim = os.environ.get("PVTAP_SIM")
+    if not sim or not os.access(sim, os.X_OK):
+        raise RuntimeError("PVTAP_SIM must name the built pvtap-sim (got %r)" % sim)
+    capture, truth = os.path.join(directory, "stick.v5.pcap"), os.path.join(directory, "t.json")
+    subprocess.run([sim, "--seed", "35", "--dialect", "gsl,hybrid", "--inverters", "4",
+                    "--duration", "120", "--period", "5", "--faults", "missing=10,corrupt=3",
+                    "--v5", capture, "--v5-faults", STICK_FAULTS, "--truth", truth],
+                   check=True, timeout=120)
+    with open(truth) as f:
+        return capture, json.load(f)
 
 
 def audit_v5(capture):
@@ -137,6 +163,62 @@ class SolarmanV5(PluginTestCase, unittest.TestCase):
             (["0x1510"], ["0x0001"]),
             (["0x1510"], ["0x0003"]),
         ])
+
+    def test_a_simulated_stick_gets_the_verdicts_of_pvtap_audit_and_its_truth(self):
+        capture, truth = simulated_stick(self.tshark.home)
+        self.tshark._hand_over()
+        self.assert_agrees_with_audit(capture)
+        want = {"stick_codes": truth["v5"]["stick_codes"],
+                "stick_timeouts": truth["v5"]["stick_timeouts"],
+                "refused_requests": truth["v5"]["refused_requests"], "other_stick_codes": 0}
+        self.assertGreater(want["stick_timeouts"], 0)
+        self.assertGreater(want["refused_requests"], 0)
+        for passes in (1, 2):
+            out = self.tshark.run(["-r", capture] + (["-2"] if passes == 2 else []) +
+                                  ["-Y", "invv5.stick_code", "-T", "json",
+                                   "--no-duplicate-keys"]).stdout
+            counts = {}
+            for packet in json.loads(out):
+                field_counts(packet["_source"]["layers"].get("invv5", []), counts)
+            with self.subTest(passes=passes):
+                self.assertEqual({k: counts.get(f, 0) for k, f in STICK_COUNTS.items()}, want)
+        refusals = self.tshark.fields(capture, ["_ws.expert.message"], "invv5.stick_refused")
+        self.assertEqual(len(refusals), want["refused_requests"])
+        for row in refusals:
+            self.assertIn("The stick refused it: the client addressed logger 2111130827; the "
+                          "stick is 2712345678", row[0])
+        # The bus is the stick's: no second bus named after the serial the client addressed.
+        self.assertEqual(self.tshark.fields(capture, ["invv5.serial"],
+                                            "invv5.serial == 2111130827 && invrtu"), [])
+
+    def test_the_issue_threads_stick_gets_the_verdicts_of_pvtap_audit(self):
+        """Paired by sequence byte (latencies 200, 600 and 600 ms less the replies' time on
+        the wire), code 05 a timeout, 06 a refusal, text before a V5 frame apart."""
+        pcap = Pcap()
+        threads_stick(pcap)
+        capture = self.tshark.write("threads.pcap", pcap)
+        self.assert_agrees_with_audit(capture)
+        latencies = self.tshark.fields(capture, ["invrtu.response_time"],
+                                       "invrtu.role == 1 && invrtu.response_time")
+        self.assertEqual([round(float(r[0][0]), 3) for r in latencies],
+                         [0.193, 0.593, 0.593])
+        coded = self.tshark.fields(capture, ["invv5.stick_code"], "invv5.stick_no_reply")
+        self.assertEqual(coded, [[["0x05"]]])
+        refused = self.tshark.fields(capture, ["invv5.stick_code"], "invv5.stick_refused")
+        self.assertEqual(refused, [[["0x06"]]])
+
+    def test_a_lost_segment_gets_the_verdicts_of_pvtap_audit(self):
+        """A reply's segment the capture lost: the request it answered waited during a loss."""
+        pcap = Pcap()
+        flow = TcpFlow(pcap, client=("10.0.0.1", 50900), server=("10.0.0.14", 8899), time=800.0)
+        for i in range(4):
+            flow.request(v5_frame(REQUEST, i, request_payload(rtu_read_request(1, 0x03, 1050,
+                                                                               1))), after=0.5)
+            flow.reply(v5_frame(RESPONSE, i, response_payload(gsl_read_reply(1, [2300 + i]))),
+                       after=0.05)
+            if i == 1:
+                pcap.records.pop()  # lost
+        self.assert_agrees_with_audit(self.tshark.write("lost.pcap", pcap))
 
     def test_header_fields_are_filterable(self):
         serials = self.tshark.fields(self.reads, ["invv5.serial"], "invv5.control == 0x4710")

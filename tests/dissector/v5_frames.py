@@ -152,3 +152,42 @@ def broken_stick(pcap, port=48900, time=100.0):
     s.frame(frame, rtu)
     s.requests += 1
     return s
+
+
+# Text a stick sent before a V5 frame: bytes of no V5 frame, counted apart.
+VERSION_TEXT = b"AT+YZCMPVER=MW3_16U_5406_1.53\r\n"
+
+
+def threads_steps():
+    """The stick of V5 client libraries' issue threads (issue 35), one logged line every 0.2 s:
+    a heartbeat where the reply to 0x98 was due, that reply after request 0xd4; code 05 in
+    place of a reply; a client that addressed logger 2111130827; text before a V5 frame."""
+    stick, wrong = 4068039735, 2111130827
+    read = rtu_read_request(1, 0x03, 1050, 1)
+    answer = response_payload(gsl_read_reply(1, [2301]))  # 7 RTU bytes
+
+    def request(seq, serial=stick, after=0.2):
+        return Step("request_%02x" % seq, False,
+                    v5_frame(REQUEST, seq, request_payload(read), serial=serial), after=after)
+
+    def stick_frame(name, control, seq, payload, after=0.2, before=b""):
+        return Step(name, True, before + v5_frame(control, seq, payload, serial=stick),
+                    after=after)
+
+    return [stick_frame("heartbeat", HEARTBEAT, 0x0101, b"\0", after=0.01),
+            request(0x97), stick_frame("reply_97", RESPONSE, 0x0297, answer),
+            request(0x98), stick_frame("heartbeat_for_98", HEARTBEAT, 0x0302, b"\0"),
+            request(0xd4), stick_frame("reply_98", RESPONSE, 0x0498, answer),
+            stick_frame("reply_d4", RESPONSE, 0x05d4, answer, after=0.4, before=VERSION_TEXT),
+            request(0x10, after=5.0),
+            stick_frame("code_05", RESPONSE, 0x0610, response_payload(b"\x05\x00"), after=0.5),
+            request(0x11, serial=wrong, after=5.0),
+            stick_frame("code_06", RESPONSE, 0x0711, response_payload(b"\x06\x00"),
+                        after=0.05)]
+
+
+def threads_stick(pcap):
+    """threads_steps() captured, at their pace."""
+    flow = TcpFlow(pcap, client=("10.0.0.1", 50800), server=("10.0.0.13", 8899), time=700.0)
+    for step in threads_steps():
+        flow.send(step.frame, step.from_stick, after=step.after)

@@ -1,5 +1,7 @@
 #include "gateway/gateway_connection.h"
 
+#include <algorithm>
+
 namespace pvtap::analyzer {
 
 GatewayTraffic::Connection::Connection(Transport t, const Endpoint& slave_side, State initial,
@@ -8,7 +10,7 @@ GatewayTraffic::Connection::Connection(Transport t, const Endpoint& slave_side, 
     : state(initial),
       buses(bus_provider),
       probe(o.dialects, listed),
-      v5(bus_provider),
+      v5(bus_provider, o.reply_timeout),
       streams(t, slave_side, o.hole_wait, *this),
       reply_timeout(o.reply_timeout) {
   if (state == State::Bus) become_bus();
@@ -141,6 +143,12 @@ void GatewayTraffic::Connection::add_stats(NetworkStats& into) const {
   if (state == State::SolarmanV5) {
     ++into.v5_flows;
     into.v5 += v5.totals();
+    std::vector<std::string>& said = into.v5_finding_examples;
+    for (const std::string& e : v5.finding_examples()) {
+      if (said.size() >= NetworkStats::kMaxExamples) break;
+      // Each connection of a client with a wrong serial is refused alike: said once.
+      if (std::find(said.begin(), said.end(), e) == said.end()) said.push_back(e);
+    }
   }
   if (!mbap) return;
   const MbapTotals t = mbap->totals();

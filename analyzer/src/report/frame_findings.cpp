@@ -172,7 +172,14 @@ std::string_view unanswered_reason(const SessionTimeout& t) {
     case UnansweredKind::Timeout:
       break;
   }
-  return t.timeout.reason == TimeoutReason::NextRequestFirst ? "next_request_first" : "no_reply";
+  switch (t.timeout.reason) {
+    case TimeoutReason::NextRequestFirst:
+      return "next_request_first";
+    case TimeoutReason::CarrierNoReply:
+      return "carrier_no_reply";
+    default:
+      return "no_reply";
+  }
 }
 
 void append_value_json_head(std::string& out, const DecodedValue& v, Dialect d) {

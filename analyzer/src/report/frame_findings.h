@@ -14,7 +14,8 @@ namespace pvtap::analyzer {
 // `out` is cleared first and reused, so a frame without findings costs nothing.
 void collect_issues(const SessionFrame& f, std::vector<std::string>& out);
 
-// Why a request went unanswered, as a key: "no_reply", "next_request_first", "input_ended"
+// Why a request went unanswered, as a key: "no_reply", "next_request_first",
+// "carrier_no_reply" (a logger stick's code 05), "input_ended"
 // (the input stopped before the timeout ran out) or "data_lost" (the reply may be in a gap).
 std::string_view unanswered_reason(const SessionTimeout& t);
 

@@ -237,7 +237,19 @@ void solarman_v5_totals(std::string& o, const NetworkStats& n) {
   append_json_count(o, "length_mismatches", v.length_mismatches);
   append_json_count(o, "broken_bytes", v.broken_bytes);
   append_json_count(o, "noise_bytes", v.noise_bytes);
-  o += '}';
+  append_json_count(o, "stick_codes", v.stick_codes);
+  append_json_count(o, "stick_timeouts", v.stick_timeouts);
+  append_json_count(o, "refused_requests", v.refused_requests);
+  append_json_count(o, "other_stick_codes", v.other_codes);
+  append_json_count(o, "replies_after_next_request", v.replies_after_next_request);
+  append_json_count(o, "unpaired_replies", v.unpaired_replies);
+  append_json_key(o, "stick_findings");
+  o += '[';
+  for (std::size_t i = 0; i < n.v5_finding_examples.size(); ++i) {
+    if (i > 0) o += ',';
+    append_json_string(o, n.v5_finding_examples[i]);
+  }
+  o += "]}";
 }
 
 void details(std::string& o, const AuditReport& report, const BusReport& t) {

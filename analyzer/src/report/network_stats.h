@@ -29,6 +29,8 @@ struct NetworkStats {
   std::vector<std::string> mbap_finding_examples;  // "bus: what the header said", the first few
   std::uint64_t v5_flows = 0;  // of the analyzed flows, those to Solarman V5 logger sticks
   solarman_v5::Totals v5;      // what their V5 frames carried, and their findings
+  // The sticks' codes said plainly (SolarmanV5Flow::finding_examples), the first few.
+  std::vector<std::string> v5_finding_examples;
 };
 
 }  // namespace pvtap::analyzer

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "formatting/number_text.h"
+#include "pvtap/carriers/solarman_v5_pairing.h"
 #include "pvtap/codec/function_codes.h"
 #include "pvtap/registers/register_decoder.h"
 #include "pvtap/registers/register_format.h"
@@ -93,6 +94,14 @@ void solarman_v5_lines(const NetworkStats& n, std::string& o) {
       "  V5 findings: %llu bad checksums, %llu truncated frames, %llu lengths that do not hold "
       "(%llu bytes in broken frames)",
       u(v.checksum_failures), u(v.truncated), u(v.length_mismatches), u(v.broken_bytes));
+  o += report_line(
+      "  V5 pairing by sequence byte: %llu replies after the client's next request, %llu "
+      "replies to no request waiting; %llu stick codes in place of an RTU frame: %llu code 05 "
+      "(no reply on the bus: counted with the timeouts), %llu code 06 refusing a request to "
+      "another logger serial, %llu other",
+      u(v.replies_after_next_request), u(v.unpaired_replies), u(v.stick_codes), u(v.stick_timeouts),
+      u(v.refused_requests), u(v.other_codes));
+  for (const std::string& e : n.v5_finding_examples) o += report_line("  %s", e.c_str());
 }
 
 // A list of examples shorter than the count it stands for says how many it shows.
@@ -232,13 +241,20 @@ void frame_example(const AuditReport& r, const FrameExample& e, std::string& o) 
                    function_text(e.dialect, e.function).c_str(), expected.c_str(), raw.c_str());
 }
 
-// A gateway's 0x0B replies, which the timeouts count: the device behind it did not answer.
-std::string gateway_text(const BusReport& b) {
-  return ", gateway's exception 0x0B " + std::to_string(b.gateway_timeouts) +
+// A gateway's 0x0B replies, or a logger stick's code 05 (on a `v5:` bus), which the timeouts
+// count: the device behind it did not answer.
+std::string gateway_text(const BusFindings& bus) {
+  const std::string n = std::to_string(bus.report.gateway_timeouts);
+  if (bus.name.starts_with("v5:")) {
+    return ", the stick's code 05 " + n +
+           ": the device behind the stick did not answer it, a timeout on its serial bus";
+  }
+  return ", gateway's exception 0x0B " + n +
          ": the device behind the gateway did not answer it, a timeout on its serial bus";
 }
 
-void findings(const AuditReport& r, const BusReport& b, std::string& o) {
+void findings(const AuditReport& r, const BusFindings& bus, std::string& o) {
+  const BusReport& b = bus.report;
   o += report_line("bad checks: %llu", u(b.bytes.bad_frames));
   examples_shown(b.bad_check_examples.size(), b.bytes.bad_frames, o);
   for (const FrameExample& e : b.bad_check_examples) frame_example(r, e, o);
@@ -246,12 +262,15 @@ void findings(const AuditReport& r, const BusReport& b, std::string& o) {
       "timeouts: %llu good requests the slave did not answer (no reply %llu, next request "
       "first %llu%s)",
       u(b.timeouts), u(b.timeouts_by_reason[0]), u(b.timeouts_by_reason[1]),
-      b.gateway_timeouts > 0 ? gateway_text(b).c_str() : "");
+      b.gateway_timeouts > 0 ? gateway_text(bus).c_str() : "");
   examples_shown(b.timeout_examples.size(), b.timeouts, o);
   for (const TimeoutExample& e : b.timeout_examples) {
-    o += report_line("  %s  st %u  %s  %s", when(r, e.request_time).c_str(), e.timeout.station,
-                     std::string(to_string(e.timeout.dialect)).c_str(),
-                     function_text(e.timeout.dialect, e.timeout.function).c_str());
+    const bool coded = e.timeout.reason == TimeoutReason::CarrierNoReply;
+    o +=
+        report_line("  %s  st %u  %s  %s%s%s", when(r, e.request_time).c_str(), e.timeout.station,
+                    std::string(to_string(e.timeout.dialect)).c_str(),
+                    function_text(e.timeout.dialect, e.timeout.function).c_str(), coded ? ": " : "",
+                    coded ? solarman_v5::no_reply_reason(e.timeout.carrier_code).c_str() : "");
   }
   o += report_line("damaged replies: %llu (they answered their request: not timeouts)",
                    u(b.damaged_replies));
@@ -404,7 +423,7 @@ void write_text_report(const AuditReport& report, OutputStream& out) {
     }
     if (bus.serial) append_serial_line_text(*bus.serial, o);
     station_table(report, bus.report, o);
-    findings(report, bus.report, o);
+    findings(report, bus, o);
     latency(report, bus.report, o);
     polling(report, bus.report, o);
     bus_timing(report, bus.report, o);

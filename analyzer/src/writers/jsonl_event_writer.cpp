@@ -6,6 +6,7 @@
 
 #include "formatting/json_text.h"
 #include "formatting/number_text.h"
+#include "pvtap/carriers/solarman_v5_pairing.h"
 #include "report/frame_contents.h"
 #include "report/frame_findings.h"
 #include "writers/event_writers.h"
@@ -93,6 +94,10 @@ class JsonlEventWriter : public EventWriter {
     o += ",\"reason\":\"";
     o += unanswered_reason(t);
     o += '"';
+    if (t.kind == UnansweredKind::Timeout && t.timeout.reason == TimeoutReason::CarrierNoReply) {
+      o += ",\"carrier_reason\":";
+      append_json_string(o, solarman_v5::no_reply_reason(t.timeout.carrier_code));
+    }
     if (c.has_timestamps) {
       o += ",\"waited_ms\":";
       append_fixed(o, t.timeout.waited * 1e3, 3);

@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "formatting/number_text.h"
+#include "pvtap/carriers/solarman_v5_pairing.h"
 #include "report/frame_contents.h"
 #include "report/frame_findings.h"
 #include "writers/event_writers.h"
@@ -184,6 +185,8 @@ class TextEventWriter : public EventWriter {
     }
     if (t.timeout.reason == TimeoutReason::NextRequestFirst) {
       o += "no reply before the next request";
+    } else if (t.timeout.reason == TimeoutReason::CarrierNoReply) {
+      o += "no reply on the bus: " + solarman_v5::no_reply_reason(t.timeout.carrier_code);
     } else {
       o += "no reply";
     }

@@ -52,6 +52,7 @@ struct TimeoutTruth {
   Micros request_end = 0;
   std::uint8_t station = 0;
   std::uint8_t function = 0;
+  std::string reason;  // empty: no reply came; else why a carrier says none came
 };
 
 // FaultTruth: one fault the simulator injected, at the end of the request it spoiled.

@@ -77,7 +77,7 @@ Micros BusMaster::send_damaged_requests(const Frame& request, Micros at) {
         {end, request.station, std::string(to_string(FaultKind::CorruptRequest))});
     // An ASCII request damaged into noise is no request at all to a reader.
     if (damage.reading == DamageReading::BadCheckFrame)
-      timeline_.unanswered_damaged_requests.push_back({at, end, station, function});
+      timeline_.unanswered_damaged_requests.push_back({at, end, station, function, {}});
     at = timeout_after(end);
     if (sent == kMaxDamagedRun || !random_.percent(kDamagedRetryPercent) ||
         !wire_.may_damage(Role::Request))
@@ -94,11 +94,11 @@ Micros BusMaster::poll(Inverter& inv, const PollBlock& block, Micros at) {
   if (fault)
     timeline_.faults.push_back({request_end, inv.station(), std::string(to_string(*fault))});
   if (fault == FaultKind::Missing) {
-    timeline_.timeouts.push_back({at, request_end, inv.station(), block.function});
+    timeline_.timeouts.push_back({at, request_end, inv.station(), block.function, {}});
     return timeout_after(request_end);
   }
   BusEvent rep = inv.reply(block, fault, request_end, random_);
-  return answer(std::move(rep), fault, {at, request_end, inv.station(), block.function});
+  return answer(std::move(rep), fault, {at, request_end, inv.station(), block.function, {}});
 }
 
 Micros BusMaster::answer(BusEvent rep, std::optional<FaultKind> fault, TimeoutTruth request) {

@@ -43,7 +43,8 @@ void add_lan_options(CLI::App& app, LanOutputs& lan) {
                               "gateway on TCP 502");
   v5->excludes(mbap);
   app.add_option("--v5-faults", lan.v5_faults,
-                 "none or kind=percent,... (quirk drop bad_checksum split merge)");
+                 "none or kind=percent,... (quirk drop bad_checksum split merge stick_code "
+                 "wrong_serial late beat_first)");
   app.add_option("--heartbeat", lan.v5_options.heartbeat_s,
                  "--v5: seconds between the stick's heartbeats (0: none)");
   app.add_option("--data-report", lan.v5_options.data_report_s,
@@ -61,6 +62,7 @@ std::string finish_lan_options(LanOutputs& lan, const SimConfig& config, bool bu
   lan.v5_options.faults = *v5;
   lan.mbap_options.faults = *mbap;
   lan.mbap_options.bus_timeout_s = config.timeout_s;
+  lan.v5_options.client_timeout_s = config.timeout_s;
   if (lan.v5.empty() && lan.mbap.empty()) return {};
   // The ground truth of such a run is the LAN's view (a reply the stick dropped is gone).
   if (bus_outputs) return "--v5 and --mbap are written alone (with --truth)";

@@ -140,7 +140,7 @@ Micros BusMaster::poll_device(ModbusDevice& device, const Frame& request, Micros
   const Micros request_end = wire_.put(frame_event(request), at);
   if (fault)
     timeline_.faults.push_back({request_end, request.station, std::string(to_string(*fault))});
-  const TimeoutTruth asked{at, request_end, request.station, request.function};
+  const TimeoutTruth asked{at, request_end, request.station, request.function, {}};
   if (fault == FaultKind::Missing) {
     timeline_.timeouts.push_back(asked);
     return timeout_after(request_end);

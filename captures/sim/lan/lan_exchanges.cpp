@@ -24,7 +24,7 @@ void drop_replies(BusTimeline& timeline, const std::vector<std::size_t>& replies
     std::size_t r = reply;
     while (r > 0 && timeline.events[r].role != Role::Request) --r;
     const BusEvent& req = timeline.events[r];
-    timeline.timeouts.push_back({req.start, req.end, req.station, req.function});
+    timeline.timeouts.push_back({req.start, req.end, req.station, req.function, {}});
   }
   std::sort(timeline.timeouts.begin(), timeline.timeouts.end(),
             [](const auto& a, const auto& b) { return a.request_start < b.request_start; });

@@ -112,7 +112,9 @@ void write_requests(std::ostream& o, const char* name, const std::vector<Timeout
   for (std::size_t i = 0; i < list.size(); ++i) {
     const TimeoutTruth& t = list[i];
     o << (i ? ",\n" : "\n") << "{\"request_ts\":" << seconds(t.request_start)
-      << ",\"station\":" << int{t.station} << ",\"function\":" << int{t.function} << "}";
+      << ",\"station\":" << int{t.station} << ",\"function\":" << int{t.function};
+    if (!t.reason.empty()) o << ",\"reason\":\"" << t.reason << "\"";
+    o << "}";
   }
 }
 

@@ -4,8 +4,9 @@
 
 #include "carriers/solarman_v5_protocol.h"
 #include "pvtap/carriers/solarman_v5_frame.h"
+#include "pvtap/carriers/solarman_v5_pairing.h"
 #include "registration/inverter_protocol.h"
-#include "stream/stream_dissection.h"
+#include "stream/piece_display.h"
 
 namespace pvtap::dissector {
 namespace {
@@ -42,8 +43,11 @@ void show_fixed_fields(proto_tree* tree, const V5Target& t, const v5::Frame& f, 
   proto_tree_add_uint(tree, hf.offset_time, t.tvb, times + 8, 4, f.offset_time);
 }
 
-// The RTU frame goes to invrtu whole: the V5 frame pins both its ends, as a record does.
-void show_rtu(proto_tree* tree, const V5Target& t, const v5::Frame& f, int at) {
+// The RTU frame goes to invrtu whole (the V5 frame pins both its ends), with the verdicts of
+// the bus once the pairing handed it on; until then (a request waiting for its response, in a
+// first pass) with what it says of itself.
+void show_rtu(proto_tree* tree, const V5Target& t, const v5::Frame& f, const V5Piece& piece,
+              int at) {
   SolarmanV5Protocol& p = v5_protocol();
   const int rtu_at = at + static_cast<int>(f.rtu_offset);
   const int rtu_length = static_cast<int>(f.rtu_length);
@@ -53,12 +57,53 @@ void show_rtu(proto_tree* tree, const V5Target& t, const v5::Frame& f, int at) {
                                             static_cast<int>(f.quirk_bytes), ENC_NA);
     expert_add_info(t.pinfo, quirk, &p.ei.quirk);
   }
-  tvbuff_t* rtu = tvb_new_subset_length(t.tvb, rtu_at, rtu_length);
-  dissect_stream(rtu, t.pinfo, t.tree,
-                 StreamContext{&rtu_protocol(), &t.track->rtu(), t.direction, nullptr, false});
+  if (piece.rtu == nullptr) return;
+  const auto rtu = f.rtu();
+  if (piece.rtu->pieces.empty()) {
+    if (piece.rtu->refused || piece.rtu->other_serial) return;
+    FrameRecord& own = *piece.rtu->own;
+    show_frame(TreeTarget{t.tvb, t.pinfo, t.tree, rtu_at, rtu_length, &protocol_of(own.dialect)},
+               rtu, own);
+    return;
+  }
+  for (const RtuPiece& part : piece.rtu->pieces) {
+    if (part.offset + part.length > rtu.size()) break;
+    const auto bytes = rtu.subspan(part.offset, part.length);
+    const int offset = rtu_at + static_cast<int>(part.offset);
+    const int length = static_cast<int>(part.length);
+    if (part.record != nullptr) {
+      show_frame(
+          TreeTarget{t.tvb, t.pinfo, t.tree, offset, length, &protocol_of(part.record->dialect)},
+          bytes, *part.record);
+    } else {
+      show_noise(TreeTarget{t.tvb, t.pinfo, t.tree, offset, length, &rtu_protocol()}, bytes);
+    }
+  }
 }
 
-void show_payload(proto_tree* tree, const V5Target& t, const v5::Frame& f, int at) {
+// A stick's code in place of an RTU frame: a carrier finding, never bus bytes.
+void show_stick_code(proto_tree* tree, const V5Target& t, const v5::Frame& f, const V5Piece& piece,
+                     int at) {
+  SolarmanV5Protocol& p = v5_protocol();
+  const int code_at = at + static_cast<int>(f.rtu_offset);
+  proto_item* item = proto_tree_add_uint(tree, p.hf.stick_code, t.tvb, code_at,
+                                         static_cast<int>(v5::kStickCodeSize), *f.stick_code);
+  using Kind = v5::Release::Kind;
+  if (piece.code_meaning == Kind::NoReply) {
+    expert_add_info_format(t.pinfo, item, &p.ei.stick_no_reply,
+                           "%s: no reply from the bus behind it (a timeout)",
+                           v5::no_reply_reason(*f.stick_code).c_str());
+  } else if (piece.code_meaning == Kind::Refused) {
+    expert_add_info_format(t.pinfo, item, &p.ei.stick_refused, "The stick refused it: %s",
+                           v5::describe_refusal(piece.addressed_serial, f.header.serial).c_str());
+  } else {
+    expert_add_info_format(t.pinfo, item, &p.ei.stick_code, "The stick answered code %02x",
+                           *f.stick_code);
+  }
+}
+
+void show_payload(proto_tree* tree, const V5Target& t, const v5::Frame& f, const V5Piece& piece,
+                  int at) {
   SolarmanV5Protocol& p = v5_protocol();
   const int payload_at = at + static_cast<int>(v5::kHeaderSize);
   const bool modbus = f.kind == v5::FrameKind::Request || f.kind == v5::FrameKind::Response;
@@ -69,10 +114,12 @@ void show_payload(proto_tree* tree, const V5Target& t, const v5::Frame& f, int a
     return;
   }
   show_fixed_fields(tree, t, f, payload_at);
-  if (f.rtu_length > 0) show_rtu(tree, t, f, at);
+  if (f.stick_code) show_stick_code(tree, t, f, piece, at);
+  if (f.rtu_length > 0) show_rtu(tree, t, f, piece, at);
 }
 
-void show_frame(const V5Target& t, std::span<const std::uint8_t> bytes, int at) {
+void show_v5_frame(const V5Target& t, const V5Piece& piece, std::span<const std::uint8_t> bytes,
+                   int at) {
   SolarmanV5Protocol& p = v5_protocol();
   const v5::Frame f = v5::parse_frame(bytes);
   proto_item* item = nullptr;
@@ -85,7 +132,7 @@ void show_frame(const V5Target& t, std::span<const std::uint8_t> bytes, int at) 
   proto_tree_add_checksum(tree, t.tvb, checksum_at, p.hf.checksum, p.hf.checksum_status,
                           &p.ei.bad_checksum, t.pinfo, f.expected_checksum, ENC_NA,
                           PROTO_CHECKSUM_VERIFY);
-  show_payload(tree, t, f, at);
+  show_payload(tree, t, f, piece, at);
 }
 
 void show_run(const V5Target& t, const V5Piece& piece, int at) {
@@ -109,7 +156,7 @@ void show_run(const V5Target& t, const V5Piece& piece, int at) {
 void show_v5_piece(const V5Target& t, const V5Piece& piece, std::span<const std::uint8_t> bytes,
                    int offset) {
   if (piece.kind == v5::Event::Kind::Frame) {
-    show_frame(t, bytes, offset);
+    show_v5_frame(t, piece, bytes, offset);
   } else {
     show_run(t, piece, offset);
   }

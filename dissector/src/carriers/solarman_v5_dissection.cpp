@@ -14,10 +14,10 @@ using CallSpan = SegmentedBus::CallSpan;
 
 // First pass: feeds the new bytes to the reader. noexcept: nothing may be thrown into
 // Wireshark.
-CallSpan feed(std::span<const std::uint8_t> bytes, std::uint64_t from,
+CallSpan feed(std::span<const std::uint8_t> bytes, std::uint64_t from, double time,
               const V5Context& ctx) noexcept {
   try {
-    return ctx.track->show(ctx.direction, from, bytes, ctx.desegment);
+    return ctx.track->show(ctx.direction, from, bytes, time, ctx.desegment);
   } catch (...) {
     return CallSpan{from, from, from};  // out of memory: show these bytes as undecided
   }
@@ -37,8 +37,8 @@ CallView* view_of_call(tvbuff_t* tvb, packet_info* pinfo, const V5Context& ctx,
   if (noted != nullptr || PINFO_FD_VISITED(pinfo)) return noted;
   const auto length = static_cast<guint32>(tvb_reported_length(tvb));
   const std::uint64_t from =
-      ctx.track->rtu().stream_offset(ctx.direction, ctx.tcp->nxtseq - length);
-  const CallSpan span = feed(bytes, from, ctx);
+      ctx.track->offsets().stream_offset(ctx.direction, ctx.tcp->nxtseq - length);
+  const CallSpan span = feed(bytes, from, nstime_to_sec(&pinfo->abs_ts), ctx);
   CallView& view = note_view(pinfo, proto, number);
   view.from = from;
   view.decided_to = span.shown_to;
@@ -54,7 +54,7 @@ int dissect_v5_stream(tvbuff_t* tvb, packet_info* pinfo, proto_tree* tree, const
   if (captured == 0 || ctx.tcp == nullptr) return 0;
   const auto* data = static_cast<const guint8*>(tvb_memdup(pinfo->pool, tvb, 0, captured));
   const std::span<const std::uint8_t> bytes(data, captured);
-  const CallView* view = view_of_call(tvb, pinfo, ctx, bytes);
+  CallView* view = view_of_call(tvb, pinfo, ctx, bytes);
   if (view == nullptr) return static_cast<int>(captured);
   col_set_str(pinfo->cinfo, COL_PROTOCOL, "invV5");
   const V5Target target{tvb, pinfo, tree, ctx.track, ctx.direction};
@@ -63,6 +63,11 @@ int dissect_v5_stream(tvbuff_t* tvb, packet_info* pinfo, proto_tree* tree, const
     if (offset + piece.length > bytes.size()) break;
     show_v5_piece(target, piece, bytes.subspan(offset, piece.length), static_cast<int>(offset));
   }
+  // The timeouts the RTU frames shown made due, announced by the call that showed them.
+  if (!PINFO_FD_VISITED(pinfo) && !view->extends_pdu && view->timeouts == nullptr) {
+    view->timeouts = announce_timeouts(pinfo, ctx.track->timeouts(), view->timeout_count);
+  }
+  show_timeouts(*view, tvb, pinfo, tree);
   if (ctx.desegment && view->decided_to < view->from + captured) {
     pinfo->desegment_offset = static_cast<int>(view->decided_to - view->from);
     pinfo->desegment_len = DESEGMENT_ONE_MORE_SEGMENT;

@@ -31,7 +31,7 @@ V5Conversation v5_conversation(packet_info* pinfo) {
   conversation_t* conversation = find_or_create_conversation(pinfo);
   auto* track = static_cast<SolarmanV5Track*>(conversation_get_proto_data(conversation, proto));
   if (track == nullptr) {
-    track = new_v5_track(*side.bus);
+    track = new_v5_track(*side.bus, rtu_protocol().settings);
     conversation_add_proto_data(conversation, proto, track);
   }
   return V5Conversation{&side, track};

@@ -68,6 +68,9 @@ const FieldSpec kFields[] = {
      "The size the broken frame's length field claims"},
     {&V5Fields::noise, "Not V5", "noise", FT_BYTES, BASE_NONE, nullptr,
      "Bytes of the flow that are no V5 frame"},
+    {&V5Fields::stick_code, "Stick code", "stick_code", FT_UINT8, BASE_HEX, nullptr,
+     "The stick's own code in place of an RTU frame (05: no reply from the bus; 06: the "
+     "request named another logger serial)"},
 };
 
 struct ExpertSpec {
@@ -88,6 +91,12 @@ const ExpertSpec kExperts[] = {
     {&V5Experts::quirk, "quirk_found", PI_PROTOCOL, PI_NOTE,
      "Two zero bytes after the RTU CRC (a known stick quirk)"},
     {&V5Experts::noise, "not_v5", PI_UNDECODED, PI_WARN, "Bytes that are no V5 frame"},
+    {&V5Experts::stick_no_reply, "stick_no_reply", PI_RESPONSE_CODE, PI_WARN,
+     "The stick answered code 05: no reply from the bus behind it (a timeout)"},
+    {&V5Experts::stick_refused, "stick_refused", PI_RESPONSE_CODE, PI_WARN,
+     "The stick refused a request addressed to another logger serial (code 06)"},
+    {&V5Experts::stick_code, "stick_code_other", PI_RESPONSE_CODE, PI_NOTE,
+     "The stick answered a code in place of an RTU frame"},
 };
 
 }  // namespace

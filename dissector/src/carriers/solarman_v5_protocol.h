@@ -28,6 +28,7 @@ struct V5Fields {
   int broken = -1;  // a run that starts like a V5 frame but is none
   int claimed_length = -1;
   int noise = -1;
+  int stick_code = -1;  // the stick's code in place of an RTU frame
 };
 
 // V5Experts: the expert infos invv5 raises.
@@ -38,6 +39,9 @@ struct V5Experts {
   expert_field payload_short = EI_INIT;
   expert_field quirk = EI_INIT;
   expert_field noise = EI_INIT;
+  expert_field stick_no_reply = EI_INIT;  // code 05: a timeout on the bus behind the stick
+  expert_field stick_refused = EI_INIT;   // code 06: a request to another logger serial
+  expert_field stick_code = EI_INIT;      // any other code
 };
 
 struct SolarmanV5Protocol {

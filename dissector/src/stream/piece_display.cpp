@@ -116,6 +116,10 @@ void show_frame(const TreeTarget& target, std::span<const std::uint8_t> bytes,
   dissect_frame(target, bytes, record);
 }
 
+void show_noise(const TreeTarget& target, std::span<const std::uint8_t> bytes) {
+  dissect_noise(target, bytes);
+}
+
 void show_timeout(const FrameRecord& request, tvbuff_t* tvb, packet_info* pinfo, proto_tree* tree) {
   InverterProtocol& p = protocol_of(request.dialect);
   const DescriptionContext dctx{.arena = packet_arena(pinfo),

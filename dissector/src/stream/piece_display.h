@@ -29,6 +29,10 @@ void show_piece(const PieceTarget& target, const BusPiece& piece,
 // target.protocol (a Modbus/TCP ADU's station byte and PDU).
 void show_frame(const TreeTarget& target, std::span<const std::uint8_t> bytes, FrameRecord& record);
 
+// Shows bytes the bus decided are no frame, at target.offset of target.tvb, under the
+// protocol whose frames they resemble (target.protocol, or invascii).
+void show_noise(const TreeTarget& target, std::span<const std::uint8_t> bytes);
+
 // Shows the announcement that `request` got no reply, under the protocol of its dialect.
 void show_timeout(const FrameRecord& request, tvbuff_t* tvb, packet_info* pinfo, proto_tree* tree);
 

@@ -315,6 +315,8 @@ std::string unanswered_reason(const FrameRecord& r, const DescriptionContext& ct
                      static_cast<unsigned>(ctx.reply_timeout_ms));
     case TimeoutReason::NextRequestFirst:
       return "the master sent its next request to the station first";
+    case TimeoutReason::CarrierNoReply:
+      return "no reply on the bus: the logger stick answered code 05";
     case TimeoutReason::CaptureEnded:
       break;
   }

@@ -80,6 +80,11 @@ void read_payload(Frame& f) {
   read_times(f, payload, request ? 3 : 2);
   f.rtu_offset = kHeaderSize + fixed;
   f.rtu_length = payload.size() - fixed;
+  if (!request && f.rtu_length == kStickCodeSize) {
+    f.stick_code = payload[fixed];
+    f.rtu_length = 0;
+    return;
+  }
   if (!request && has_quirk(f.rtu())) {
     f.rtu_length -= kQuirkSize;
     f.quirk_bytes = kQuirkSize;

@@ -26,6 +26,12 @@ Totals& Totals::operator+=(const Totals& o) {
   stick_answers += o.stick_answers;
   heartbeats += o.heartbeats;
   data_reports += o.data_reports;
+  stick_codes += o.stick_codes;
+  stick_timeouts += o.stick_timeouts;
+  refused_requests += o.refused_requests;
+  other_codes += o.other_codes;
+  replies_after_next_request += o.replies_after_next_request;
+  unpaired_replies += o.unpaired_replies;
   checksum_failures += o.checksum_failures;
   truncated += o.truncated;
   length_mismatches += o.length_mismatches;
@@ -167,6 +173,7 @@ void SolarmanV5Reader::count(const Event& e) {
   totals_.stick_answers += one_if(f.kind == FrameKind::StickReply);
   totals_.heartbeats += one_if(stick && f.header.control == control::kHeartbeat);
   totals_.data_reports += one_if(stick && f.header.control == control::kDataReport);
+  totals_.stick_codes += one_if(f.stick_code.has_value());
 }
 
 }  // namespace pvtap::solarman_v5

@@ -74,6 +74,17 @@ std::optional<double> TransactionMatcher::next_deadline() const {
   return std::nextafter(next_deadline_, std::numeric_limits<double>::infinity());
 }
 
+std::span<const Timeout> TransactionMatcher::carrier_no_reply(std::uint8_t station, double now,
+                                                              std::uint8_t code) {
+  timeouts_.clear();
+  Slot& slot = slots_[station];
+  if (slot.state != SlotState::Pending) return timeouts_.view();
+  give_up(slot, TimeoutReason::CarrierNoReply, std::max(0.0, now - slot.request.end_time),
+          std::nullopt, code);
+  next_deadline_ = slots_.earliest_deadline();
+  return timeouts_.view();
+}
+
 std::span<const Timeout> TransactionMatcher::finish() {
   timeouts_.clear();
   for (Slot* slot : slots_.pending_by_deadline(false, now_)) {
@@ -194,7 +205,8 @@ void TransactionMatcher::complete(const Slot& slot, const ObservedFrame& reply,
 }
 
 void TransactionMatcher::give_up(Slot& slot, TimeoutReason reason, double waited,
-                                 std::optional<std::uint64_t> next_request_id) {
+                                 std::optional<std::uint64_t> next_request_id,
+                                 std::uint8_t carrier_code) {
   // A broadcast that somebody answered has simply closed its window; it did not fail.
   if (slots_.is_broadcast(slot) && slots_.broadcast_answered()) {
     slots_.settle(slot, SlotState::Answered);
@@ -203,7 +215,7 @@ void TransactionMatcher::give_up(Slot& slot, TimeoutReason reason, double waited
   slots_.settle(slot, SlotState::TimedOut);
   const FrameSummary& f = slot.request.frame;
   timeouts_.push_back(Timeout{slot.request.id, f.dialect, f.station, f.function, reason, waited,
-                              next_request_id, slot.request.check_ok});
+                              next_request_id, slot.request.check_ok, carrier_code});
 }
 
 void TransactionMatcher::expire_overdue() {

@@ -101,6 +101,8 @@ struct BusSession::Impl {
   ReassemblerTotals carried;  // frames delivered whole by a carrier (carried_frame)
   std::vector<std::uint8_t> carried_wire;  // a carried frame with the CRC the codec expects
   bool answers_pending = false;            // the carried reply being handled was paired
+  // The station of the last request the matcher took (a carrier's code may answer it).
+  std::optional<std::uint8_t> last_request_station;
   // The dialect of the last request with a good check to each station, plus one (0: none yet):
   // a reply whose bytes read alike in two dialects (Hybrid and Modbus share 0x11 and 0x17)
   // takes its request's, failing that its station's history.
@@ -219,6 +221,7 @@ void BusSession::Impl::handle_parsed(SessionFrame& out, const FrameEvent& e) {
       if (frame.byte_count) out.write_count_problem = pvtap::write_count_problem(frame);
     }
     replies.remember_request(out, frame);
+    last_request_station = frame.station;
   } else {
     summary.role = match.role;
     out.reply_kind = reply_kind(summary);
@@ -313,6 +316,20 @@ void BusSession::carried_frame(Direction direction, std::uint64_t offset,
   m.answers_pending = answers_request;
   m.on_frame(direction, e, m.carried_wire);
   m.answers_pending = false;
+}
+
+void BusSession::whole_frame(const BusChunk& chunk, bool answers_request) {
+  impl_->answers_pending = answers_request;
+  feed(chunk);
+  end_turn(chunk.direction);
+  impl_->answers_pending = false;
+}
+
+void BusSession::carrier_no_reply(double time, std::uint8_t code) {
+  Impl& m = *impl_;
+  if (!m.last_request_station) return;
+  m.times.seen(time);
+  m.report(m.matcher.carrier_no_reply(*m.last_request_station, time, code));
 }
 
 void BusSession::end_turn(Direction direction) {

@@ -41,6 +41,8 @@ void EventTally::add(const SessionTimeout& t) {
   switch (t.kind) {
     case UnansweredKind::Timeout:
       ++counts_.timeouts;
+      // A logger stick's code 05, as a gateway's 0x0B: no reply on the bus behind it.
+      if (t.timeout.reason == TimeoutReason::CarrierNoReply) ++counts_.gateway_timeouts;
       break;
     case UnansweredKind::DamagedRequest:
       ++counts_.unanswered_damaged_requests;

@@ -5,12 +5,14 @@ audit: captures written here (tests/dissector/v5_frames.py encodes V5 independen
 core): 30 reads through a stick, every fifth reply with the two extra zeros, a heartbeat and
 its answer, one reply dropped, one V5 checksum broken; the same on a --port; beside an RTU
 gateway and other traffic; a stick whose lengths lie and whose last reply is cut. The summary
-counts must be exactly the script's. The library's V5 samples: the stick's counts must be the
-simulator's truth.
+counts must be exactly the script's. The stick of V5 client libraries' issue threads: replies
+paired by sequence byte, the stick's codes 05 and 06, text before a V5 frame. The library's
+V5 samples: the stick's counts must be the simulator's truth.
 
-sniff: the same script played over real TCP on lo between a client and a stick written here,
-while `pvtap sniff --interface lo --port P` captures it; after SIGTERM its summary must give
-the same counts. Exits 77 (skipped) when not root (capturing on lo is refused).
+sniff: the same script, and the issue threads' stick, played over real TCP on lo between a
+client and a stick written here, while `pvtap sniff --interface lo --port P` captures it;
+after SIGTERM its summary must give the same counts and verdicts. Exits 77 (skipped) when
+not root (capturing on lo is refused).
 
 usage: check_solarman_v5.py --pvtap PVTAP audit|sniff
 """
@@ -31,7 +33,8 @@ sys.path.insert(0, os.path.join(HERE, "..", "..", "dissector"))
 
 from bus_frames import gsl_read_reply, rtu_read_request  # noqa: E402
 from pcap_writer import Pcap, TcpFlow  # noqa: E402
-from v5_frames import SERIAL, broken_stick, stick_reads, stick_script  # noqa: E402
+from v5_frames import (SERIAL, VERSION_TEXT, broken_stick, stick_reads,  # noqa: E402
+                       stick_script, threads_steps, threads_stick)
 
 SKIP = 77
 RUN_GUARD_S = 120  # the longest one pvtap run may take: a guard, not a timing check
@@ -129,6 +132,50 @@ def check_audit(args):
         script = broken_stick(pcap)
         expect_counts("broken", run_audit(args.pvtap, write(pcap, tmp, "broken.pcap")), script,
                       bad)
+        bad += check_threads_stick(args, tmp)
+    return bad
+
+
+def check_threads_stick(args, tmp):
+    """Latencies 200, 600 and 600 ms at the LAN side (less each reply's 7 bytes on the wire at
+    9600 baud, as pvtap times a stick's frames)."""
+    pcap = Pcap()
+    threads_stick(pcap)
+    events = run_audit(args.pvtap, write(pcap, tmp, "threads.pcap"))
+    bad = threads_verdicts("threads", events)
+    wire_ms = 7 * 10 * 1000 / 9600
+    latencies = [e.get("latency_ms") for e in events
+                 if e.get("type") == "frame" and e.get("role") == "response"]
+    want = [round(ms - wire_ms, 3) for ms in (200, 600, 600)]
+    if [round(x or 0, 3) for x in latencies] != want:
+        bad.append("threads: latencies %s, expected %s" % (latencies, want))
+    return bad
+
+
+def threads_verdicts(name, events):
+    """Each reply answers its own request; code 05 a timeout with its reason; the refusal said
+    plainly, on no bus of its own; the text counted apart."""
+    bad = []
+    summary = events[-1]
+    timeouts = [e for e in events if e.get("type") == "timeout"]
+    if [(t["reason"], t.get("carrier_reason")) for t in timeouts] != \
+            [("carrier_no_reply", "the stick answered code 05")]:
+        bad.append("%s: timeouts %s, expected the one code 05 answered" % (name, timeouts))
+    keys = ("timeouts", "gateway_timeouts", "noise_bytes", "requests", "responses",
+            "unsolicited", "duplicates")
+    if [summary.get(k) for k in keys] != [1, 1, 0, 4, 3, 0, 0]:
+        bad.append("%s: summary %s %s" % (name, keys, [summary.get(k) for k in keys]))
+    if [b["bus"] for b in summary["buses"]] != ["v5:4068039735"]:
+        bad.append("%s: buses %s" % (name, [b["bus"] for b in summary["buses"]]))
+    v5 = summary["network"]["solarman_v5"]
+    got = {k: v5.get(k) for k in ("stick_codes", "stick_timeouts", "refused_requests",
+                                  "replies_after_next_request", "noise_bytes", "stick_findings")}
+    expected = {"stick_codes": 2, "stick_timeouts": 1, "refused_requests": 1,
+                "replies_after_next_request": 1, "noise_bytes": len(VERSION_TEXT),
+                "stick_findings": ["the client addressed logger 2111130827; the stick is "
+                                   "4068039735"]}
+    if got != expected:
+        bad.append("%s: solarman_v5 %s, expected %s" % (name, got, expected))
     return bad
 
 
@@ -225,43 +272,49 @@ def read_text(path):
         return f.read()
 
 
+def sniff_script(args, steps, tmp, name):
+    """`steps` played over lo while pvtap sniff --interface captures them: its events."""
+    stick = Stick(steps)
+    out_path, err_path = os.path.join(tmp, name + ".out"), os.path.join(tmp, name + ".err")
+    with open(out_path, "w") as out, open(err_path, "w") as err:
+        sniff = subprocess.Popen([args.pvtap, "sniff", "--interface", "lo", "--port",
+                                  str(stick.port), "--format", "jsonl"], stdout=out, stderr=err)
+    try:
+        wait_for(lambda: "pvtap: capturing on lo" in read_text(err_path) or
+                 sniff.poll() is not None, "pvtap sniff to start capturing")
+        if sniff.poll() is not None:
+            raise Failure("pvtap sniff exited %d: %s" % (sniff.returncode,
+                                                         read_text(err_path).strip()))
+        stick.start()
+        play_client(stick.port, steps)
+        stick.join(PATIENCE_S)
+        if stick.error:
+            raise Failure("the stick: %s" % stick.error)
+        time.sleep(1.0)  # the last packets cross lo into pvtap's buffer
+        sniff.send_signal(signal.SIGTERM)
+        status = sniff.wait(timeout=PATIENCE_S)
+    finally:
+        if sniff.poll() is None:
+            sniff.kill()
+            sniff.wait()
+    if status != 0:
+        raise Failure("pvtap sniff exited %d: %s" % (status, read_text(err_path).strip()))
+    events = [json.loads(line) for line in read_text(out_path).splitlines() if line.strip()]
+    if not events or events[-1].get("type") != "summary":
+        raise Failure("pvtap sniff wrote no summary")
+    return events
+
+
 def check_sniff(args):
     if os.geteuid() != 0:
         print("skipped: capturing on lo needs root")
         sys.exit(SKIP)
-    steps, script = stick_script()
-    stick = Stick(steps)
     bad = []
     with tempfile.TemporaryDirectory() as tmp:
-        out_path, err_path = os.path.join(tmp, "sniff.out"), os.path.join(tmp, "sniff.err")
-        with open(out_path, "w") as out, open(err_path, "w") as err:
-            sniff = subprocess.Popen([args.pvtap, "sniff", "--interface", "lo", "--port",
-                                      str(stick.port), "--format", "jsonl"], stdout=out,
-                                     stderr=err)
-        try:
-            wait_for(lambda: "pvtap: capturing on lo" in read_text(err_path) or
-                     sniff.poll() is not None, "pvtap sniff to start capturing")
-            if sniff.poll() is not None:
-                raise Failure("pvtap sniff exited %d: %s" % (sniff.returncode,
-                                                             read_text(err_path).strip()))
-            stick.start()
-            play_client(stick.port, steps)
-            stick.join(PATIENCE_S)
-            if stick.error:
-                raise Failure("the stick: %s" % stick.error)
-            time.sleep(1.0)  # the last packets cross lo into pvtap's buffer
-            sniff.send_signal(signal.SIGTERM)
-            status = sniff.wait(timeout=PATIENCE_S)
-        finally:
-            if sniff.poll() is None:
-                sniff.kill()
-                sniff.wait()
-        if status != 0:
-            bad.append("pvtap sniff exited %d: %s" % (status, read_text(err_path).strip()))
-        events = [json.loads(line) for line in read_text(out_path).splitlines() if line.strip()]
-        if not events or events[-1].get("type") != "summary":
-            return bad + ["pvtap sniff wrote no summary"]
-        expect_counts("sniff", events, script, bad)
+        steps, script = stick_script()
+        expect_counts("sniff", sniff_script(args, steps, tmp, "reads"), script, bad)
+        bad += threads_verdicts("sniff threads", sniff_script(args, threads_steps(), tmp,
+                                                              "threads"))
     return bad
 
 

@@ -3,6 +3,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -24,6 +25,16 @@ inline constexpr std::size_t kRequestFixed = 15;
 inline constexpr std::size_t kResponseFixed = 14;
 // Some sticks append two zero bytes after the RTU CRC of a response.
 inline constexpr std::size_t kQuirkSize = 2;
+// A response whose payload holds two bytes where the RTU frame belongs (no RTU frame is
+// shorter than four) carries the stick's own code: the code, then 0.
+inline constexpr std::size_t kStickCodeSize = 2;
+
+// The stick codes whose meaning sticks and their client libraries agree on; others are
+// reported as codes.
+namespace stick_code {
+inline constexpr std::uint8_t kNoReply = 0x05;      // no RTU reply came from the bus
+inline constexpr std::uint8_t kWrongSerial = 0x06;  // the request named another logger serial
+}  // namespace stick_code
 
 // Control codes (little endian on the wire). A stick answers its own frames with the code
 // less 0x3000.
@@ -81,6 +92,9 @@ struct Frame {
   std::size_t rtu_offset = 0;  // in bytes
   std::size_t rtu_length = 0;
   std::size_t quirk_bytes = 0;  // the two zeros after the RTU CRC (0 or kQuirkSize)
+  // A response carrying the stick's code in place of an RTU frame (at rtu_offset; rtu_length
+  // is then 0, and the code's two bytes are the carrier's).
+  std::optional<std::uint8_t> stick_code;
   std::span<const std::uint8_t> rtu() const { return bytes.subspan(rtu_offset, rtu_length); }
   // Bytes that belong to the carrier: everything but the RTU frame and the quirk.
   std::size_t carrier_bytes() const { return bytes.size() - rtu_length - quirk_bytes; }

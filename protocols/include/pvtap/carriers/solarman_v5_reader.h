@@ -42,6 +42,15 @@ struct Totals {
   std::uint64_t heartbeats = 0;     // of them, heartbeats
   std::uint64_t data_reports = 0;   // of them, data reports
   std::uint64_t stick_answers = 0;  // the client's answers to them (code less 0x3000)
+  // Responses carrying the stick's code in place of an RTU frame; the pairing says what
+  // each one answered (SolarmanV5Pairing).
+  std::uint64_t stick_codes = 0;
+  std::uint64_t stick_timeouts = 0;    // code 05 to a request: a timeout on the bus behind
+  std::uint64_t refused_requests = 0;  // code 06 to a request naming another serial
+  std::uint64_t other_codes = 0;       // any other code, or a code that answers no request
+  std::uint64_t replies_after_next_request =
+      0;                               // replies to a request older than the last one sent
+  std::uint64_t unpaired_replies = 0;  // replies whose sequence byte echoes no request waiting
   std::uint64_t checksum_failures = 0;
   std::uint64_t truncated = 0;
   std::uint64_t length_mismatches = 0;  // broken by their length, and payloads too short

@@ -36,6 +36,9 @@ enum class TimeoutReason : std::uint8_t {
   NoReply = 0,           // nothing answered within the configured timeout
   NextRequestFirst = 1,  // the master sent the next request to that station first
   CaptureEnded = 2,      // the capture ended while the request waited
+  // The carrier answered in the reply's place that no reply came from the bus (a logger
+  // stick's code 05; Timeout::carrier_code).
+  CarrierNoReply = 3,
 };
 
 // Timeout: a request that got no reply.
@@ -49,6 +52,7 @@ struct Timeout {
   std::optional<std::uint64_t> next_request_id;  // set for NextRequestFirst
   // False: the request itself had a bad check, so the slave was right to stay silent.
   bool request_check_ok = true;
+  std::uint8_t carrier_code = 0;  // CarrierNoReply: the code the carrier answered
 };
 
 // UnsolicitedReply: a reply that no pending request of its station (or broadcast) expects.

@@ -68,6 +68,10 @@ class TransactionMatcher {
   // due sets the next one); nullopt when no request waits.
   std::optional<double> next_deadline() const;
 
+  // The carrier answered the pending request of `station` with `code` in place of a reply:
+  // no reply came from the bus (CarrierNoReply); nothing when none is pending.
+  std::span<const Timeout> carrier_no_reply(std::uint8_t station, double now, std::uint8_t code);
+
   // Ends the capture: every request still waiting times out with CaptureEnded.
   std::span<const Timeout> finish();
 
@@ -85,7 +89,7 @@ class TransactionMatcher {
   UnsolicitedReply unsolicited(const ObservedFrame& in) const;
   void complete(const Slot& slot, const ObservedFrame& reply, FrameMatch& out) const;
   void give_up(Slot& slot, TimeoutReason reason, double waited,
-               std::optional<std::uint64_t> next_request_id);
+               std::optional<std::uint64_t> next_request_id, std::uint8_t carrier_code = 0);
   void move_time_to(double now);
   void keep_waiting_for(const ObservedFrame& reply);
   void expire_overdue();

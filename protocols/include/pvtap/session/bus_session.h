@@ -160,6 +160,14 @@ class BusSession {
   // transaction id) answers it however late it comes.
   void carried_frame(Direction direction, std::uint64_t offset, std::span<const std::uint8_t> frame,
                      double time, bool answers_request = false);
+  // A whole RTU frame a carrier delivered with its check (a logger stick's V5 frame pins both
+  // its ends): fed, and its turn ended at once. `answers_request`: the carrier paired this
+  // reply with the request it fed just before (the stick echoed the request's sequence byte),
+  // so it answers that request however late it comes.
+  void whole_frame(const BusChunk& chunk, bool answers_request = false);
+  // The carrier answered the last request fed with `code` in place of a reply (a logger
+  // stick's 05): no reply came from the bus, a timeout for that reason at `time`.
+  void carrier_no_reply(double time, std::uint8_t code);
   // The sender in `direction` has finished its turn: on a half-duplex bus the other side
   // started talking, so its pending bytes are complete. Call it only when no data of that
   // direction is still on its way (e.g. no TCP segment missing).

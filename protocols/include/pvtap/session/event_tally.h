@@ -23,6 +23,7 @@ struct EventCounts {
   std::uint64_t timeouts = 0;
   // Exceptions 0x0B: a gateway's timeout on the serial bus behind it (the request reached
   // the gateway, the device behind it did not answer): counted in timeouts, not exceptions.
+  // A logger stick's code 05 in place of a reply says the same (TimeoutReason::CarrierNoReply).
   std::uint64_t gateway_timeouts = 0;
   std::uint64_t unanswered_damaged_requests = 0;
   std::uint64_t unanswered_at_end = 0;
