@@ -90,7 +90,7 @@ BusEvent BusMaster::device_reply(ModbusDevice& device, const Frame& request,
 // station's reply on the line (late, for a request already given up).
 Micros BusMaster::late_reply_from_absent(ModbusDevice& device, const Frame& request, Micros at) {
   const Micros request_end = wire_.put(frame_event(request), at);
-  timeline_.timeouts.push_back({at, request_end, request.station, request.function});
+  timeline_.timeouts.push_back({at, request_end, request.station, request.function, {}});
   BusEvent rep = device.reply(request, request_end);
   const Micros reply_at = timeout_after(request_end) + random_.between(20, 60) * 1000;
   rep.latency = reply_at - request_end;
