@@ -74,12 +74,11 @@ std::size_t put_run_facts(std::uint8_t* out, const RunFacts& r) {
   return at + name;
 }
 
-// Dissector name tag ("pvtap" padded with NULs to a multiple of 4, as Wireshark writes it),
-// direction tag (when known), pvtap's tags (when given), end tag.
-std::size_t put_tags(std::uint8_t* out, Direction direction, const RecordFacts* facts,
-                     const RunFacts* run) {
+// Dissector name tag (padded with NULs to a multiple of 4, as Wireshark writes it), direction
+// tag (when known), pvtap's tags (when given), end tag.
+std::size_t put_tags(std::uint8_t* out, std::string_view name, Direction direction,
+                     const RecordFacts* facts, const RunFacts* run) {
   std::size_t at = 0;
-  const std::string_view name = exported_pdu::kDissectorName;
   const auto padded = static_cast<std::uint16_t>((name.size() + 3) / 4 * 4);
   at += put_tag(out + at, exported_pdu::kTagDissectorName, padded);
   std::fill_n(out + at, padded, std::uint8_t{0});
@@ -123,22 +122,35 @@ void ExportedPduWriter::write_record(const RecordFacts& facts, const RunFacts* r
 
 void ExportedPduWriter::write_end(double time) {
   const RecordFacts facts{RecordKind::End, Direction::Unknown, time, time, {}};
-  write(time, Direction::Unknown, {}, &facts, nullptr);
+  write_event(facts, nullptr, "end of the run: requests still waiting were judged here");
 }
 
 void ExportedPduWriter::write_loss(double time, Direction stream,
                                    std::optional<std::uint64_t> lost_bytes, const RunFacts* run) {
   const RecordFacts facts{RecordKind::Loss, stream, time, time, lost_bytes};
-  write(time, Direction::Unknown, {}, &facts, run);
+  const char* side = stream == Direction::ToSlave     ? " of the master's side"
+                     : stream == Direction::FromSlave ? " of the slaves' side"
+                                                      : "";
+  const std::string text = "capture data lost" + std::string(side) + ": " +
+                           (lost_bytes ? std::to_string(*lost_bytes) + " bytes" : "bytes unknown");
+  write_event(facts, run, text);
+}
+
+void ExportedPduWriter::write_event(const RecordFacts& facts, const RunFacts* run,
+                                    std::string_view text) {
+  const auto* bytes = reinterpret_cast<const std::uint8_t*>(text.data());
+  write(facts.end_time, Direction::Unknown, {bytes, text.size()}, &facts, run,
+        exported_pdu::kEventDissectorName);
 }
 
 void ExportedPduWriter::write(double time, Direction direction, std::span<const std::uint8_t> bytes,
-                              const RecordFacts* facts, const RunFacts* run) {
+                              const RecordFacts* facts, const RunFacts* run,
+                              std::string_view dissector) {
   if (!file_.is_open()) return;
   constexpr std::size_t kMaxTags = 128 + kMaxBusName;
   static_assert(sizeof(record_) >= kMaxTags + 4096 &&
                 sizeof(record_) >= kMaxTags + kMaxFrameLength);
-  const std::size_t tags = put_tags(record_.data(), direction, facts, run);
+  const std::size_t tags = put_tags(record_.data(), dissector, direction, facts, run);
   const std::size_t length = std::min(bytes.size(), record_.size() - tags);
   std::copy_n(bytes.begin(), length, record_.begin() + static_cast<std::ptrdiff_t>(tags));
   // A capture timestamp may be any 64-bit value: held to what int64 microseconds can count.

@@ -94,14 +94,18 @@ std::optional<SerialBytes> InputRecords::exported_pdu(const CapturedPacket& pack
     ++skipped_.malformed;
     return std::nullopt;
   }
-  if (record->dissector != exported_pdu::kDissectorName) {
+  // pvtap's marks of a moment carry text, never bus bytes: only their record tag counts.
+  const bool event = record->dissector == exported_pdu::kEventDissectorName;
+  if ((record->dissector != exported_pdu::kDissectorName && !event) ||
+      (event && record->pvtap_record.empty())) {
     ++skipped_.foreign_pdus;
     return std::nullopt;
   }
   // Half duplex: the session ends a side's turn when the other side speaks.
   SerialBytes serial;
   serial.kind = InputKind::ExportedPdu;
-  serial.chunk = BusChunk{record->pdu, packet.time, record->direction};
+  serial.chunk = BusChunk{event ? std::span<const std::uint8_t>{} : record->pdu, packet.time,
+                          record->direction};
   serial.decided = record->pvtap_record;
   serial.run = record->pvtap_run;
   return serial;

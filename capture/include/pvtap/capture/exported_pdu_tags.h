@@ -35,8 +35,13 @@ inline constexpr std::uint8_t kPvtapTagVersion = 1;
 inline constexpr std::int32_t kDirectionSent = 0;
 inline constexpr std::int32_t kDirectionReceived = 1;
 
-// The dissector of pvtap's Wireshark plugin: the analyzer writes it into every record, the
-// plugin registers under it.
+// The dissector of pvtap's Wireshark plugin: the analyzer writes it into every record of bus
+// bytes, the plugin registers under it.
 inline constexpr char kDissectorName[] = "pvtap";
+// Records that mark a moment rather than carry bus bytes (the end of the run, capture data
+// lost) name this dissector and carry one line of text saying what they mark: Wireshark hands
+// a record without bytes to no dissector (it shows "<MISSING>"), and a bus dissector must
+// never take the text for bytes of the bus.
+inline constexpr char kEventDissectorName[] = "pvtap.event";
 
 }  // namespace pvtap::exported_pdu

@@ -8,7 +8,9 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <string_view>
 
+#include "pvtap/capture/exported_pdu_tags.h"
 #include "pvtap/capture/pcap_writer.h"
 #include "pvtap/capture/pvtap_record_facts.h"
 #include "pvtap/codec/dialect.h"
@@ -54,7 +56,10 @@ class ExportedPduWriter {
   std::uint64_t records_ = 0;
   bool flush_each_record_ = false;
   void write(double time, Direction direction, std::span<const std::uint8_t> bytes,
-             const RecordFacts* facts = nullptr, const RunFacts* run = nullptr);
+             const RecordFacts* facts = nullptr, const RunFacts* run = nullptr,
+             std::string_view dissector = exported_pdu::kDissectorName);
+  // A record that marks a moment (kEventDissectorName), with `text` saying what it marks.
+  void write_event(const RecordFacts& facts, const RunFacts* run, std::string_view text);
 
   // tags (a bus name included) + the largest frame or noise run, reused
   std::array<std::uint8_t, 8192> record_{};
