@@ -43,8 +43,9 @@ def main():
         for option, value, needed in needs:
             args = [command, option] + ([value] if value else []) + [capture]
             refused(checks, pvtap, args, [option, needed])
-        refused(checks, pvtap, [command, "--port", "99999", capture], ["--port", "1 to 65535"])
-        refused(checks, pvtap, [command, "--baud", "600", capture], ["--baud", "1200 to 115200"])
+        # CLI11 words the range "1 to 65535" (Debian 12) or "[1 - 65535]" (Debian 13).
+        refused(checks, pvtap, [command, "--port", "99999", capture], ["--port", "range", "65535"])
+        refused(checks, pvtap, [command, "--baud", "600", capture], ["--baud", "1200", "115200"])
         refused(checks, pvtap, [command, "--format", "xml", capture], ["--format", "xml"])
     for option, value in (("--parity", "even"), ("--stop-bits", "2")):
         refused(checks, pvtap, ["sniff", "--device", "/dev/null", "--baud", "auto", option, value],

@@ -137,13 +137,21 @@ TEST(ExportedPdu, PvtapRecordsCarryTheirRunsFactsExactly) {
     ASSERT_TRUE(loss.has_value());
     EXPECT_EQ(loss->kind, RecordKind::Loss);
     EXPECT_EQ(loss->lost_bytes, lost);
+    // A mark of a moment, not bus bytes: another dissector, and a line saying what it marks.
+    EXPECT_EQ(exported_pdu_record(packet.bytes)->dissector, exported_pdu::kEventDissectorName);
+    const auto text = exported_pdu_record(packet.bytes)->pdu;
+    EXPECT_EQ(std::string(text.begin(), text.end()),
+              lost ? "capture data lost of the master's side: 51 bytes"
+                   : "capture data lost: bytes unknown");
   }
   ASSERT_EQ(file.next(packet), CaptureFile::Next::Packet);
   auto end = exported_pdu_record(packet.bytes);
   ASSERT_TRUE(end && record_facts(end->pvtap_record));
   EXPECT_EQ(record_facts(end->pvtap_record)->kind, RecordKind::End);
   EXPECT_EQ(record_facts(end->pvtap_record)->end_time, 1790000001.5);
-  EXPECT_TRUE(end->pdu.empty());
+  EXPECT_EQ(end->dissector, exported_pdu::kEventDissectorName);
+  EXPECT_EQ(std::string(end->pdu.begin(), end->pdu.end()),
+            "end of the run: requests still waiting were judged here");
   EXPECT_EQ(file.next(packet), CaptureFile::Next::End);
   std::remove(path.c_str());
 }
