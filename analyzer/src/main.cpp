@@ -6,18 +6,19 @@
 #include "cli/exit_status.h"
 #include "cli/help_labels.h"
 #include "cli/sniff_command.h"
+#include "cli/version_text.h"
 #include "extcap/extcap_command.h"
 
 namespace {
 
-// `pvtap --version`: this program's version, and the Wireshark its plugin was built for (a
-// plugin loads only into the Wireshark major.minor it was built against).
-#ifdef PVTAP_WIRESHARK_VERSION
-constexpr const char* kVersionText =
-    "pvtap " PVTAP_VERSION "\nWireshark plugin built for Wireshark " PVTAP_WIRESHARK_VERSION;
+// What the build knows of its plugin (dissector/CMakeLists.txt defines these when it builds one).
+pvtap::analyzer::PluginBuild plugin_build() {
+#ifdef PVTAP_PLUGIN_SERIES
+  return {PVTAP_PLUGIN_SERIES, PVTAP_PLUGIN_BUILD_PATH, PVTAP_PLUGIN_INSTALL_PATH};
 #else
-constexpr const char* kVersionText = "pvtap " PVTAP_VERSION "\nWireshark plugin not built";
+  return {};
 #endif
+}
 
 }  // namespace
 
@@ -26,7 +27,9 @@ int main(int argc, char** argv) {
   if (pvtap::analyzer::is_extcap_call(argc, argv)) return pvtap::analyzer::run_extcap(argc, argv);
   CLI::App app{"pvtap: see what crosses the wire between a data logger and its inverters", "pvtap"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", kVersionText, "print the version and exit");
+  app.set_version_flag(
+      "--version", [] { return pvtap::analyzer::version_text(plugin_build()); },
+      "print the version and where the Wireshark plugin is, and exit");
   pvtap::analyzer::AuditOptions audit_options;
   CLI::App* audit = pvtap::analyzer::add_audit_command(app, audit_options);
   pvtap::analyzer::SniffCommandLine sniff_command;

@@ -340,14 +340,66 @@ def mode_station_maps(options, checks):
         checks.true(f"{command} --help explains STATION=FILE", "STATION=FILE" in helped.stdout)
 
 
+PLUGIN_LINE = re.compile(r"Wireshark plugin for Wireshark (\d+\.\d+): (?:(installed|installed for "
+                         r"this user|built, not installed), (/\S+/pvtap\.so)|(not built) \(.+\))")
+
+
+def version_in(pvtap, hidden, home):
+    """pvtap --version with the plugin files in `hidden` covered by /dev/null (a mount
+    namespace of its own, so no other test's tshark sees it) and HOME at `home`."""
+    binds = "".join('mount --bind /dev/null "%s" || exit 77; ' % path for path in hidden)
+    return subprocess.run(["unshare", "--mount", "sh", "-c", binds + '"$0" --version', pvtap],
+                          capture_output=True, text=True, timeout=RUN_GUARD_S,
+                          env=dict(os.environ, HOME=home))
+
+
 def mode_version(options, checks):
+    """--version names the plugin file that exists, in the order Wireshark would load it (the
+    system's, the user's, the build's), and says 'not built' when none does: each file named
+    is hidden in turn until none is left."""
     result = subprocess.run([options.pvtap, "--version"], capture_output=True, text=True,
                             timeout=RUN_GUARD_S)
     checks.equal("exit status of pvtap --version", result.returncode, 0)
-    pattern = (r"pvtap \d+\.\d+\.\d+\n"
-               r"Wireshark plugin (built for Wireshark \d+\.\d+\.\d+|not built)\n")
-    checks.true(f"pvtap --version names both versions: {result.stdout!r}",
-                re.fullmatch(pattern, result.stdout) is not None)
+    lines = result.stdout.splitlines()
+    checks.true(f"pvtap --version gives the version: {result.stdout!r}",
+                re.fullmatch(r"pvtap \d+\.\d+\.\d+", lines[0] if lines else "") is not None)
+    if len(lines) == 2 and lines[1].startswith("Wireshark plugin: not built (Wireshark's"):
+        print("SKIP: configured without Wireshark's development files, no plugin to name")
+        return
+    if os.geteuid() != 0 or shutil.which("unshare") is None:
+        print("SKIP: hiding plugin files needs root and unshare")
+        return
+    home = tempfile.mkdtemp(prefix="pvtap-version-")
+    try:
+        hidden, said = [], []
+        for _ in range(4):
+            result = version_in(options.pvtap, hidden, home)
+            line = result.stdout.splitlines()[1:2]
+            match = PLUGIN_LINE.fullmatch(line[0]) if line else None
+            checks.true(f"the plugin line reads as one: {result.stdout!r}", match is not None)
+            if match is None:
+                return
+            if match.group(4):
+                break
+            path = match.group(3)
+            checks.true(f"{path} (said {match.group(2)}) is a file", os.path.isfile(path))
+            said.append(match.group(2))
+            if match.group(2) == "built, not installed" and not hidden:
+                # A copy in the user's personal plugin folder comes before the build's.
+                personal = os.path.join(home, ".local/lib/wireshark/plugins", match.group(1),
+                                        "epan", "pvtap.so")
+                os.makedirs(os.path.dirname(personal))
+                shutil.copyfile(path, personal)
+                again = version_in(options.pvtap, hidden, home).stdout
+                checks.true(f"a personal copy is named: {again!r}",
+                            f"installed for this user, {personal}" in again)
+                os.remove(personal)
+            hidden.append(path)
+        checks.true(f"with every plugin file hidden ({said}) it says 'not built'",
+                    match is not None and match.group(4) == "not built")
+        checks.true("the build's plugin was among those named", "built, not installed" in said)
+    finally:
+        shutil.rmtree(home, ignore_errors=True)
 
 
 def mode_threads(options, checks):

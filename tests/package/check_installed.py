@@ -64,10 +64,11 @@ def check_program(user, version, checks):
     lines = result.stdout.splitlines()
     checks.true("pvtap --version is the package's version %s" % version,
                 result.returncode == 0 and lines[:1] == ["pvtap " + version], result.stdout)
-    checks.true("pvtap --version names the Wireshark of the plugin",
-                len(lines) == 2 and re.fullmatch(r"Wireshark plugin built for Wireshark "
-                                                 r"\d+\.\d+\.\d+", lines[1]) is not None,
-                result.stdout)
+    installed = re.fullmatch(r"Wireshark plugin for Wireshark \d+\.\d+: installed, "
+                             r"(/usr/lib/\S+/wireshark/plugins/\d+\.\d+/epan/pvtap\.so)",
+                             lines[1] if len(lines) == 2 else "")
+    checks.true("pvtap --version names the installed plugin of the package",
+                installed is not None and os.path.isfile(installed.group(1)), result.stdout)
     frames = demo_truth()["frames"]
     result = user.run(["pvtap", "audit", "--summary-only", DEMO])
     checks.true("pvtap audit prints the report of the installed demo capture (%d frames)"

@@ -1,7 +1,10 @@
 """The man pages built by help2man (packaging/CMakeLists.txt), rendered by man: each names its
-command and version, and every option of the command's --help is in its OPTIONS section.
+command and version, every option of the command's --help is in its OPTIONS section, every
+example of --help is in EXAMPLES whole (a command continued on a second line included), and
+every kind of input the code tells apart (capture's FileFormat) is named in audit's --help and
+its page.
 
-Usage: check_man_pages.py PVTAP MAN_DIR
+Usage: check_man_pages.py PVTAP MAN_DIR FILE_FORMAT_HEADER
 """
 import os
 import re
@@ -37,8 +40,65 @@ def section(text, name):
     return match.group(1) if match else ""
 
 
+# How help and man page name each FileFormat the code reads (Text: a logic CSV is text; Zip: a
+# sigrok session is a zip). A format without an entry fails the test until it is described.
+INPUT_WORDS = {"Pcap": "pcap", "Pcapng": "pcapng", "Zip": "sigrok session", "Vcd": "VCD",
+               "Text": "logic CSV"}
+# Not inputs: what a file is called when it is none of them.
+NOT_INPUTS = {"Unknown", "Unreadable"}
+
+
+def help_text(pvtap, subcommand):
+    return subprocess.run([pvtap, *subcommand, "--help"], capture_output=True, text=True,
+                          check=True, timeout=RUN_GUARD_S).stdout
+
+
+def help_examples(text):
+    """The example commands of --help, a continuation line joined to its command."""
+    block = re.search(r"^Examples:\n(.*?)(?:\n\n|\Z)", text, re.MULTILINE | re.DOTALL)
+    examples = []
+    for line in (block.group(1).splitlines() if block else []):
+        if line.startswith("      ") and examples:
+            examples[-1] += " " + line.strip()
+        elif line.strip():
+            examples.append(line.strip())
+    return examples
+
+
+def squeezed(text):
+    return re.sub(r"\s+", " ", text)
+
+
+def check_examples(page, text, help, failures):
+    """Each example of --help is in EXAMPLES, whole and in one paragraph."""
+    examples = help_examples(help)
+    paragraphs = [squeezed(p) for p in re.split(r"\n\s*\n", section(text, "EXAMPLES"))]
+    for example in examples:
+        if not any(squeezed(example) in paragraph for paragraph in paragraphs):
+            failures.append("%s: example not whole in EXAMPLES: %s" % (page, example))
+    return len(examples)
+
+
+def check_inputs(header, audit_help, audit_page, failures):
+    formats = re.search(r"enum class FileFormat \{([^}]*)\}", open(header).read()).group(1)
+    for name in (f.strip() for f in formats.split(",") if f.strip()):
+        if name in NOT_INPUTS:
+            continue
+        word = INPUT_WORDS.get(name)
+        if word is None:
+            failures.append("FileFormat::%s has no words in this test: describe it in --help"
+                            % name)
+            continue
+        for where, text in (("audit --help", audit_help), ("pvtap-audit(1)", audit_page)):
+            if word.lower() not in squeezed(text).lower():
+                failures.append("%s does not name the input %s (%s)" % (where, word, name))
+    for where, text in (("audit --help", audit_help), ("pvtap-audit(1)", audit_page)):
+        if "--raw" not in text or "plain dump" not in squeezed(text):
+            failures.append("%s does not name the plain dump (--raw)" % where)
+
+
 def main():
-    pvtap, man_dir = sys.argv[1], sys.argv[2]
+    pvtap, man_dir, header = sys.argv[1], sys.argv[2], sys.argv[3]
     version = subprocess.run([pvtap, "--version"], capture_output=True, text=True,
                              check=True, timeout=RUN_GUARD_S).stdout.split()[1]
     failures = []
@@ -57,7 +117,11 @@ def main():
         for option in wanted:
             if not re.search(r"^\s+(-[a-z],\s*)?%s\b" % re.escape(option), options, re.MULTILINE):
                 failures.append("%s: %s of --help is not an entry of OPTIONS" % (page, option))
-        print("%s(1): %d options checked" % (page, len(wanted)))
+        help = help_text(pvtap, subcommand)
+        examples = check_examples(page, text, help, failures)
+        if page == "pvtap-audit":
+            check_inputs(header, help, text, failures)
+        print("%s(1): %d options and %d examples checked" % (page, len(wanted), examples))
     for failure in failures:
         print("FAIL:", failure)
     return 1 if failures else 0

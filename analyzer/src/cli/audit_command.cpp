@@ -29,7 +29,7 @@ const char* const kDescription =
     "polling and bus timing, and the latest value of every register per station.";
 
 std::string footer_text() {
-  return "\nInputs (recognized by the capture's link type; pcap and pcapng):\n"
+  return "\nInputs (told by their first bytes, whatever their names; captures by link type):\n"
          "  gateway traffic    Ethernet, Linux cooked (SLL, SLL2), raw IP and loopback captures\n"
          "                     of a serial-to-TCP gateway (TCP or UDP). TCP is reassembled per\n"
          "                     direction; lost segments are reported as data-loss gaps. The side\n"
@@ -73,7 +73,11 @@ std::string footer_text() {
 }
 
 void add_input_options(CLI::App& audit, AuditOptions& o) {
-  audit.add_option("FILE", o.captures, "pcap or pcapng capture(s) to audit")->type_name("FILE");
+  audit
+      .add_option("FILE", o.captures,
+                  "capture(s) or a logic recording to audit: pcap, pcapng, a sigrok session, "
+                  "VCD or logic CSV (see Inputs below)")
+      ->type_name("FILE");
   audit.add_option("--raw", o.raw_dumps, "a plain dump of bus bytes (no timestamps); repeatable")
       ->type_name("FILE")
       ->allow_extra_args(false);

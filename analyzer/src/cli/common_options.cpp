@@ -90,7 +90,8 @@ void add_protocol_options(CLI::App& audit, CommonOptions& o, BaudRange baud_rang
       ->default_str("decimal");
   audit
       .add_option("--map", o.maps,
-                  "register map (TOML, see protocols/maps/README.md). FILE replaces or extends "
+                  "register map (TOML; the format and the built-in maps are in " PVTAP_MAPS_DIR
+                  "). FILE replaces or extends "
                   "the built-in map of its dialect, read after the user's maps in "
                   "~/.config/pvtap/maps/*.toml. STATION=FILE gives a gsl or modbus map to one "
                   "station (10=meter.toml) or several (10,11=meter.toml), 1 to 247: their frames "
