@@ -276,6 +276,7 @@ OutputSettings output_settings(const CommonOptions& o) {
   s.written_run = RunFacts{o.dialects, o.baud, o.timeout, {}};
   s.files = FileOutputSettings{o.values_path, o.values_format, o.html_path, o.plot_keys};
   s.mqtt = o.mqtt;
+  s.mqtt.lone_serial_bus = kSerialBusName;
   return s;
 }
 

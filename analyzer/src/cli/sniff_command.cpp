@@ -202,6 +202,7 @@ bool capture_from(Source& source, const SniffOptions& o, Pipeline& pipeline, Run
 
 int capture(const SniffOptions& o, const RegisterDecoder& decoder, OutputStream& out) {
   OutputSettings output_choice = output_settings(o);
+  if (o.live.devices.size() == 1) output_choice.mqtt.lone_serial_bus = o.live.devices.front();
   // Each record reaches the --write file at once, so that an abrupt end loses nothing.
   output_choice.flush_each_record = true;
   output_choice.live = true;

@@ -16,6 +16,10 @@ struct MqttOptions {
   std::string key_file;
   double interval = 10;    // seconds between value, state and health publications
   bool discovery = false;  // Home Assistant discovery configs under homeassistant/
+  // The bus of the run's one serial tap (a capture of serial records, or sniff with one
+  // --device): its topic level is "bus", so that topics and Home Assistant entities stay the
+  // same whether the bus was heard live or from a capture, and when the adapter's path changes.
+  std::string lone_serial_bus;
   bool active() const { return !url.empty(); }
 };
 

@@ -20,7 +20,7 @@ bool is_event(const SessionFrame& f) {
 MqttPublisher::MqttPublisher(std::unique_ptr<MqttClient> client, const MqttOptions& options,
                              std::string prefix, bool live)
     : client_(std::move(client)),
-      topics_(std::move(prefix)),
+      topics_(std::move(prefix), options.lone_serial_bus),
       schedule_(options.interval, live),
       retained_(*client_, topics_, schedule_, options.discovery) {}
 

@@ -15,8 +15,8 @@ std::string topic_level(std::string_view name) {
   return out;
 }
 
-std::string bus_level(std::string_view bus) {
-  std::string level = topic_level(bus);
+std::string MqttTopics::bus_level(std::string_view bus) const {
+  std::string level = bus == lone_serial_bus_ ? std::string() : topic_level(bus);
   return level.empty() ? "bus" : level;
 }
 

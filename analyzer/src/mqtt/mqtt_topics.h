@@ -19,15 +19,18 @@ namespace pvtap::analyzer {
 // A name made safe as one topic level and as a Home Assistant id: characters other than
 // letters, digits, '-' and '_' become '_' ("/dev/ttyUSB0" is "dev_ttyUSB0").
 std::string topic_level(std::string_view name);
-// The topic level of a bus: "bus" for the single bus of a serial tap (whose name is empty).
-std::string bus_level(std::string_view bus);
 // The key of a value: the map's key, with the register's number for one of a range
 // ("cell_voltage_3"). Empty for words outside the map.
 std::string value_key(const DecodedValue& v);
 
 class MqttTopics {
  public:
-  explicit MqttTopics(std::string prefix) : prefix_(std::move(prefix)) {}
+  MqttTopics(std::string prefix, std::string lone_serial_bus)
+      : prefix_(std::move(prefix)), lone_serial_bus_(std::move(lone_serial_bus)) {}
+
+  // The topic level of a bus: "bus" for the run's one serial tap (MqttOptions), otherwise its
+  // name made a topic level.
+  std::string bus_level(std::string_view bus) const;
 
   const std::string& prefix() const { return prefix_; }
   std::string status() const { return prefix_ + "/status"; }
@@ -45,6 +48,7 @@ class MqttTopics {
 
  private:
   std::string prefix_;
+  std::string lone_serial_bus_;
 };
 
 }  // namespace pvtap::analyzer

@@ -15,7 +15,7 @@ MqttBus& RetainedTopics::bus(std::string_view name) {
   if (it == buses_.end()) {
     MqttBus bus;
     bus.name = std::string(name);
-    bus.level = bus_level(name);
+    bus.level = topics_.bus_level(name);
     it = buses_.emplace(bus.name, std::move(bus)).first;
   }
   return it->second;

@@ -122,9 +122,11 @@ BusSession& Pipeline::logger_bus(const std::string& name) {
   return buses_.find_or_add(name, carrier_options(Carrier::LoggerStickFrames));
 }
 
+// A capture of serial records or a plain dump names no device: its one bus is "serial", as
+// the report calls it, so that every event and value row says its bus.
 BusSession& Pipeline::serial_bus(InputKind kind) {
-  if (BusSession* bus = buses_.find("")) return *bus;
-  return buses_.add("", bus_options(kind));
+  if (BusSession* bus = buses_.find(kSerialBusName)) return *bus;
+  return buses_.add(kSerialBusName, bus_options(kind));
 }
 
 void Pipeline::begin_raw_input() {

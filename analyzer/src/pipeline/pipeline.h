@@ -35,6 +35,9 @@ struct PipelineSettings {
   ProtocolChoices given;
 };
 
+// The bus of a capture of serial records or a plain dump, which names no device.
+inline constexpr const char* kSerialBusName = "serial";
+
 // A gateway flow gets its bus from the pipeline (BusProvider): one bus per gateway endpoint.
 class Pipeline : private BusProvider {
  public:

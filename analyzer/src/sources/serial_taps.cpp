@@ -71,18 +71,18 @@ bool SerialTaps::open() {
 
 BusSession& SerialTaps::bus_of(Tap& tap) {
   if (!tap.bus) {
-    const std::string name = live_.devices.size() > 1 ? tap.device.path() : "";
-    tap.bus = &pipeline_.add_bus(name, session_options(tap));
+    // Named by its device also when it is the only one: the reader of a report or of jsonl
+    // sees which tap heard it, and a --write file carries the name to a later audit.
+    tap.bus = &pipeline_.add_bus(tap.device.path(), session_options(tap));
   }
   return *tap.bus;
 }
 
 void SerialTaps::add_found_lines(AuditReport& report) {
-  const bool named = report.live.devices.size() > 1;
   for (const DeviceReport& d : report.live.devices) {
     if (!d.found_line) continue;
     for (BusFindings& bus : report.buses) {
-      if (bus.name == (named ? d.path : "")) bus.serial = d.found_line;
+      if (bus.name == d.path) bus.serial = d.found_line;
     }
   }
 }
@@ -113,10 +113,8 @@ void SerialTaps::run(LiveLoop& loop, LiveSources& live) {
 }
 
 void SerialTaps::report_line_errors(double now) {
-  const bool named = live_.devices.size() > 1;
   for (auto& tap : taps_) {
-    loop_->output().line_errors(named ? tap->device.path() : "",
-                                tap->device.report(now).line_errors);
+    loop_->output().line_errors(tap->device.path(), tap->device.report(now).line_errors);
   }
 }
 

@@ -217,7 +217,13 @@ def check_truth(args):
         # A pty has no line error counters: reported as unsupported, never as zeros.
         bad.check(device["line_errors"] is None and "TIOCGICOUNT" in device["line_errors_note"],
                   f"line errors {device['line_errors']}, note {device.get('line_errors_note')}")
+    # The one tap's bus is named by its device, live and in the written file alike.
+    unnamed = [e["type"] for e in events[:-1] if e.get("bus") != pty.path]
+    bad.check(not unnamed, f"{len(unnamed)} events do not name the bus {pty.path}")
+    bad.check([b["bus"] for b in summary["buses"]] == [pty.path], f"buses {summary['buses']}")
     read_back = audit_frames(args, pcap)
+    bad.check(all(f.get("bus") == pty.path for f in read_back),
+              "the written file's frames lose the device's name")
     live = frames_of(events)
     bad.check([frame_key(f, "raw") for f in read_back] == [frame_key(f, "raw") for f in live],
               f"the written pcap holds {len(read_back)} frames that differ from the "

@@ -40,8 +40,12 @@ TEST(MqttTopics, LevelsAreSafeForTopicsAndHomeAssistantIds) {
   EXPECT_EQ(topic_level("/dev/ttyUSB0"), "dev_ttyUSB0");
   EXPECT_EQ(topic_level("192.168.1.5:4001"), "192_168_1_5_4001");
   EXPECT_EQ(topic_level("a+b#c"), "a_b_c");
-  EXPECT_EQ(bus_level(""), "bus");
-  const MqttTopics t("pvtap/site");
+  const MqttTopics t("pvtap/site", "/dev/ttyUSB0");
+  // The run's one serial tap is "bus" whatever its device; another bus is its name.
+  EXPECT_EQ(t.bus_level("/dev/ttyUSB0"), "bus");
+  EXPECT_EQ(t.bus_level("/dev/ttyUSB1"), "dev_ttyUSB1");
+  EXPECT_EQ(t.bus_level("10.0.0.2:4001"), "10_0_0_2_4001");
+  EXPECT_EQ(t.bus_level(""), "bus");
   EXPECT_EQ(t.value("bus", 3, "battery_voltage"), "pvtap/site/bus/3/battery_voltage");
   EXPECT_EQ(t.state("bus", 3), "pvtap/site/bus/3/state");
   EXPECT_EQ(t.events("dev_ttyUSB1"), "pvtap/site/dev_ttyUSB1/events");
