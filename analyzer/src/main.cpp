@@ -4,6 +4,7 @@
 
 #include "cli/audit_command.h"
 #include "cli/exit_status.h"
+#include "cli/glossary_command.h"
 #include "cli/help_labels.h"
 #include "cli/sniff_command.h"
 #include "cli/version_text.h"
@@ -34,6 +35,8 @@ int main(int argc, char** argv) {
   CLI::App* audit = pvtap::analyzer::add_audit_command(app, audit_options);
   pvtap::analyzer::SniffCommandLine sniff_command;
   CLI::App* sniff = pvtap::analyzer::add_sniff_command(app, sniff_command);
+  pvtap::analyzer::GlossaryCommandLine glossary_command;
+  CLI::App* glossary = pvtap::analyzer::add_glossary_command(app, glossary_command);
   pvtap::analyzer::keep_help_section_names(app);
   try {
     app.parse(argc, argv);
@@ -41,11 +44,15 @@ int main(int argc, char** argv) {
     // Help is a success; every other parse problem is a usage error (exit 2), said on one
     // line by pvtap with where the valid forms are listed.
     if (e.get_exit_code() == 0) return app.exit(e);
-    const char* command = audit->parsed() ? "audit " : sniff->parsed() ? "sniff " : "";
+    const char* command = audit->parsed()      ? "audit "
+                          : sniff->parsed()    ? "sniff "
+                          : glossary->parsed() ? "glossary "
+                                               : "";
     std::fprintf(stderr, "pvtap: %s (see pvtap %s--help)\n", e.what(), command);
     return pvtap::analyzer::kExitBadInput;
   }
   if (audit->parsed()) return pvtap::analyzer::run_audit(audit_options);
   if (sniff->parsed()) return pvtap::analyzer::run_sniff(sniff_command);
+  if (glossary->parsed()) return pvtap::analyzer::run_glossary(glossary_command);
   return pvtap::analyzer::kExitBadInput;
 }

@@ -11,6 +11,7 @@
 #include "pvtap/codec/function_codes.h"
 #include "pvtap/registers/register_format.h"
 #include "report/frame_findings.h"
+#include "report/glossary.h"
 #include "report/poll_block_text.h"
 #include "report/report_line.h"
 #include "report/report_writers.h"
@@ -59,10 +60,29 @@ struct Tile {
   const char* section;
 };
 
+// A title (the browser's tooltip) with the glossary's meaning of what a heading or tile names.
+void title_attribute(std::string& o, const GlossaryTerm* term) {
+  if (term == nullptr) return;
+  o += " title=\"";
+  append_html_escaped(o, term->meaning);
+  o += '"';
+}
+
+// A table heading that names a glossary term: its meaning is the heading's tooltip.
+void term_heading(std::string& o, std::string_view label, std::string_view term) {
+  o += "<th";
+  title_attribute(o, glossary_term(term));
+  o += '>';
+  append_html_escaped(o, label);
+  o += "</th>";
+}
+
 void tile(std::string& o, const Tile& t) {
   o += "<a class=\"tile";
   if (t.value > 0 && std::string_view(t.key) != "frames") o += " finding";
-  o += "\" href=\"#";
+  o += '"';
+  title_attribute(o, glossary_term_of_key(t.key));
+  o += " href=\"#";
   o += t.section;
   o += "\" data-key=\"";
   o += t.key;
@@ -219,9 +239,12 @@ double longest_poll_period(const BusReport& bus) {
 }
 
 void poll_table(std::string& o, const AuditReport& r, const BusReport& b) {
-  o += "<table><tr><th>station</th><th>dialect</th><th>function</th><th>start</th>"
-       "<th>count</th><th>intervals</th><th>period ms</th><th>jitter ms</th>"
-       "<th>max deviation ms</th></tr>\n";
+  o += "<table><tr>";
+  term_heading(o, "station", "station");
+  o += "<th>dialect</th><th>function</th><th>start</th><th>count</th><th>intervals</th>";
+  term_heading(o, "period ms", "poll period");
+  term_heading(o, "jitter ms", "jitter");
+  o += "<th>max deviation ms</th></tr>\n";
   for (const PollPeriod& p : b.timing.poll_periods) {
     std::string function;
     append_function(function, p.block.dialect, p.block.function);
@@ -292,10 +315,10 @@ void append_html_overview(std::string& o, const AuditReport& r) {
   o += "<nav class=\"tiles\">";
   const Tile tiles[] = {
       {"frames", "frames", t.bytes.frames, "stations"},
-      {"bad_checks", "damaged frames", t.bytes.bad_frames, "findings-bad"},
+      {"bad_checks", "bad checks", t.bytes.bad_frames, "findings-bad"},
       {"timeouts", "timeouts", t.timeouts, "findings-timeouts"},
-      {"unanswered_damaged_requests", "unanswered damaged requests", t.unanswered_damaged_requests,
-       "findings-bad"},
+      {"unanswered_damaged_requests", "damaged requests left unanswered",
+       t.unanswered_damaged_requests, "findings-bad"},
       {"exceptions", "exceptions", t.exceptions, "findings-exceptions"},
       {"noise_bytes", "noise bytes", t.bytes.noise_bytes, "findings-noise"},
       {"gaps", "data-loss gaps", t.gaps.gaps, "findings-gaps"},
@@ -304,14 +327,31 @@ void append_html_overview(std::string& o, const AuditReport& r) {
   o += "</nav>\n";
 }
 
+namespace {
+
+// The same columns, and words, as the text report's station table.
+void station_headings(std::string& o) {
+  term_heading(o, "station", "station");
+  term_heading(o, "requests", "request");
+  term_heading(o, "responses", "response");
+  term_heading(o, "bad checks", "bad check");
+  term_heading(o, "timeouts", "timeout");
+  term_heading(o, "exceptions", "exception");
+  term_heading(o, "latency p50 ms", "p50");
+  term_heading(o, "p95", "p95");
+  o += "<th>max</th>";
+}
+
+}  // namespace
+
 void append_html_stations(std::string& o, const AuditReport& r) {
   o += "<section id=\"stations\"><h2>Stations</h2>\n";
   for (const BusFindings& bus : r.buses) {
     o += "<h3>";
     append_html_escaped(o, bus_title(bus));
-    o += "</h3>\n<table class=\"stations\"><tr><th>station</th><th>requests</th>"
-         "<th>replies</th><th>damaged</th><th>timeouts</th><th>exceptions</th>"
-         "<th>latency p50 ms</th><th>p95</th><th>max</th></tr>\n";
+    o += "</h3>\n<table class=\"stations\"><tr>";
+    station_headings(o);
+    o += "</tr>\n";
     for (const StationSummary& s : bus.report.stations) station_row(o, r, bus, s);
     unknown_station_row(o, bus.report);
     o += "</table>\n";

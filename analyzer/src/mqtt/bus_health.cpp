@@ -8,13 +8,13 @@ namespace pvtap::analyzer {
 
 const HealthField kHealthFields[17] = {
     {"frames", "frames", "", true},
-    {"damaged_frames", "damaged frames", "", true},
+    {"damaged_frames", "bad checks", "", true},
     {"timeouts", "timeouts", "", true},
-    {"unanswered_damaged_requests", "unanswered damaged requests", "", true},
+    {"unanswered_damaged_requests", "damaged requests left unanswered", "", true},
     {"exceptions", "exceptions", "", true},
     {"unsolicited", "unsolicited replies", "", true},
     {"noise_bytes", "noise bytes", "", true},
-    {"gaps", "capture gaps", "", true},
+    {"gaps", "gaps", "", true},
     {"latency_p50_ms", "latency p50", "ms", false},
     {"latency_p95_ms", "latency p95", "ms", false},
     {"latency_max_ms", "latency max", "ms", false},

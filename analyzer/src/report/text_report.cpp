@@ -212,12 +212,12 @@ void station_table(const AuditReport& r, const BusReport& b, std::string& o) {
   o += report_line("stations:");
   o += report_line("  %-8s %9s %9s %5s %8s %10s %11s %10s  %s", "station", "requests", "responses",
                    "bad", "timeouts", "exceptions", "unsolicited", "duplicates",
-                   "latency ms mean / p95 / max");
+                   "latency ms p50 / p95 / max");
   for (const StationSummary& s : b.stations) {
     std::string latency = "-";
     if (s.latency.count > 0) {
       char buf[96];
-      std::snprintf(buf, sizeof buf, "%.1f / %.1f / %.1f", ms(s.latency.mean), ms(s.latency.p95),
+      std::snprintf(buf, sizeof buf, "%.1f / %.1f / %.1f", ms(s.latency.p50), ms(s.latency.p95),
                     ms(s.latency.max));
       latency = buf;
     }
