@@ -14,6 +14,7 @@ usage: check_influx.py --pvtap PVTAP --sim PVTAP_SIM --scratch DIR
 import argparse
 import json
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -104,6 +105,12 @@ def expected_points(path):
     return out
 
 
+def leading_zero_times(path):
+    """The lines whose time is not an integer as one writes it (no leading zero)."""
+    with open(path) as f:
+        return [line for line in f if not re.search(r" (?:-?[1-9][0-9]*|0)$", line.rstrip("\n"))]
+
+
 def stored_points(server):
     series = server.query(DB, "SELECT * FROM pvtap")
     if not series:
@@ -153,6 +160,11 @@ def main():
     server.stop()
 
     failures = []
+    for lp in line_files:
+        bad_times = leading_zero_times(lp)
+        if bad_times:
+            failures.append(f"{lp}: {len(bad_times)} times with leading zeros, "
+                            f"e.g. {bad_times[0]!r}")
     if fields != [["value", "float"]]:
         failures.append(f"field keys {fields}, expected value as float")
     buses = {tags[0] for tags, _, _ in expected}
