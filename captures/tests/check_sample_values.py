@@ -17,10 +17,11 @@ import re
 import subprocess
 import sys
 
-# Line protocol: measurement, tags (escaped ",", "=", " " and "\"), one space, fields, one
-# space, an integer timestamp.
-ESCAPED = r"(?:[^,= \\]|\\[,= \\])+"
-LINE = re.compile(r"^(?P<measurement>(?:[^, \\]|\\[, \\])+)"
+# Line protocol as InfluxDB reads it: measurement, tags (",", "=" and " " escaped; a backslash
+# keeps the character after it in the name, and only those three lose it), one space, fields,
+# one space, an integer timestamp.
+ESCAPED = r"(?:[^,= \\]|\\.)+"
+LINE = re.compile(r"^(?P<measurement>(?:[^, \\]|\\.)+)"
                   r"(?P<tags>(?:,%s=%s)*)"
                   r" (?P<fields>%s=[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?"
                   r"(?:,%s=[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)*)"
@@ -28,7 +29,7 @@ LINE = re.compile(r"^(?P<measurement>(?:[^, \\]|\\[, \\])+)"
 
 
 def unescape(text):
-    return re.sub(r"\\(.)", r"\1", text)
+    return re.sub(r"\\([,= ])", r"\1", text)
 
 
 def parse_line(line):
@@ -133,7 +134,7 @@ def check_influx(rows, text, failures):
             problems.append("tags %s" % tags)
         if "key" not in tags or list(fields) != ["value"] or float(fields["value"]) != e["value"]:
             problems.append("fields %s" % fields)
-        if stamp is None or stamp != ("%.6f" % e["ts"]).replace(".", "") + "000":
+        if stamp is None or stamp != str(int(("%.6f" % e["ts"]).replace(".", "")) * 1000):
             problems.append("timestamp %s for ts %s" % (stamp, e["ts"]))
         if problems:
             failures.append("influx line %r: %s" % (line, "; ".join(problems)))

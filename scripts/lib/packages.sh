@@ -64,6 +64,9 @@ PVTAP_PACKAGES=(
   sigrok-cli
   # pvtap-sim --sr writes sigrok sessions (a zip) with libzip.
   libzip-dev
+  # The test of --values-format influx writes the line protocol into a real InfluxDB and
+  # reads it back (influxd 1.6 on Debian 12, 13 and testing).
+  influxdb
 )
 
 # The system's os-release file (PVTAP_OS_RELEASE lets the tests name another).

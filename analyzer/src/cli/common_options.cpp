@@ -134,7 +134,8 @@ void add_values_options(CLI::App& command, CommonOptions& o) {
       .add_option("--values-format", o.values_format_name,
                   "format of --values: csv (with a header), jsonl, or influx (InfluxDB line "
                   "protocol: measurement pvtap, tags bus/station/dialect/key, field value, "
-                  "nanosecond time; numeric registers only)")
+                  "time in ns; numeric registers only; POST it to InfluxDB's "
+                  "/write?db=DB&precision=ns)")
       ->check(CLI::IsMember({"csv", "jsonl", "influx"}).description(""))
       ->needs(values)
       ->type_name("FORMAT")

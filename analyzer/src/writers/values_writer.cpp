@@ -97,15 +97,35 @@ void append_jsonl_row(std::string& o, const ValueRow& r, std::string& scratch) {
   o += "}\n";
 }
 
-// Line protocol escapes commas, equals signs and spaces in tag values with a backslash.
+// Line protocol escapes commas, equals signs and spaces in tag values with a backslash, and
+// nothing else: InfluxDB keeps any other backslash as it is, so a doubled one would be stored
+// doubled.
 void append_influx_tag(std::string& o, std::string_view name, std::string_view value) {
   o += ',';
   o += name;
   o += '=';
   for (const char ch : value) {
-    if (ch == ',' || ch == '=' || ch == ' ' || ch == '\\') o += '\\';
+    if (ch == ',' || ch == '=' || ch == ' ') o += '\\';
     o += ch;
   }
+}
+
+// The microseconds of the ts column, digit for digit, as nanoseconds (a double cannot carry
+// nanoseconds of an epoch, and its product with 1e6 may round the other way than the printed
+// ts); without the leading zeros of a time under a second, which are no integer's digits.
+void append_influx_time(std::string& o, double seconds) {
+  const std::size_t at = o.size();
+  append_fixed(o, seconds, 6);
+  o.erase(o.find('.', at), 1);
+  const std::size_t digits = o[at] == '-' ? at + 1 : at;
+  const std::size_t first = o.find_first_not_of('0', digits);
+  if (first == std::string::npos) {
+    o.resize(at);
+    o += '0';
+    return;
+  }
+  o.erase(digits, first - digits);
+  o += "000";
 }
 
 void append_influx_row(std::string& o, const ValueRow& r) {
@@ -122,13 +142,8 @@ void append_influx_row(std::string& o, const ValueRow& r) {
   o += " value=";
   append_value_number(o, r.value);
   if (r.context.has_timestamps) {
-    // The microseconds of the ts column, digit for digit (a double cannot carry nanoseconds
-    // of an epoch, and its product with 1e6 may round the other way than the printed ts).
     o += ' ';
-    const std::size_t at = o.size();
-    append_fixed(o, r.frame.start_time, 6);
-    o.erase(o.find('.', at), 1);
-    o += "000";
+    append_influx_time(o, r.frame.start_time);
   }
   o += '\n';
 }
