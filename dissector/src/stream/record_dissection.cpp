@@ -6,6 +6,7 @@
 #include <cstring>
 #include <span>
 
+#include "columns/talker_columns.h"
 #include "pvtap/codec/noise_resemblance.h"
 #include "stream/call_view.h"
 #include "stream/piece_display.h"
@@ -88,11 +89,14 @@ void show_joined(const CallView& view, const BusPiece& piece, std::span<const st
   show_piece(target, piece, bytes, 0);
 }
 
-// Shows the pieces the record's call decided; returns how many.
+// Shows the pieces the record's call decided and notes their talkers; returns how many.
 int show_record_pieces(const CallView& view, std::span<const std::uint8_t> record,
-                       const PieceTarget& t) {
+                       const PieceTarget& t, TalkerColumns& talkers) {
   int shown = 0;
   for (const BusPiece& piece : t.bus->bus().pieces(kSerial, view.from, view.shown_to)) {
+    if (const FrameRecord* frame = piece.frame ? t.bus->record(piece.frame_id) : nullptr) {
+      add_talkers(talkers, *frame, t.pinfo->pool);
+    }
     ++shown;
     if (piece.offset < view.record_from) {
       show_joined(view, piece, record, t);
@@ -114,9 +118,9 @@ const char* waiting_text(const CallView& view, packet_info* pinfo) {
 }
 
 // The record's waiting bytes; a record that shows nothing else says in its columns what it
-// is.
+// is, and who talks once the frame that completes it is known.
 void show_waiting(const CallView& view, std::span<const std::uint8_t> record, const PieceTarget& t,
-                  const SerialRecordFields& f, bool alone) {
+                  const SerialRecordFields& f, bool alone, TalkerColumns& talkers) {
   const std::uint64_t from = std::max(view.decided_to, view.record_from);
   const auto offset = static_cast<gint>(from - view.record_from);
   const auto length = static_cast<gint>(record.size()) - offset;
@@ -124,6 +128,7 @@ void show_waiting(const CallView& view, std::span<const std::uint8_t> record, co
   if (alone) {
     col_set_str(t.pinfo->cinfo, COL_PROTOCOL, view.waits_under->short_name);
     col_add_fstr(t.pinfo->cinfo, COL_INFO, "[%s]", text);
+    if (view.completed_by != nullptr) add_talkers(talkers, *view.completed_by, t.pinfo->pool);
   }
   proto_item* item = proto_tree_add_item(t.tree, f.proto, t.tvb, offset, length, ENC_NA);
   proto_item_append_text(item, ": %s", text);
@@ -152,12 +157,14 @@ int dissect_serial_record(tvbuff_t* tvb, packet_info* pinfo, proto_tree* tree,
     feed_record(record, pinfo, bus, *view, protocol);
   }
   const PieceTarget target{tvb, pinfo, tree, &protocol, &bus};
-  const int shown = show_record_pieces(*view, record, target);
+  TalkerColumns talkers;
+  const int shown = show_record_pieces(*view, record, target, talkers);
   note_timeouts(*view, pinfo, bus);
   show_timeouts(*view, tvb, pinfo, tree);
   if (view->waits_under != nullptr) {
-    show_waiting(*view, record, target, fields, shown == 0 && view->timeout_count == 0);
+    show_waiting(*view, record, target, fields, shown == 0 && view->timeout_count == 0, talkers);
   }
+  write_talkers(talkers, pinfo);
   return static_cast<int>(captured);
 }
 

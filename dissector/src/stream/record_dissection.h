@@ -20,8 +20,8 @@ struct SerialRecordFields {
 // direction read from the frames' structure) and shows the pieces it decided: a frame that
 // began in earlier records is shown whole on the record that completes it, from a reassembled
 // buffer. A record whose last byte waits for a later record says so, with the record that
-// completes it once the first pass has seen that one. Returns the number of bytes taken (all
-// of them).
+// completes it once the first pass has seen that one. The Source and Destination columns name
+// the talkers of the frames shown. Returns the number of bytes taken (all of them).
 int dissect_serial_record(tvbuff_t* tvb, packet_info* pinfo, proto_tree* tree,
                           InverterProtocol& protocol, BusTrack& bus,
                           const SerialRecordFields& fields);
