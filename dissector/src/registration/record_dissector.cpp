@@ -36,7 +36,8 @@ int dissect_record_as(InverterProtocol& p, tvbuff_t* tvb, packet_info* pinfo, pr
                       void* data) {
   const RoleHint hint = data != nullptr ? *static_cast<const RoleHint*>(data) : RoleHint::Unknown;
   ConversationState& state = conversation_state(pinfo, rtu_protocol());
-  const StreamContext ctx{&p, state.bus, direction_of(hint), nullptr, false};
+  const StreamContext ctx{
+      .protocol = &p, .bus = state.bus, .direction = direction_of(hint), .names_talkers = true};
   return dissect_stream(tvb, pinfo, tree, ctx);
 }
 

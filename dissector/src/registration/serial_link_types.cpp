@@ -4,6 +4,7 @@
 #include <epan/prefs.h>
 #include <wiretap/wtap.h>
 
+#include "fields/field_list.h"
 #include "registration/record_layer.h"
 #include "stream/conversation_state.h"
 #include "stream/record_dissection.h"
@@ -12,7 +13,7 @@
 namespace pvtap::dissector {
 namespace {
 
-int g_proto_serial = -1;
+SerialRecordFields g_fields;
 dissector_handle_t g_serial_handle = nullptr;
 // Serial sniffers (SerialPCAP, modbus-sniffer, WiresharkSerialAdapter) write USER0-15; a user
 // who maps them to another protocol turns this off.
@@ -29,7 +30,7 @@ int dissect_serial(tvbuff_t* tvb, packet_info* pinfo, proto_tree* tree, void*) {
   // All records of a capture are one bus, whatever layer shows them.
   ConversationState& state = conversation_state(pinfo, rtu_protocol(), carrier_of(tvb));
   return dissect_serial_record(tvb, pinfo, tree, protocol_of_record(tvb, pinfo, RoleHint::Unknown),
-                               *state.bus);
+                               *state.bus, g_fields);
 }
 
 // RTAC serial records carry bus bytes too (the RTAC dissector looks its payload up under 0):
@@ -54,12 +55,28 @@ void claim_serial_payloads() {
   }
 }
 
+// The fields of a record whose last byte waits for a later record.
+void register_waiting_fields() {
+  static FieldList fields;
+  fields.add(&g_fields.waiting, "Bytes waiting for a later record", "pvtap_serial.waiting",
+             FT_UINT32, BASE_DEC, nullptr, 0,
+             "Bytes of this record that belong to a frame (or noise run) shown by a later record");
+  fields.add(&g_fields.completed_in, "Completed in", "pvtap_serial.completed_in", FT_FRAMENUM,
+             BASE_NONE, nullptr, 0,
+             "The record that completes the frame holding this record's last byte, and shows it "
+             "(known once the capture has been read: not in a single pass)");
+  fields.register_all(g_fields.proto);
+  static int* subtrees[] = {&g_fields.ett};
+  proto_register_subtree_array(subtrees, 1);
+}
+
 }  // namespace
 
 void register_serial_link_types() {
-  g_proto_serial = proto_register_protocol("pvtap serial records", "pvtap serial", "pvtap_serial");
-  g_serial_handle = register_dissector("pvtap_serial", dissect_serial, g_proto_serial);
-  module_t* module = prefs_register_protocol(g_proto_serial, claim_serial_payloads);
+  g_fields.proto = proto_register_protocol("pvtap serial records", "pvtap serial", "pvtap_serial");
+  register_waiting_fields();
+  g_serial_handle = register_dissector("pvtap_serial", dissect_serial, g_fields.proto);
+  module_t* module = prefs_register_protocol(g_fields.proto, claim_serial_payloads);
   // The DLT_USER table sets its own handle for USER0-15 whenever its preferences are applied,
   // which may come after ours: the claim is made again before each file is dissected.
   register_init_routine(claim_serial_payloads);

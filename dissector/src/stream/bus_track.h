@@ -15,6 +15,7 @@
 #include "stream/held_bytes.h"
 #include "stream/station_names.h"
 #include "stream/timeout_queue.h"
+#include "stream/waiting_records.h"
 
 namespace pvtap::dissector {
 
@@ -30,6 +31,8 @@ class BusTrack final : public BusSessionSink {
   SegmentedBus& bus() { return bus_; }
   // Serial records: the bytes not decided yet.
   HeldBytes& held() { return held_; }
+  // Serial records: the records whose last byte is not decided yet.
+  WaitingRecords& waiting() { return waiting_; }
   // The record of a frame of the session; null for an id it never reported.
   FrameRecord* record(std::uint64_t frame_id) const {
     return frame_id < records_.size() ? records_[frame_id] : nullptr;
@@ -54,6 +57,7 @@ class BusTrack final : public BusSessionSink {
   std::array<bool, 3> seq_known_{};
   std::array<std::uint64_t, 3> datagram_end_{};
   HeldBytes held_;
+  WaitingRecords waiting_;
   StationNames names_;
 };
 

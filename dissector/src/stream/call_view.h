@@ -21,6 +21,12 @@ struct CallView {
   std::uint32_t timeout_count = 0;
   std::uint64_t record_from = 0;          // serial records: stream position of the record's bytes
   const std::uint8_t* earlier = nullptr;  // serial records: the bytes in [from, record_from)
+  // Serial records whose last byte waits for a later record: the protocol the waiting bytes
+  // resemble (null when none waits), and, once a later record of the first pass decided that
+  // byte, that record and the frame holding the byte (null for noise).
+  const InverterProtocol* waits_under = nullptr;
+  std::uint32_t completed_in = 0;
+  const FrameRecord* completed_by = nullptr;
 };
 
 // The view the first pass noted for call `number` of `proto` in the packet; null if none.

@@ -4,6 +4,7 @@
 
 #include <span>
 
+#include "columns/talker_columns.h"
 #include "stream/call_view.h"
 #include "stream/piece_display.h"
 
@@ -55,8 +56,10 @@ CallView* view_of_call(tvbuff_t* tvb, packet_info* pinfo, const StreamContext& c
 }
 
 void show_pieces(const CallView& view, std::span<const std::uint8_t> bytes, const PieceTarget& t,
-                 const StreamContext& ctx) {
+                 const StreamContext& ctx, TalkerColumns& talkers) {
   for (const BusPiece& piece : ctx.bus->bus().pieces(ctx.direction, view.from, view.shown_to)) {
+    const FrameRecord* frame = piece.frame ? ctx.bus->record(piece.frame_id) : nullptr;
+    if (frame != nullptr && ctx.names_talkers) add_talkers(talkers, *frame, t.pinfo->pool);
     const std::uint64_t offset = piece.offset - view.from;
     if (offset + piece.length > bytes.size()) break;
     show_piece(t, piece, bytes.subspan(offset, piece.length), static_cast<int>(offset));
@@ -72,9 +75,11 @@ int dissect_stream(tvbuff_t* tvb, packet_info* pinfo, proto_tree* tree, const St
   const std::span<const std::uint8_t> bytes(data, captured);
   CallView* view = view_of_call(tvb, pinfo, ctx, bytes);
   if (view == nullptr) return static_cast<int>(captured);
-  show_pieces(*view, bytes, PieceTarget{tvb, pinfo, tree, ctx.protocol, ctx.bus}, ctx);
+  TalkerColumns talkers;
+  show_pieces(*view, bytes, PieceTarget{tvb, pinfo, tree, ctx.protocol, ctx.bus}, ctx, talkers);
   note_timeouts(*view, pinfo, *ctx.bus);
   show_timeouts(*view, tvb, pinfo, tree);
+  write_talkers(talkers, pinfo);
   if (ctx.desegment && view->decided_to < view->from + captured) {
     pinfo->desegment_offset = static_cast<int>(view->decided_to - view->from);
     pinfo->desegment_len = DESEGMENT_ONE_MORE_SEGMENT;

@@ -17,6 +17,9 @@ struct StreamContext {
   Direction direction = Direction::Unknown;
   const tcpinfo* tcp = nullptr;  // TCP: the segment's sequence numbers; null for datagrams
   bool desegment = false;        // TCP: undecided bytes wait for the next segment
+  // Exported-PDU records: the Source and Destination columns name the frames' talkers
+  // ("master", "station 2") where the record has no addresses of its own.
+  bool names_talkers = false;
 };
 
 // Shows every piece of `tvb` the bus decided, each frame under the protocol of its dialect;
