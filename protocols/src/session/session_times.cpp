@@ -30,9 +30,15 @@ void SessionTimes::add(const SessionFrame& out, const Frame& frame,
   if (!has_timestamps_) return;
   // A frame's first byte came before the chunk that ended it: the span begins there.
   first_ = std::min(first_, out.start_time);
-  // With timestamps declared too coarse the bus gaps are never judged; requests alone give
-  // the poll periods, and the gap statistics are spared the other frames.
-  if (!untrusted_ || out.role == Role::Request) {
+  // With timestamps declared too coarse the bus gaps are never judged (the report says why
+  // instead): requests alone give the poll periods, and no frame feeds the gap statistics.
+  if (untrusted_) {
+    if (out.role == Role::Request) {
+      timing_.add_frame_without_gaps(FrameTiming{
+          out.id, frame.dialect, out.role, frame.station, frame.function, out.start_time,
+          out.end_time, max_inner_gap, frame.start, frame.count, out.check.ok});
+    }
+  } else {
     timing_.add_frame(FrameTiming{out.id, frame.dialect, out.role, frame.station, frame.function,
                                   out.start_time, out.end_time, max_inner_gap, frame.start,
                                   frame.count, out.check.ok});

@@ -7,6 +7,10 @@ void TimingStatistics::add_frame(const FrameTiming& frame) {
   if (frame.role == Role::Request && frame.check_ok) add_poll(frame);
 }
 
+void TimingStatistics::add_frame_without_gaps(const FrameTiming& frame) {
+  if (frame.role == Role::Request && frame.check_ok) add_poll(frame);
+}
+
 void TimingStatistics::add_poll(const FrameTiming& request) {
   const PollBlock block{request.dialect, request.station, request.function, request.start,
                         request.count};

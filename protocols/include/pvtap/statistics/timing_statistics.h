@@ -78,6 +78,9 @@ class TimingStatistics {
   explicit TimingStatistics(BusTiming timing) : gaps_(timing) {}
 
   void add_frame(const FrameTiming& frame);
+  // A frame of a bus whose silences are never judged (timestamps declared too coarse: a
+  // gateway's segments): only a request's poll period is kept, the gap statistics are spared.
+  void add_frame_without_gaps(const FrameTiming& frame);
   // A latency of no station (both frames of its transaction damaged) is in the bus's alone.
   void add_latency(std::optional<std::uint8_t> station, double seconds);
   TimingReport report(const TimestampQuality& quality) const;
