@@ -85,7 +85,7 @@ TEST_F(PipelineTest, SerialRecordsPairIntoTransactionsWithLatency) {
   EXPECT_LT(*events_.frames[1].latency, 0.050);
   const AuditReport report = pipeline.report();
   ASSERT_EQ(report.buses.size(), 1u);
-  EXPECT_EQ(report.buses[0].name, "");
+  EXPECT_EQ(report.buses[0].name, kSerialBusName);
   EXPECT_EQ(report.totals().transactions, 1u);
   EXPECT_EQ(report.totals().bytes.bytes_in, request.size() + reply.size());
   EXPECT_EQ(pipeline.buses().counts().frames, 2u);
