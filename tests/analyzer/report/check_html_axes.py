@@ -6,7 +6,7 @@ span, a tenth, a hundredth), and the labels are read back from the DOM after dra
   check_html_axes.py PVTAP OUT_DIR CAPTURE...
 
 Fails on: adjacent tick labels that repeat; a label whose text is cut by its box, spills out
-of its chart, or overlaps its neighbour; a time chart with fewer than two time labels; a chart
+of its chart (axis titles too), or overlaps its neighbour; a time chart with fewer than two time labels; a chart
 of more than one series without a legend, visible before any hover, that shows every series'
 colour; a quantity axis (every chart but the timeline's lanes) that does not start at 0 where
 its values are not negative, or has no label (its unit); a date in 1970 (the epoch: a
@@ -90,12 +90,16 @@ READ_CHARTS = r"""
     });
     const text = cls => { const e = div.querySelector('.' + cls);
                           return e ? e.textContent.trim() : ''; };
+    // An axis title is a label too: it must not run out of the chart (over what follows it).
+    const titles = ['dygraph-xlabel', 'dygraph-ylabel'].map(cls => div.querySelector('.' + cls))
+      .filter(e => e && e.textContent.trim() !== '')
+      .map(e => ({text: e.textContent.trim(), ink: textRect(e)}));
     return {name: x.name, time: x.time, quantity: x.quantity, chart: rect(div),
             x: labels('dygraph-axis-label-x'), y: labels('dygraph-axis-label-y'),
             series: g.getLabels().length - 1, colors: g.getColors().map(rgb),
             legendColors: Array.from(legendColors), legendText: legendText.join(' '),
             yRange: g.yAxisRange(), dataMin: dataMin === Infinity ? null : dataMin,
-            xlabel: text('dygraph-xlabel'), ylabel: text('dygraph-ylabel')};
+            xlabel: text('dygraph-xlabel'), ylabel: text('dygraph-ylabel'), titles: titles};
   });
   probe.remove();
   return JSON.stringify({charts: out, page: document.body.innerText});
@@ -139,9 +143,10 @@ def check_chart(where, c, relative):
     failures = []
     failures += check_labels(where, "x", sorted(c["x"], key=lambda l: l["box"][0]))
     failures += check_labels(where, "y", sorted(c["y"], key=lambda l: -l["box"][1]))
-    for label in c["x"] + c["y"]:
+    for label in c["x"] + c["y"] + c["titles"]:
         if not inside(label["ink"], c["chart"]):
-            failures.append("%s: label %r spills out of the chart" % (where, label["text"]))
+            failures.append("%s: label %r spills out of the chart (text %s, chart %s)"
+                            % (where, label["text"], label["ink"], c["chart"]))
     if c["time"] and len(c["x"]) < 2:
         failures.append("%s: %d time labels" % (where, len(c["x"])))
     if c["series"] > 1:

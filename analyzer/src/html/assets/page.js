@@ -73,8 +73,9 @@
     axisLabelWidth: 84,
     pixelsPerLabel: 80
   };
-  const xLabel = data.wall_clock ? 'time (UTC)'
-    : 'time: seconds from the recording\'s start (it has no wall-clock time)';
+  // The axis title says the time base: a recording without a wall clock counts from its start
+  // (the page's head says so in full).
+  const xLabel = data.wall_clock ? 'time (UTC)' : 'seconds from the recording\'s start';
 
   // A quantity's axis starts at 0 and writes large numbers with SI prefixes (12.5k, 3.2M)
   // rather than in exponent form, which no label width holds.
@@ -87,6 +88,9 @@
     return { labelsKMB: largest >= 1e4, axisLabelWidth: 60 };
   }
   const AXIS_FONT = 12;
+  // Axis titles in 14 px type (dygraphs sizes them 2 px below their box), so that a long one
+  // still fits a phone's chart.
+  const TITLES = { xLabelHeight: 16, yLabelWidth: 16 };
 
   // A legend under the chart, shown before any hover, which names the series by their colour
   // (and, on hover, gives their values).
@@ -97,8 +101,9 @@
     return legend;
   }
   function chartOptions(chart) {
-    return { legend: 'always', labelsDiv: legendAfter(chart), labelsSeparateLines: false,
-             labelsUTC: true, axisLabelFontSize: AXIS_FONT, includeZero: true };
+    return Object.assign({ legend: 'always', labelsDiv: legendAfter(chart),
+                           labelsSeparateLines: false, labelsUTC: true,
+                           axisLabelFontSize: AXIS_FONT, includeZero: true }, TITLES);
   }
 
   // Rows for dygraphs from several series of [x, y] points: one row per distinct x, null
@@ -211,7 +216,7 @@
     timelineLegend();
     const chart = element('timeline-chart');
     chart.style.height = Math.max(220, 36 * lanes.length + 60) + 'px';
-    return new Dygraph(chart, rowsOf(s.points), {
+    return new Dygraph(chart, rowsOf(s.points), Object.assign({
       labels: ['time'].concat(s.names),
       colors: s.colors,
       strokeWidth: 0,
@@ -229,7 +234,7 @@
         tooltip.style.display = tooltip.textContent ? 'block' : 'none';
       },
       unhighlightCallback: () => { tooltip.style.display = 'none'; }
-    });
+    }, TITLES));
   }
 
   function buildLoad() {
