@@ -282,6 +282,8 @@ void append_chart_data_json(std::string& o, const AuditReport& r, const Timeline
                             const HtmlOptions& options) {
   o += "{\"has_timestamps\":";
   o += r.settings.has_timestamps ? "true" : "false";
+  o += ",\"wall_clock\":";
+  o += r.settings.time_base == TimeBase::WallClock ? "true" : "false";
   o += ",\"start\":";
   append_fixed(o, t.start, 6);
   o += ",\"bucket\":";

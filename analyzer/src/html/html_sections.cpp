@@ -27,7 +27,7 @@ std::string ms_text(double seconds) {
 
 std::string time_text(const AuditReport& r, double time) {
   std::string out;
-  if (r.settings.has_timestamps) append_time_of_day(out, time);
+  append_report_time(out, r.settings, time);
   return out;
 }
 
@@ -301,12 +301,10 @@ void append_html_overview(std::string& o, const AuditReport& r) {
     cell(o, line, "li");
   }
   o += "</ul>\n";
-  if (const auto span = r.time_span()) {
-    std::string a, b;
-    append_utc_date_time(a, span->first);
-    append_utc_date_time(b, span->last);
-    o += report_line("<p class=\"span\" id=\"time-span\">%s .. %s UTC (%.1f s)</p>\n", a.c_str(),
-                     b.c_str(), span->seconds());
+  if (const std::string span = time_span_text(r); !span.empty()) {
+    o += "<p class=\"span\" id=\"time-span\">";
+    append_html_escaped(o, span);
+    o += "</p>\n";
   }
   std::string live;
   append_live_sources_text(r.live, live);

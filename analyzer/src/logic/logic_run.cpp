@@ -95,6 +95,8 @@ void add_serial_lines(const LogicRun& run, AuditReport& report) {
     }
   }
   if (!run.lines.empty()) report.settings.baud = run.lines.front().baud;
+  // The sample clock counts from the recording's start: no time here is a wall-clock time.
+  report.settings.time_base = TimeBase::RecordingStart;
   report.inputs.push_back(run.input);
 }
 

@@ -1,8 +1,11 @@
 #include "report/audit_report.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <map>
 #include <utility>
+
+#include "formatting/number_text.h"
 
 namespace pvtap::analyzer {
 
@@ -44,7 +47,8 @@ std::string no_frame_hint(const AuditReport& report) {
     return "no frame: the input holds no bus bytes";
   }
   std::string hint = "no frame in " + std::to_string(t.bytes.bytes_in) + " bus bytes: ";
-  if (!report.settings.all_dialects) hint += "try --dialect auto (this run read only the dialects given); ";
+  if (!report.settings.all_dialects)
+    hint += "try --dialect auto (this run read only the dialects given); ";
   return hint +
          "check the tap's baud rate, parity and stop bits (a wrong one reads every "
          "byte as noise); --baud " +
@@ -61,6 +65,36 @@ std::optional<TimeSpan> AuditReport::time_span() const {
   }
   if (!settings.has_timestamps) return std::nullopt;
   return span;
+}
+
+void append_report_time(std::string& out, const AuditSettings& settings, double time) {
+  if (!settings.has_timestamps) return;
+  if (settings.time_base == TimeBase::WallClock) {
+    append_time_of_day(out, time);
+    return;
+  }
+  out += '+';
+  append_fixed(out, time, 6);
+  out += " s";
+}
+
+std::string time_span_text(const AuditReport& report) {
+  const std::optional<TimeSpan> span = report.time_span();
+  if (!span) return {};
+  std::string out;
+  char seconds[48];
+  if (report.settings.time_base == TimeBase::WallClock) {
+    append_utc_date_time(out, span->first);
+    out += " .. ";
+    append_utc_date_time(out, span->last);
+    std::snprintf(seconds, sizeof seconds, " UTC (%.1f s)", span->seconds());
+    return out + seconds;
+  }
+  append_report_time(out, report.settings, span->first);
+  out += " .. ";
+  append_report_time(out, report.settings, span->last);
+  std::snprintf(seconds, sizeof seconds, "; %.1f s)", span->seconds());
+  return out + " from the recording's start (no wall-clock time" + seconds;
 }
 
 }  // namespace pvtap::analyzer

@@ -55,11 +55,17 @@ struct SkippedRecords {
   std::uint64_t foreign_pdus = 0;  // link type 252 records for other dissectors
 };
 
+// Where the input's times count from: the wall clock (epoch seconds, written as UTC), or the
+// start of a recording that has no wall-clock time (a logic analyzer's samples, timed by its
+// sample clock), whose times must never be written as dates.
+enum class TimeBase { WallClock, RecordingStart };
+
 // AuditSettings: the options that shape the report's wording.
 struct AuditSettings {
   std::uint32_t baud = 9600;
   double timeout = 1.0;
   bool has_timestamps = true;
+  TimeBase time_base = TimeBase::WallClock;
   GslIdReading gsl_ids = GslIdReading::Decimal;  // to write GSL addresses as the reference does
   bool all_dialects = true;  // --dialect auto: for what to try when no frame was found
   bool ports_given = false;  // --port
@@ -88,6 +94,15 @@ struct AuditReport {
   // The time the buses' bytes span; nullopt without timestamps or bytes.
   std::optional<TimeSpan> time_span() const;
 };
+
+// A moment as the report writes it: the UTC time of day ("10:00:00.012345"), or the seconds
+// from the recording's start ("+12.345678 s"); nothing without timestamps.
+void append_report_time(std::string& out, const AuditSettings& settings, double time);
+// The span of the input's times, as the text and the HTML report write it:
+// "2024-05-01 10:00:00.000000 .. 2024-05-01 10:05:00.000000 UTC (300.0 s)", or
+// "+0.000000 s .. +12.345678 s from the recording's start (no wall-clock time; 12.3 s)";
+// empty without a span.
+std::string time_span_text(const AuditReport& report);
 
 // Bad checks, timeouts or exceptions were found (--fail-on errors).
 bool has_findings(const AuditReport& report);

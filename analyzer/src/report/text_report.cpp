@@ -37,7 +37,7 @@ std::string distribution_text(const DistributionSummary& d) {
 
 std::string when(const AuditReport& r, double time) {
   std::string out;
-  if (r.settings.has_timestamps) append_time_of_day(out, time);
+  append_report_time(out, r.settings, time);
   return out;
 }
 
@@ -69,12 +69,8 @@ void inputs(const AuditReport& r, std::string& o) {
 }
 
 void span_of_time(const AuditReport& r, std::string& o) {
-  const std::optional<TimeSpan> span = r.time_span();
-  if (!span) return;
-  std::string a, b;
-  append_utc_date_time(a, span->first);
-  append_utc_date_time(b, span->last);
-  o += report_line("time: %s .. %s UTC (%.1f s)", a.c_str(), b.c_str(), span->seconds());
+  const std::string span = time_span_text(r);
+  if (!span.empty()) o += report_line("time: %s", span.c_str());
 }
 
 // The logger sticks' V5 frames: what they carried and their findings.

@@ -282,7 +282,9 @@ def main():
         else:
             shown, mark = tooltip
             t, dialect, function = mark[0], mark[2], mark[3]
-            stamp = time.strftime("%H:%M:%S", time.gmtime(t))
+            # A logic recording has no wall clock: its times count from its start.
+            stamp = ("+%.6f s" % t if capture.endswith(".sr")
+                     else time.strftime("%H:%M:%S", time.gmtime(t)))
             for word in (stamp, "timeout", dialect + " request", "(0x%02x)" % function):
                 if word not in shown:
                     failures.append("the timeout's tooltip %r does not name %r" % (shown, word))

@@ -1,6 +1,7 @@
 // pvtap HTML report: builds the charts from the JSON in #pvtap-data with dygraphs (inlined
 // before this script). Times are epoch milliseconds as plain numbers, so that frames less than
-// a millisecond apart stay apart; the axes print them as UTC.
+// a millisecond apart stay apart; the axes print them as UTC, or (a recording without wall-clock
+// time) as seconds from the recording's start.
 (function () {
   'use strict';
   const data = JSON.parse(document.getElementById('pvtap-data').textContent);
@@ -34,21 +35,76 @@
 
   const bucketTime = i => (data.start + (i + 0.5) * data.bucket) * 1000;
   const pad = n => (n < 10 ? '0' : '') + n;
-  function timeText(ms, withMillis) {
-    const d = new Date(ms);
-    let t = pad(d.getUTCHours()) + ':' + pad(d.getUTCMinutes()) + ':' + pad(d.getUTCSeconds());
-    if (withMillis) t += '.' + String(d.getUTCMilliseconds()).padStart(3, '0');
+  function clockText(d, withSeconds, millis) {
+    let t = pad(d.getUTCHours()) + ':' + pad(d.getUTCMinutes());
+    if (withSeconds) t += ':' + pad(d.getUTCSeconds());
+    if (millis > 0) t += '.' + String(d.getUTCMilliseconds()).padStart(3, '0').slice(0, millis);
     return t;
   }
-  function axisTime(v) {
-    return timeText(v instanceof Date ? v.getTime() : v, false);
+  // A moment in full, for tooltips and legends: the UTC time of day, or (a recording without
+  // wall-clock time, such as a logic analyzer's) the seconds from the recording's start.
+  function timeText(ms) {
+    if (!data.wall_clock) return '+' + (ms / 1000).toFixed(6) + ' s';
+    return clockText(new Date(ms), true, 3) + ' UTC';
+  }
+
+  // The time axes. dygraphs' date ticker picks the ticks for the span shown at the chart's
+  // width, at any zoom, and hands their granularity to the label formatter, which writes the
+  // digits that granularity needs: neighbouring labels always differ. UTC throughout, so that
+  // ticks also fall on round seconds from a recording's start.
+  const G = Dygraph.Granularity;
+  function decimalsOf(granularity) {
+    if (granularity >= G.SECONDLY) return 0;
+    if (granularity >= G.HUNDRED_MILLISECONDLY) return 1;
+    return granularity >= G.TEN_MILLISECONDLY ? 2 : 3;
+  }
+  function axisTime(v, granularity) {
+    const d = v instanceof Date ? v : new Date(v);
+    if (!data.wall_clock) return (d.getTime() / 1000).toFixed(decimalsOf(granularity));
+    if (granularity >= G.DAILY) return d.toISOString().slice(0, 10);
+    const midnight = d.getTime() % 86400000 === 0;
+    if (granularity >= G.MINUTELY) return midnight ? d.toISOString().slice(0, 10) : clockText(d);
+    return clockText(d, true, decimalsOf(granularity));
   }
   const xAxis = {
-    valueFormatter: v => timeText(v, true) + ' UTC',
+    valueFormatter: timeText,
     axisLabelFormatter: axisTime,
     ticker: Dygraph.dateTicker,
-    pixelsPerLabel: 70
+    axisLabelWidth: 84,
+    pixelsPerLabel: 80
   };
+  // The axis title says the time base: a recording without a wall clock counts from its start
+  // (the page's head says so in full).
+  const xLabel = data.wall_clock ? 'time (UTC)' : 'seconds from the recording\'s start';
+
+  // A quantity's axis starts at 0 and writes large numbers with SI prefixes (12.5k, 3.2M)
+  // rather than in exponent form, which no label width holds.
+  function quantityAxis(points) {
+    let largest = 0;
+    points.forEach(list => list.forEach(p => {
+      const v = Array.isArray(p[1]) ? p[1][2] : p[1];
+      if (Math.abs(v) > largest) largest = Math.abs(v);
+    }));
+    return { labelsKMB: largest >= 1e4, axisLabelWidth: 60 };
+  }
+  const AXIS_FONT = 12;
+  // Axis titles in 14 px type (dygraphs sizes them 2 px below their box), so that a long one
+  // still fits a phone's chart.
+  const TITLES = { xLabelHeight: 16, yLabelWidth: 16 };
+
+  // A legend under the chart, shown before any hover, which names the series by their colour
+  // (and, on hover, gives their values).
+  function legendAfter(chart) {
+    const legend = document.createElement('div');
+    legend.className = 'legend chart-legend';
+    chart.after(legend);
+    return legend;
+  }
+  function chartOptions(chart) {
+    return Object.assign({ legend: 'always', labelsDiv: legendAfter(chart),
+                           labelsSeparateLines: false, labelsUTC: true,
+                           axisLabelFontSize: AXIS_FONT, includeZero: true }, TITLES);
+  }
 
   // Rows for dygraphs from several series of [x, y] points: one row per distinct x, null
   // where a series has no point.
@@ -86,7 +142,7 @@
 
   function markText(kind, m) {
     const [t, lane, dialect, fn, isRequest, start, count, detail] = m;
-    const parts = [timeText(t * 1000, true), lanes[lane].label, KIND_TEXT[kind]];
+    const parts = [timeText(t * 1000), lanes[lane].label, KIND_TEXT[kind]];
     if (fn !== null) parts.push(dialect + ' ' + (isRequest ? 'request ' : 'reply ') + functionName(dialect, fn));
     if (start !== null) parts.push('block start ' + start + (count !== null ? ' count ' + count : ''));
     if (kind === 'noise') parts.push(detail + ' bytes');
@@ -115,7 +171,7 @@
       details.counts = new Map();
       details.text = x => {
         const [l, n] = details.get(x);
-        return timeText(x, true) + ' · ' + lanes[l].label + ' · ' + n + ' ' + kind + ' in ' +
+        return timeText(x) + ' · ' + lanes[l].label + ' · ' + n + ' ' + kind + ' in ' +
                data.bucket.toFixed(2) + ' s';
       };
       lanes.forEach((lane, l) => {
@@ -160,7 +216,7 @@
     timelineLegend();
     const chart = element('timeline-chart');
     chart.style.height = Math.max(220, 36 * lanes.length + 60) + 'px';
-    return new Dygraph(chart, rowsOf(s.points), {
+    return new Dygraph(chart, rowsOf(s.points), Object.assign({
       labels: ['time'].concat(s.names),
       colors: s.colors,
       strokeWidth: 0,
@@ -168,7 +224,7 @@
       pointSize: 2.5,
       highlightCircleSize: 5,
       connectSeparatedPoints: false,
-      legend: 'never',
+      legend: 'never', labelsUTC: true, axisLabelFontSize: AXIS_FONT, xlabel: xLabel,
       valueRange: [-0.6, lanes.length - 0.4],
       axes: { x: xAxis, y: { ticker: laneTicker, axisLabelWidth: 110, drawGrid: true } },
       highlightSeriesOpts: { highlightCircleSize: 6 },
@@ -178,7 +234,7 @@
         tooltip.style.display = tooltip.textContent ? 'block' : 'none';
       },
       unhighlightCallback: () => { tooltip.style.display = 'none'; }
-    });
+    }, TITLES));
   }
 
   function buildLoad() {
@@ -193,10 +249,11 @@
       });
     });
     if (names.length === 0) return null;
-    return new Dygraph(element('load-chart'), rowsOf(points), {
-      labels: ['time'].concat(names), stepPlot: true, fillGraph: true,
-      labelsSeparateLines: true, legend: 'follow', axes: { x: xAxis }, ylabel: 'bytes/s'
-    });
+    const chart = element('load-chart');
+    return new Dygraph(chart, rowsOf(points), Object.assign(chartOptions(chart), {
+      labels: ['time'].concat(names), stepPlot: true, fillGraph: true, xlabel: xLabel,
+      axes: { x: xAxis, y: quantityAxis(points) }, ylabel: 'bytes/s'
+    }));
   }
 
   function buildLatency() {
@@ -205,11 +262,12 @@
     const banded = timed.length <= MAX_BANDED_SERIES;
     const points = timed.map(lane => lane.latency.map(([i, lo, mean, hi]) =>
       [bucketTime(i), banded ? [lo, mean, hi] : mean]));
-    return new Dygraph(element('latency-chart'), rowsOf(points), {
+    const chart = element('latency-chart');
+    return new Dygraph(chart, rowsOf(points), Object.assign(chartOptions(chart), {
       labels: ['time'].concat(timed.map(lane => lane.label + ' (ms)')), customBars: banded,
-      legend: 'follow', labelsSeparateLines: true, axes: { x: xAxis },
+      axes: { x: xAxis, y: quantityAxis(points) }, xlabel: xLabel,
       ylabel: banded ? 'ms, min / mean / max' : 'ms, mean per bucket', connectSeparatedPoints: true
-    });
+    }));
   }
 
   function buildHistogram() {
@@ -224,11 +282,12 @@
     for (let b = 0; b < columns[0].length; ++b) {
       rows.push([Math.pow(10, b / 10)].concat(columns.map(c => c[b])));
     }
-    return new Dygraph(element('histogram-chart'), rows, {
-      labels: ['ms'].concat(names), stepPlot: true, fillGraph: true, legend: 'follow',
-      labelsSeparateLines: true, xlabel: 'latency, ms (log scale)', ylabel: 'replies',
-      axes: { x: { logscale: true } }
-    });
+    const chart = element('histogram-chart');
+    return new Dygraph(chart, rows, Object.assign(chartOptions(chart), {
+      labels: ['ms'].concat(names), stepPlot: true, fillGraph: true,
+      xlabel: 'latency, ms (log scale)', ylabel: 'replies',
+      axes: { x: { logscale: true }, y: quantityAxis(columns.map(c => c.map(n => [0, n]))) }
+    }));
   }
 
   function buildValueChart(group, container) {
@@ -236,11 +295,9 @@
     box.className = 'value-group';
     const title = document.createElement('h3');
     title.textContent = group.group === 'states' ? 'States (enumerations, bits, raw words)' : group.group;
-    const legend = document.createElement('div');
-    legend.className = 'legend values-legend';
     const div = document.createElement('div');
     div.className = 'chart';
-    box.append(title, div, legend);
+    box.append(title, div);
     container.appendChild(box);
     const banded = group.series.length <= MAX_BANDED_SERIES;
     const ranges = group.series.map(() => new Map());
@@ -256,12 +313,15 @@
       const text = Array.isArray(y) ? String(y[1]) : String(y);
       return range && range[0] !== range[1] ? text + ' (' + range[0] + '..' + range[1] + ')' : text;
     };
-    return new Dygraph(div, rowsOf(points), {
+    // Registers' values start at 0 too: readings here are magnitudes (power, energy,
+    // voltage), and a level that only looks like a cliff because the axis began just below it
+    // misleads more than a flat line; a chart with negative values reaches down to them.
+    const y = Object.assign(quantityAxis(points), { valueFormatter: valueFormatter });
+    return new Dygraph(div, rowsOf(points), Object.assign(chartOptions(div), {
       labels: ['time'].concat(labels), customBars: banded,
-      stepPlot: group.series.some(s => s.step), labelsDiv: legend, labelsSeparateLines: false,
-      legend: 'always', axes: { x: xAxis, y: { valueFormatter: valueFormatter } },
+      stepPlot: group.series.some(s => s.step), axes: { x: xAxis, y: y }, xlabel: xLabel,
       ylabel: group.group === 'states' ? 'value' : group.group, connectSeparatedPoints: true
-    });
+    }));
   }
 
   function buildValues() {
@@ -317,31 +377,17 @@
   const SILENCE_SERIES = [['largest silence inside a frame (against t1.5)', '#ff7f0e'],
                           ['silence between frames (against t3.5)', '#1f77b4']];
 
-  // Which colour is which, shown before any hover.
-  function silenceLegend(chart) {
-    const legend = document.createElement('div');
-    legend.className = 'legend';
-    SILENCE_SERIES.forEach(([text, color]) => {
-      const span = document.createElement('span');
-      span.innerHTML = '<i style="background:' + color + '"></i>';
-      span.appendChild(document.createTextNode(text));
-      legend.appendChild(span);
-    });
-    chart.before(legend);
-  }
-
   function buildSilenceChart(s, n) {
     const chart = element('silence-chart-' + n);
-    silenceLegend(chart);
     const points = [silenceRows(s.inner), silenceRows(s.between)];
-    return new Dygraph(chart, rowsOf(points), {
+    return new Dygraph(chart, rowsOf(points), Object.assign(chartOptions(chart), {
       labels: ['ms'].concat(SILENCE_SERIES.map(([text]) => text)),
       colors: SILENCE_SERIES.map(([, color]) => color), stepPlot: true, fillGraph: true,
-      connectSeparatedPoints: true, legend: 'follow', labelsSeparateLines: true,
+      connectSeparatedPoints: true,
       xlabel: 'silence, ms (log scale; one character is ' + s.char_ms.toFixed(3) + ' ms)',
-      ylabel: 'silences', axes: { x: { logscale: true } },
+      ylabel: 'silences', axes: { x: { logscale: true }, y: quantityAxis(points) },
       underlayCallback: silenceLines(s)
-    });
+    }));
   }
 
   function buildSilences() {
