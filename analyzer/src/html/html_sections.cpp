@@ -159,12 +159,10 @@ void examples_table(std::string& o, const AuditReport& r, const std::vector<Fram
 }
 
 void timeouts_list(std::string& o, const AuditReport& r, const BusReport& b, bool first) {
-  o += report_line(
-      "<h4%s>Timeouts: %llu</h4><p>good requests the slave did not "
-      "answer (no reply %llu, next request first %llu)</p>\n",
-      id_attr(first, "findings-timeouts").c_str(), static_cast<unsigned long long>(b.timeouts),
-      static_cast<unsigned long long>(b.timeouts_by_reason[0]),
-      static_cast<unsigned long long>(b.timeouts_by_reason[1]));
+  o += report_line("<h4%s>Timeouts: %llu</h4><p>", id_attr(first, "findings-timeouts").c_str(),
+                   static_cast<unsigned long long>(b.timeouts));
+  append_html_escaped(o, timeouts_explained(b));
+  o += "</p>\n";
   if (b.timeout_examples.empty()) return;
   o += "<table><tr><th>request time</th><th>station</th><th>dialect</th><th>function</th></tr>\n";
   for (const TimeoutExample& e : b.timeout_examples) {

@@ -287,4 +287,24 @@ void append_function(std::string& out, Dialect d, std::uint8_t function) {
   out += ')';
 }
 
+std::string timeouts_explained(const BusReport& b) {
+  if (b.timeouts == 0) return "none";
+  std::string o = std::to_string(b.timeouts);
+  o += b.timeouts == 1 ? " good request its station did not answer within --timeout"
+                       : " good requests their station did not answer within --timeout";
+  const char* sep = ": ";
+  const auto part = [&](std::uint64_t n, const char* one, const char* many) {
+    if (n == 0) return;
+    o += sep;
+    o += std::to_string(n);
+    o += n == 1 ? one : many;
+    sep = ", ";
+  };
+  part(b.timeouts_by_reason[0], " met silence until the timeout ran out",
+       " met silence until the timeout ran out");
+  part(b.timeouts_by_reason[1], " was cut short by the master's next request",
+       " were cut short by the master's next request");
+  return o;
+}
+
 }  // namespace pvtap::analyzer

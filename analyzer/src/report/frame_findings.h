@@ -19,6 +19,11 @@ void collect_issues(const SessionFrame& f, std::vector<std::string>& out);
 // (the input stopped before the timeout ran out) or "data_lost" (the reply may be in a gap).
 std::string_view unanswered_reason(const SessionTimeout& t);
 
+// What the timeouts of a bus were, for an operator: "none", or "3 good requests their station
+// did not answer within --timeout: 2 met silence until the timeout ran out, 1 was cut short by
+// the master's next request" (only the kinds that happened). Text and HTML reports alike.
+std::string timeouts_explained(const BusReport& b);
+
 // A register value as a JSON object: {"register":"0x1006","name":"battery voltage",
 // "value":52.3,"unit":"V"}, with "text" for readings that are more than a number and
 // "warnings" when the decoder had doubts.

@@ -242,11 +242,13 @@ void frame_example(const AuditReport& r, const FrameExample& e, std::string& o) 
 std::string gateway_text(const BusFindings& bus) {
   const std::string n = std::to_string(bus.report.gateway_timeouts);
   if (bus.name.starts_with("v5:")) {
-    return ", the stick's code 05 " + n +
-           ": the device behind the stick did not answer it, a timeout on its serial bus";
+    return ", " + n +
+           " answered by the stick's code 05 (the device behind the stick did not answer: a "
+           "timeout on its serial bus)";
   }
-  return ", gateway's exception 0x0B " + n +
-         ": the device behind the gateway did not answer it, a timeout on its serial bus";
+  return ", " + n +
+         " answered by the gateway's exception 0x0B (the device behind the gateway did not "
+         "answer: a timeout on its serial bus)";
 }
 
 void findings(const AuditReport& r, const BusFindings& bus, std::string& o) {
@@ -254,11 +256,8 @@ void findings(const AuditReport& r, const BusFindings& bus, std::string& o) {
   o += report_line("bad checks: %llu", u(b.bytes.bad_frames));
   examples_shown(b.bad_check_examples.size(), b.bytes.bad_frames, o);
   for (const FrameExample& e : b.bad_check_examples) frame_example(r, e, o);
-  o += report_line(
-      "timeouts: %llu good requests the slave did not answer (no reply %llu, next request "
-      "first %llu%s)",
-      u(b.timeouts), u(b.timeouts_by_reason[0]), u(b.timeouts_by_reason[1]),
-      b.gateway_timeouts > 0 ? gateway_text(bus).c_str() : "");
+  o += report_line("timeouts: %s%s", timeouts_explained(b).c_str(),
+                   b.gateway_timeouts > 0 ? gateway_text(bus).c_str() : "");
   examples_shown(b.timeout_examples.size(), b.timeouts, o);
   for (const TimeoutExample& e : b.timeout_examples) {
     const bool coded = e.timeout.reason == TimeoutReason::CarrierNoReply;

@@ -145,9 +145,10 @@ class MbapAudit(unittest.TestCase):
                       "headers that lied (12 bytes skipped)", text)
         self.assertIn("10.0.0.9:502: MBAP length overruns what was sent (the next segment is "
                       "whole ADUs) (protocol id 0, length 30): 12 bytes skipped", text)
-        self.assertIn("timeouts: 2 good requests the slave did not answer (no reply 1, next "
-                      "request first 0, gateway's exception 0x0B 1: the device behind the "
-                      "gateway did not answer it, a timeout on its serial bus)", text)
+        self.assertIn("timeouts: 2 good requests their station did not answer within "
+                      "--timeout: 1 met silence until the timeout ran out, 1 answered by the "
+                      "gateway's exception 0x0B (the device behind the gateway did not answer: "
+                      "a timeout on its serial bus)", text)
         self.assertIn("noise: 0 bytes in 0 runs", text)
 
 
