@@ -151,6 +151,7 @@ bool read_side(const DiffCommandLine& command, const std::string& given,
   input.complete(side.report);
   if (!complete) {
     input.report_problems();
+    std::fprintf(stderr, "pvtap: %s: not read whole, so nothing is compared\n", given.c_str());
     return false;
   }
   if (found_no_frame(side.report)) {
@@ -200,6 +201,7 @@ CLI::App* add_diff_command(CLI::App& app, DiffCommandLine& command) {
 
 int run_diff(DiffCommandLine& command) {
   apply_choices(command.reading);
+  if (command.reading.threads == 0) command.reading.threads = default_threads();
   RegisterDecoder decoder(DecoderOptions{command.reading.gsl_ids, PairRule::Binary});
   if (!load_maps(command.reading, decoder)) return kExitBadInput;
   DiffSide before;
