@@ -126,6 +126,28 @@ def check_fix(checks, pvtap, before, after, truth_before, truth_after, html):
     checks.equal("the page has a row per difference", page.count("<tr><td>"), len(differences))
 
 
+# The threshold options and the summary's names for them.
+THRESHOLDS = {"--noise-sigmas": "noise_sigmas", "--rate-change": "rate_per_1000",
+              "--rate-percent": "rate_percent", "--requests-percent": "requests_percent",
+              "--latency-ms": "latency_ms", "--latency-percent": "latency_percent",
+              "--period-ms": "period_ms", "--period-percent": "period_percent",
+              "--jitter-ms": "jitter_ms", "--jitter-percent": "jitter_percent",
+              "--value-percent": "value_percent"}
+
+
+def check_thresholds(checks, pvtap, capture):
+    """The defaults --help states are the ones a run applies (the jsonl summary's)."""
+    help_text = run(pvtap, "diff", "--help").stdout
+    applied = jsonl(run(pvtap, "diff", "--format", "jsonl", capture, capture).stdout)[-1]
+    for option, key in THRESHOLDS.items():
+        stated = re.search(r"^ +%s [A-Z_0-9]+=([0-9.]+)" % re.escape(option), help_text,
+                           re.MULTILINE)
+        checks.true("--help states the default of " + option, stated is not None)
+        if stated:
+            checks.equal("the default of %s as applied" % option,
+                         applied["thresholds"][key], float(stated.group(1)))
+
+
 def check_same(checks, pvtap, capture):
     text = run(pvtap, "diff", capture, capture)
     checks.equal("a capture against itself: exit status", text.returncode, 0)
@@ -182,6 +204,7 @@ def main():
     check_fix(checks, pvtap, before, after, truth_before, truth_after,
               os.path.join(work, "diff.html"))
     check_same(checks, pvtap, before)
+    check_thresholds(checks, pvtap, before)
     check_vanished(checks, pvtap, before, fewer)
     check_errors(checks, pvtap, before, work)
     return checks.finish()

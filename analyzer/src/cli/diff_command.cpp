@@ -54,61 +54,62 @@ const char* const kFooter =
     "  pvtap diff --port 4001 --html change.html old.pcap,old1.pcap new.pcap\n"
     "  pvtap diff --raw --dialect gsl --baud 4800 before.bin after.bin\n";
 
+// Each default shown in --help is the DiffThresholds default itself.
 void add_threshold_options(CLI::App& diff, DiffThresholds& t) {
   diff.add_option("--noise-sigmas", t.noise_sigmas,
                   "a rate's change must lie beyond this many standard deviations of Poisson "
                   "noise")
       ->check(CLI::Range(0.0, 100.0).description(""))
       ->type_name("N")
-      ->default_str("3");
+      ->capture_default_str();
   diff.add_option("--rate-change", t.rate_per_1000,
                   "least change of a rate per 1000 (bad checks per 1000 frames, timeouts and "
                   "exceptions per 1000 requests, noise bytes per 1000 bytes)")
       ->check(CLI::Range(0.0, 1000.0).description(""))
       ->type_name("PER_1000")
-      ->default_str("1");
+      ->capture_default_str();
   diff.add_option("--rate-percent", t.rate_percent,
                   "least change of those rates, in percent of the before rate")
       ->check(CLI::Range(0.0, 1e6).description(""))
       ->type_name("PERCENT")
-      ->default_str("50");
+      ->capture_default_str();
   diff.add_option("--requests-percent", t.requests_percent,
                   "least change of a station's requests per minute, in percent")
       ->check(CLI::Range(0.0, 1e6).description(""))
       ->type_name("PERCENT")
-      ->default_str("10");
+      ->capture_default_str();
   diff.add_option("--latency-ms", t.latency_ms, "least change of latency p50 or p95, in ms")
       ->check(CLI::Range(0.0, 1e6).description(""))
       ->type_name("MS")
-      ->default_str("10");
+      ->capture_default_str();
   diff.add_option("--latency-percent", t.latency_percent,
                   "least change of latency p50 or p95, in percent")
       ->check(CLI::Range(0.0, 1e6).description(""))
       ->type_name("PERCENT")
-      ->default_str("25");
+      ->capture_default_str();
   diff.add_option("--period-ms", t.period_ms, "least change of a poll period, in ms")
       ->check(CLI::Range(0.0, 1e7).description(""))
       ->type_name("MS")
-      ->default_str("50");
+      ->capture_default_str();
   diff.add_option("--period-percent", t.period_percent, "least change of a poll period, in percent")
       ->check(CLI::Range(0.0, 1e6).description(""))
       ->type_name("PERCENT")
-      ->default_str("10");
+      ->capture_default_str();
   diff.add_option("--jitter-ms", t.jitter_ms, "least change of a poll block's jitter, in ms")
       ->check(CLI::Range(0.0, 1e7).description(""))
       ->type_name("MS")
-      ->default_str("100");
+      ->capture_default_str();
   diff.add_option("--jitter-percent", t.jitter_percent,
                   "least change of a poll block's jitter, in percent")
       ->check(CLI::Range(0.0, 1e6).description(""))
       ->type_name("PERCENT")
-      ->default_str("50");
+      ->capture_default_str();
   diff.add_option("--value-percent", t.value_percent,
                   "how far a register's after-range may leave its before-range, in percent "
                   "of the before-range's size or magnitude")
       ->check(CLI::Range(0.0, 1e6).description(""))
       ->type_name("PERCENT")
-      ->default_str("10");
+      ->capture_default_str();
   diff.add_flag("--count-values", t.count_values,
                 "register range moves count toward the exit status (without it they are "
                 "reported only)");

@@ -29,7 +29,7 @@ struct DiffThresholds {
   double rate_per_1000 = 1;      // bad checks, timeouts, exceptions, noise bytes
   double rate_percent = 50;      // of the before rate
   double requests_percent = 10;  // requests per minute
-  double latency_ms = 5;         // p50 and p95
+  double latency_ms = 10;        // p50 and p95
   double latency_percent = 25;
   double period_ms = 50;  // poll period
   double period_percent = 10;
