@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "cli/audit_command.h"
+#include "cli/diff_command.h"
 #include "cli/exit_status.h"
 #include "cli/glossary_command.h"
 #include "cli/help_labels.h"
@@ -35,6 +36,8 @@ int main(int argc, char** argv) {
   CLI::App* audit = pvtap::analyzer::add_audit_command(app, audit_options);
   pvtap::analyzer::SniffCommandLine sniff_command;
   CLI::App* sniff = pvtap::analyzer::add_sniff_command(app, sniff_command);
+  pvtap::analyzer::DiffCommandLine diff_command;
+  CLI::App* diff = pvtap::analyzer::add_diff_command(app, diff_command);
   pvtap::analyzer::GlossaryCommandLine glossary_command;
   CLI::App* glossary = pvtap::analyzer::add_glossary_command(app, glossary_command);
   pvtap::analyzer::keep_help_section_names(app);
@@ -46,6 +49,7 @@ int main(int argc, char** argv) {
     if (e.get_exit_code() == 0) return app.exit(e);
     const char* command = audit->parsed()      ? "audit "
                           : sniff->parsed()    ? "sniff "
+                          : diff->parsed()     ? "diff "
                           : glossary->parsed() ? "glossary "
                                                : "";
     std::fprintf(stderr, "pvtap: %s (see pvtap %s--help)\n", e.what(), command);
@@ -53,6 +57,7 @@ int main(int argc, char** argv) {
   }
   if (audit->parsed()) return pvtap::analyzer::run_audit(audit_options);
   if (sniff->parsed()) return pvtap::analyzer::run_sniff(sniff_command);
+  if (diff->parsed()) return pvtap::analyzer::run_diff(diff_command);
   if (glossary->parsed()) return pvtap::analyzer::run_glossary(glossary_command);
   return pvtap::analyzer::kExitBadInput;
 }

@@ -124,7 +124,7 @@ def check_capture_interfaces(user, checks):
 
 
 def check_man_pages(user, checks):
-    for page in ("pvtap", "pvtap-audit", "pvtap-sniff"):
+    for page in ("pvtap", "pvtap-audit", "pvtap-sniff", "pvtap-diff"):
         result = user.run(["man", "-w", page])
         expected = "/usr/share/man/man1/%s.1.gz" % page
         checks.true("man -w %s finds %s" % (page, expected),

@@ -15,7 +15,8 @@ import sys
 # subprocess raises TimeoutExpired, which names the command that was waited for.
 RUN_GUARD_S = 120
 
-PAGES = {"pvtap": [], "pvtap-audit": ["audit"], "pvtap-sniff": ["sniff"]}
+PAGES = {"pvtap": [], "pvtap-audit": ["audit"], "pvtap-sniff": ["sniff"],
+         "pvtap-diff": ["diff"]}
 
 
 def help_options(pvtap, subcommand):

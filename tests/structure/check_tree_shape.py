@@ -25,11 +25,12 @@ def sources(folder):
 
 
 # The analyzer's folders from the ground up: text helpers, the report, the event port and its
-# writers, the terminal line, the HTML page, the broker client and what pvtap publishes on it,
-# serial devices, gateway flows, the buses, the run's assembly of outputs, the sources that
-# feed a run, the commands, Wireshark's extcap calls. A folder may include only those before
+# writers, the terminal line, the HTML page, the comparison of two audits (pvtap diff), the
+# broker client and what pvtap publishes on it, serial devices, gateway flows, the buses, the
+# run's assembly of outputs, the sources that feed a run, the commands, Wireshark's extcap
+# calls. A folder may include only those before
 # it, so that nothing reaches up and no two folders need each other.
-ANALYZER_FLOORS = ("formatting", "report", "events", "writers", "console", "html", "broker",
+ANALYZER_FLOORS = ("formatting", "report", "events", "writers", "console", "html", "diff", "broker",
                    "mqtt", "serial", "gateway", "pipeline", "run", "sources", "logic", "cli", "extcap")
 
 

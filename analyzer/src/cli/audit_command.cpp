@@ -1,24 +1,18 @@
 #include "cli/audit_command.h"
 
-#include <sched.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
-#include <algorithm>
 #include <cstdio>
 #include <string>
 
+#include "cli/audit_input.h"
 #include "cli/common_options.h"
 #include "cli/exit_status.h"
 #include "cli/mqtt_command_options.h"
-#include "cli/sample_rate_argument.h"
-#include "console/progress_bar.h"
-#include "logic/logic_run.h"
-#include "logic/plan/logic_plan.h"
 #include "pipeline/pipeline.h"
 #include "pvtap/capture/link_types.h"
 #include "run/run_output.h"
-#include "sources/capture_reader.h"
 
 namespace pvtap::analyzer {
 namespace {
@@ -81,46 +75,7 @@ void add_input_options(CLI::App& audit, AuditOptions& o) {
   audit.add_option("--raw", o.raw_dumps, "a plain dump of bus bytes (no timestamps); repeatable")
       ->type_name("FILE")
       ->allow_extra_args(false);
-  audit
-      .add_option("--port", o.ports,
-                  "gateway TCP/UDP port(s), comma-separated or repeated; other traffic is "
-                  "ignored. Default: recognize the protocol on any port")
-      ->check(CLI::Range(1, 65535).description(""))
-      ->type_name("PORT")
-      ->delimiter(',')
-      ->allow_extra_args(false);
-  audit
-      .add_option("--channels", o.logic_channels,
-                  "logic recordings: a bus to decode, on one channel or on two (the requests' "
-                  "and the replies', comma-separated); repeatable. Default: every channel "
-                  "with UART traffic")
-      ->type_name("NAME[,NAME]")
-      ->allow_extra_args(false);
-  audit
-      .add_option("--de", o.logic_drivers,
-                  "logic recordings: a driver-enable channel (repeatable); the report gives "
-                  "how long after each frame's last stop bit the driver was released")
-      ->type_name("NAME")
-      ->allow_extra_args(false);
-  audit
-      .add_option("--samplerate", o.logic_sample_rate,
-                  "logic recordings: samples per second (4000000, 4M, 500k), for a file that "
-                  "does not give it (a CSV export) or in place of the one it gives")
-      ->type_name("RATE");
-  audit
-      .add_option("--threads", o.threads,
-                  "1: read and analyse on one thread; 2: read capture files ahead on a second "
-                  "thread (output is the same). Default: 2 when more than one CPU is available")
-      ->type_name("N")
-      ->check(CLI::Range(1, 2));
-}
-
-// The CPUs this process may run on (taskset narrows them), at least 1.
-unsigned available_cpus() {
-  cpu_set_t set;
-  CPU_ZERO(&set);
-  if (::sched_getaffinity(0, sizeof set, &set) != 0) return 1;
-  return static_cast<unsigned>(std::max(1, CPU_COUNT(&set)));
+  add_reading_options(audit, o);
 }
 
 }  // namespace
@@ -135,79 +90,12 @@ CLI::App* add_audit_command(CLI::App& app, AuditOptions& options) {
   return audit;
 }
 
-namespace {
-
-// Checks a logic recording's audit can run: it comes alone, and --channels comes with it.
-bool logic_inputs_fit(const AuditOptions& options, bool logic) {
-  const char* why = nullptr;
-  if (logic && (options.captures.size() != 1 || !options.raw_dumps.empty())) {
-    why = "a logic recording is audited alone (one FILE, no --raw)";
-  } else if (!logic && (!options.logic_channels.empty() || !options.logic_drivers.empty() ||
-                        !options.logic_sample_rate.empty())) {
-    why = "--channels, --de and --samplerate describe a logic recording (.sr, .vcd, .csv)";
-  }
-  if (why != nullptr) std::fprintf(stderr, "pvtap: %s\n", why);
-  return why == nullptr;
-}
-
-int audit_logic(const AuditOptions& options, const RegisterDecoder& decoder, OutputStream& out) {
-  double rate = 0;
-  if (!read_sample_rate_option(options.logic_sample_rate, rate)) return kExitBadInput;
-  const LogicPlan plan = plan_logic_audit(options.captures.front(), options.logic_channels,
-                                          options.logic_drivers, rate);
-  if (!plan.error.empty()) {
-    std::fprintf(stderr, "pvtap: %s\n", plan.error.c_str());
-    return kExitBadInput;
-  }
-  RunOutput output(output_settings(options), out);
-  if (!output.open()) return kExitBadInput;
-  Pipeline pipeline(pipeline_settings(options), decoder, output.events());
-  const LogicRun run = run_logic_audit(plan, pipeline, output.events());
-  output.end_of_input(run.end_time);
-  AuditReport report = pipeline.report();
-  add_serial_lines(run, report);
-  report.written_records = output.written_records();
-  output.write_summary(report);
-  out.flush();
-  if (!output.close(report)) return kExitBadInput;
-  if (!run.error.empty()) {
-    std::fprintf(stderr, "pvtap: %s: %s\n", plan.path.c_str(), run.error.c_str());
-    return kExitBadInput;
-  }
-  return findings_status(options, report);
-}
-
-}  // namespace
-
 int run_audit(AuditOptions& options) {
   apply_choices(options);
-  if (options.captures.empty() && options.raw_dumps.empty()) {
-    std::fprintf(stderr, "pvtap: audit needs a capture FILE or --raw FILE (see --help)\n");
-    return kExitBadInput;
-  }
-  if (!options.captures.empty() && !options.raw_dumps.empty()) {
-    std::fprintf(stderr, "pvtap: give either capture FILEs or --raw dumps, not both\n");
-    return kExitBadInput;
-  }
-  const bool logic = std::any_of(options.captures.begin(), options.captures.end(),
-                                 [](const std::string& path) { return is_logic_recording(path); });
-  if (!logic_inputs_fit(options, logic)) return kExitBadInput;
-  if (logic) {
-    RegisterDecoder decoder(DecoderOptions{options.gsl_ids, PairRule::Binary});
-    if (!load_maps(options, decoder)) return kExitBadInput;
-    OutputStream out(stdout);
-    const int status = audit_logic(options, decoder, out);
-    out.flush();
-    return out.failed() ? kExitBadInput : status;
-  }
-  if (const auto error = check_raw_dumps(options.raw_dumps)) {
-    std::fprintf(stderr, "pvtap: %s\n", error->c_str());
-    return kExitBadInput;
-  }
   RegisterDecoder decoder(DecoderOptions{options.gsl_ids, PairRule::Binary});
   if (!load_maps(options, decoder)) return kExitBadInput;
   options.progress = ::isatty(STDERR_FILENO) == 1;
-  if (options.threads == 0) options.threads = available_cpus() > 1 ? 2 : 1;
+  if (options.threads == 0) options.threads = default_threads();
   OutputStream out(stdout);
   const int status = audit(options, decoder, out);
   out.flush();
@@ -218,46 +106,22 @@ int run_audit(AuditOptions& options) {
   return status;
 }
 
-namespace {
-
-// False, with a line each, when the captures cannot be audited: they repeat each other's
-// records, or none of them can be read (where some can, the others are named at the end).
-bool captures_fit(const AuditOptions& options, const CapturePlan& plan) {
-  if (plan.refusal) {
-    std::fprintf(stderr, "pvtap: %s\n", plan.refusal->c_str());
-    return false;
-  }
-  if (options.captures.empty() || !plan.readable.empty()) return true;
-  for (const PlannedCapture& planned : plan.unreadable) {
-    std::fprintf(stderr, "pvtap: %s: %s\n", planned.path.c_str(), planned.error.c_str());
-  }
-  return false;
-}
-
-}  // namespace
-
 int audit(const AuditOptions& options, const RegisterDecoder& decoder, OutputStream& out) {
-  const CapturePlan plan = plan_captures(options.captures);
-  if (!captures_fit(options, plan)) return kExitBadInput;
+  AuditInput input(options);
+  if (!input.plan()) return kExitBadInput;
   RunOutput output(output_settings(options), out);
   if (!output.open()) return kExitBadInput;
-  PipelineSettings settings = pipeline_settings(options);
-  settings.has_timestamps = options.raw_dumps.empty();
-  Pipeline pipeline(settings, decoder, output.events());
-  ProgressBar progress(options.progress, total_size(options.captures, options.raw_dumps));
-  CaptureReader reader(pipeline, progress, options.threads > 1);
-  const bool complete = reader.read(plan, options.raw_dumps);
-  pipeline.finish(reader.last_time());
-  output.end_of_input(reader.last_time());
-  progress.clear();
+  Pipeline pipeline(input.pipeline_settings(pipeline_settings(options)), decoder, output.events());
+  const bool complete = input.read(pipeline, output.events());
+  output.end_of_input(input.end_time());
   AuditReport report = pipeline.report();
-  report.inputs = reader.inputs();
+  input.complete(report);
   report.written_records = output.written_records();
   output.write_summary(report);
   out.flush();
   if (!output.close(report)) return kExitBadInput;
   if (!complete) {
-    reader.report_problems();
+    input.report_problems();
     return kExitBadInput;
   }
   return findings_status(options, report);

@@ -16,8 +16,8 @@ CLI::App* add_audit_command(CLI::App& app, AuditOptions& options);
 // Runs an audit after parsing: checks inputs and maps, then reads. Returns the exit status.
 int run_audit(AuditOptions& options);
 
-// The audit itself, on inputs and maps already checked: the inputs into a pipeline, its events
-// and the report to `out`. Returns the exit status.
+// The audit itself, on maps already loaded: the inputs checked (AuditInput) and read into a
+// pipeline, its events and the report to `out`. Returns the exit status.
 int audit(const AuditOptions& options, const RegisterDecoder& decoder, OutputStream& out);
 
 }  // namespace pvtap::analyzer
