@@ -23,23 +23,43 @@ std::vector<std::string> reversed_arguments(const std::uint8_t* data, std::size_
   return args;
 }
 
+// The command line as pvtap builds it, made once: building CLI11's options and validators cost
+// far more than parsing one argument list. Each input starts from the options as they were
+// right after the commands were added (defaults written by CLI11 included; the options are
+// bound by address, so they are reset in place), and CLI11 clears its own parse state when an
+// app parses again: every input is parsed as a fresh `pvtap` would parse it.
+struct CommandLine {
+  CLI::App app{"pvtap", "pvtap"};
+  pvtap::analyzer::AuditOptions audit_options;
+  pvtap::analyzer::SniffCommandLine sniff_command;
+  CLI::App* audit = nullptr;
+  CLI::App* sniff = nullptr;
+  pvtap::analyzer::AuditOptions audit_defaults;
+  pvtap::analyzer::SniffCommandLine sniff_defaults;
+
+  CommandLine() {
+    app.require_subcommand(1);
+    audit = pvtap::analyzer::add_audit_command(app, audit_options);
+    sniff = pvtap::analyzer::add_sniff_command(app, sniff_command);
+    audit_defaults = audit_options;
+    sniff_defaults = sniff_command;
+  }
+};
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace pvtap::analyzer;
-  CLI::App app{"pvtap", "pvtap"};
-  app.require_subcommand(1);
-  AuditOptions audit_options;
-  CLI::App* audit = add_audit_command(app, audit_options);
-  SniffCommandLine sniff_command;
-  CLI::App* sniff = add_sniff_command(app, sniff_command);
+  static CommandLine command_line;
+  command_line.audit_options = command_line.audit_defaults;
+  command_line.sniff_command = command_line.sniff_defaults;
   auto args = reversed_arguments(data, size);
   try {
-    app.parse(args);
+    command_line.app.parse(args);
   } catch (const CLI::ParseError&) {
     return 0;
   }
-  if (audit->parsed()) apply_choices(audit_options);
-  if (sniff->parsed()) apply_choices(sniff_command.options);
+  if (command_line.audit->parsed()) apply_choices(command_line.audit_options);
+  if (command_line.sniff->parsed()) apply_choices(command_line.sniff_command.options);
   return 0;
 }

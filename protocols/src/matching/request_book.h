@@ -5,6 +5,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 
 #include "pvtap/codec/frame.h"
 #include "pvtap/codec/function_codes.h"
@@ -31,7 +32,9 @@ class RequestBook {
   }
 
   void remember(std::uint64_t id, const Frame& frame, double start, double end, bool check_ok) {
-    RequestRecord& r = slots_[slot_of(frame.dialect, frame.station)];
+    std::unique_ptr<RequestRecord>& slot = slots_[slot_of(frame.dialect, frame.station)];
+    if (!slot) slot = std::make_unique<RequestRecord>();
+    RequestRecord& r = *slot;
     r.id = id;
     r.valid = true;
     r.check_ok = check_ok;
@@ -42,12 +45,14 @@ class RequestBook {
 
   // The request with this id if it is still the last one of its slot.
   const RequestRecord* find(std::size_t slot, std::uint64_t id) const {
-    const RequestRecord& r = slots_[slot];
-    return r.valid && r.id == id ? &r : nullptr;
+    const RequestRecord* r = slots_[slot].get();
+    return r != nullptr && r->valid && r->id == id ? r : nullptr;
   }
 
  private:
-  std::array<RequestRecord, 257> slots_{};
+  // Made when a station's first request is remembered: a record is 864 bytes, and a session
+  // (one per bus, and one per input in the fuzz targets) would otherwise zero 222 KB up front.
+  std::array<std::unique_ptr<RequestRecord>, 257> slots_{};
 };
 
 }  // namespace pvtap::detail

@@ -13,12 +13,12 @@ constexpr std::uint8_t kBroadcastAddress = 0xFF;
 }  // namespace
 
 StationSummary& StationTally::station(std::uint8_t s) {
-  Slot& slot = stations_[s];
-  if (!slot.seen) {
-    slot.seen = true;
-    slot.summary.station = s;
+  std::unique_ptr<StationSummary>& slot = stations_[s];
+  if (!slot) {
+    slot = std::make_unique<StationSummary>();
+    slot->station = s;
   }
-  return slot.summary;
+  return *slot;
 }
 
 void StationTally::count_unknown(std::uint8_t claimed) {
@@ -97,8 +97,8 @@ void StationTally::add_timeout(const SessionTimeout& t) {
 
 void StationTally::fill(BusReport& r) const {
   r.stations.clear();
-  for (const Slot& s : stations_) {
-    if (s.seen) r.stations.push_back(s.summary);
+  for (const auto& s : stations_) {
+    if (s) r.stations.push_back(*s);
   }
   UnknownStation& u = r.unknown_station;
   u = UnknownStation{};

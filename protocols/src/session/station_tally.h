@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 
 #include "pvtap/session/bus_report.h"
@@ -21,16 +22,14 @@ class StationTally {
   void fill(BusReport& r) const;
 
  private:
-  struct Slot {
-    bool seen = false;
-    StationSummary summary;
-  };
   StationSummary& station(std::uint8_t s);
   void count_frame(StationSummary& s, const SessionFrame& f);
   void count_request(std::optional<std::uint8_t> owner, std::uint8_t claimed, Dialect d);
   void count_unknown(std::uint8_t claimed);
 
-  std::array<Slot, 256> stations_{};
+  // Made when a station is first counted: a bus has a few stations of 256, and a session is
+  // made per bus (and per input by the fuzz targets), so 256 summaries are not zeroed up front.
+  std::array<std::unique_ptr<StationSummary>, 256> stations_{};
   std::array<std::uint64_t, 256> claimed_{};  // damaged frames of no station, by the address
   std::uint64_t unknown_frames_ = 0;
   std::uint64_t unknown_unanswered_ = 0;
