@@ -90,11 +90,11 @@ void CaptureReader::report_problems() const {
     if (in.truncated) {
       std::fprintf(stderr,
                    "pvtap: %s: damaged capture, %s (read %llu records, %llu of %llu bytes; "
-                   "results up to there are above)\n",
+                   "what it held up to there is kept)\n",
                    in.path.c_str(), in.error.c_str(), u(in.records), u(in.read_bytes),
                    u(in.file_bytes));
     } else if (in.unreadable) {
-      std::fprintf(stderr, "pvtap: %s: %s; not read (the other inputs are above)\n",
+      std::fprintf(stderr, "pvtap: %s: %s; not read (the other inputs were)\n",
                    in.path.c_str(), in.error.c_str());
     }
   }
