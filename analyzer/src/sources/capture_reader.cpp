@@ -94,8 +94,8 @@ void CaptureReader::report_problems() const {
                    in.path.c_str(), in.error.c_str(), u(in.records), u(in.read_bytes),
                    u(in.file_bytes));
     } else if (in.unreadable) {
-      std::fprintf(stderr, "pvtap: %s: %s; not read (the other inputs were)\n",
-                   in.path.c_str(), in.error.c_str());
+      std::fprintf(stderr, "pvtap: %s: %s; not read (the other inputs were)\n", in.path.c_str(),
+                   in.error.c_str());
     }
   }
   if (repeat_) std::fprintf(stderr, "pvtap: %s\n", repeat_->c_str());
