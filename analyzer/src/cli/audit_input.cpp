@@ -125,6 +125,7 @@ bool AuditInput::plan() {
 
 PipelineSettings AuditInput::pipeline_settings(PipelineSettings settings) const {
   if (!logic_) settings.has_timestamps = options_.raw_dumps.empty();
+  if (logic_) settings.from_recording_start = true;
   return settings;
 }
 

@@ -208,7 +208,10 @@ int capture(const SniffOptions& o, const RegisterDecoder& decoder, OutputStream&
   output_choice.live = true;
   RunOutput output(output_choice, out);
   if (!output.open()) return kExitBadInput;
-  Pipeline pipeline(pipeline_settings(o), decoder, output.events());
+  PipelineSettings settings = pipeline_settings(o);
+  // A logic stream is timed by its sample clock, from the stream's start.
+  settings.from_recording_start = !o.live.logic_input.empty();
+  Pipeline pipeline(settings, decoder, output.events());
   LiveSources live;
   bool opened = false;
   std::unique_ptr<LogicStreamSource> logic;

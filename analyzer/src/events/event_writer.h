@@ -13,6 +13,8 @@ namespace pvtap::analyzer {
 struct EventContext {
   std::string_view bus;
   bool has_timestamps = true;
+  // Times count from a logic recording's start: there is no wall clock to read them by.
+  bool from_recording_start = false;
 };
 
 // DriverGlitchEvent: a byte an RS485 driver put on the line as it switched on (right before a

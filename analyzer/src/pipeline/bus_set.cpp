@@ -8,10 +8,11 @@ namespace {
 // BusOutput: the sink of one bus session; it tags the events with the bus they came from.
 class BusOutput : public BusSessionSink {
  public:
-  BusOutput(std::string name, bool has_timestamps, EventWriter& events)
+  BusOutput(std::string name, bool has_timestamps, bool from_recording_start, EventWriter& events)
       : name_(std::move(name)), events_(events) {
     context_.bus = name_;
     context_.has_timestamps = has_timestamps;
+    context_.from_recording_start = from_recording_start;
   }
   void on_frame(const SessionFrame& f) override { events_.frame(context_, f); }
   void on_timeout(const SessionTimeout& t) override { events_.timeout(context_, t); }
@@ -29,14 +30,15 @@ class BusOutput : public BusSessionSink {
 
 struct BusSet::Bus {
   Bus(const std::string& name, const BusSessionOptions& options, const RegisterDecoder& decoder,
-      EventWriter& events)
-      : output(name, options.has_timestamps, events), session(options, decoder, output) {}
+      bool from_recording_start, EventWriter& events)
+      : output(name, options.has_timestamps, from_recording_start, events),
+        session(options, decoder, output) {}
   BusOutput output;
   BusSession session;
 };
 
-BusSet::BusSet(const RegisterDecoder& decoder, EventWriter& events)
-    : decoder_(decoder), events_(events) {}
+BusSet::BusSet(const RegisterDecoder& decoder, EventWriter& events, bool from_recording_start)
+    : decoder_(decoder), events_(events), from_recording_start_(from_recording_start) {}
 
 BusSet::~BusSet() = default;
 
@@ -51,7 +53,7 @@ const BusSession* BusSet::find(const std::string& name) const {
 }
 
 BusSession& BusSet::add(const std::string& name, const BusSessionOptions& options) {
-  buses_.push_back(std::make_unique<Bus>(name, options, decoder_, events_));
+  buses_.push_back(std::make_unique<Bus>(name, options, decoder_, from_recording_start_, events_));
   by_name_[name] = buses_.back().get();
   return buses_.back()->session;
 }

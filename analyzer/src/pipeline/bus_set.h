@@ -17,8 +17,9 @@ namespace pvtap::analyzer {
 
 class BusSet {
  public:
-  // Every bus's events go to `events`.
-  BusSet(const RegisterDecoder& decoder, EventWriter& events);
+  // Every bus's events go to `events`; `from_recording_start`: their times count from a logic
+  // recording's start.
+  BusSet(const RegisterDecoder& decoder, EventWriter& events, bool from_recording_start);
   ~BusSet();
   BusSet(const BusSet&) = delete;
   BusSet& operator=(const BusSet&) = delete;
@@ -42,6 +43,7 @@ class BusSet {
   struct Bus;
   const RegisterDecoder& decoder_;
   EventWriter& events_;
+  bool from_recording_start_;
   std::vector<std::unique_ptr<Bus>> buses_;
   std::map<std::string, Bus*> by_name_;
 };

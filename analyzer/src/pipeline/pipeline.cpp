@@ -19,7 +19,7 @@ void feed(BusSession& bus, const SerialBytes& serial) {
 Pipeline::Pipeline(const PipelineSettings& settings, const RegisterDecoder& decoder,
                    EventWriter& events)
     : settings_(settings),
-      buses_(decoder, events),
+      buses_(decoder, events, settings.from_recording_start),
       gateway_(GatewayOptions{settings.ports, settings.dialects, 2.0, settings.timeout}, *this) {}
 
 void Pipeline::begin_input(int link_type, bool batched_serial) {

@@ -131,12 +131,18 @@ class TextEventWriter : public EventWriter {
   }
 
  private:
-  // Time of day (or stream offset for inputs without time), then the bus; returns where the
-  // event's own columns start, so that they line up whatever the prefix.
+  // Time of day (seconds from a logic recording's start, which has no wall clock; the stream
+  // offset for inputs without time), then the bus; returns where the event's own columns
+  // start, so that they line up whatever the prefix.
   static std::size_t begin_line(std::string& o, const EventContext& c, double time,
                                 std::uint64_t offset) {
     const std::size_t start = o.size();
-    if (c.has_timestamps) {
+    if (c.from_recording_start) {
+      o += '+';
+      append_fixed(o, time, 6);
+      o += " s";
+      pad_to(o, start, 15);  // as wide as a time of day
+    } else if (c.has_timestamps) {
       append_time_of_day(o, time);
     } else {
       o += '@';

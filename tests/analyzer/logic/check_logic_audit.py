@@ -20,6 +20,7 @@ import argparse
 import json
 import os
 import shutil
+import re
 import subprocess
 import sys
 
@@ -92,6 +93,12 @@ def sessions(checks, args):
                 "  timed by: logic analyzer at 4 MS/s" in text.stdout)
     checks.true("text report: the serial line", "serial line on channel RXTX: 9600 baud 8N2"
                 in text.stdout)
+    # A recording has no wall clock: its event lines count from its start, never a time of day.
+    events = audit(args.pvtap, os.path.join(args.sigrok, GRAPH)).stdout.splitlines()
+    event_lines = [line for line in events if "  RXTX  " in line]
+    checks.true("event lines: some", len(event_lines) > 0)
+    checks.true(f"event lines: times from the recording's start ({event_lines[:1]})",
+                all(re.match(r"\+\d+\.\d{6} s ", line) for line in event_lines))
 
 
 def one_line_refusal(checks, what, result, expected_words):
