@@ -389,8 +389,8 @@ void append_html_latest_values(std::string& o, const AuditReport& r) {
         o += "<tr>";
         cell(o, to_string(v.dialect));
         cell(o, format_value_address(v.value, v.dialect).view());
-        cell(o, v.value.name());
-        cell(o, format_value(v.value));
+        cell(o, latest_value_name(v));
+        cell(o, latest_value_text(v));
         o += "</tr>\n";
       }
       o += "</table></details>\n";

@@ -280,6 +280,71 @@ void append_value_words(std::string& out, const DecodedValue& v, Dialect d) {
   pvtap::append_value_text(out, v);
 }
 
+std::string latest_value_name(const LatestValue& v) {
+  if (v.coil != nullptr) return std::string(v.coil->name);
+  if (v.value.def != nullptr) return std::string(v.value.def->name);
+  return std::string(table_name(v.table));
+}
+
+std::string latest_value_text(const LatestValue& v) {
+  if (is_bit_table(v.table)) return v.value.raw != 0 ? "on" : "off";
+  std::string text = format_value(v.value);
+  if (v.value.def == nullptr) {
+    text += " (";
+    append_uint(text, v.value.raw);
+    text += ')';
+  }
+  return text;
+}
+
+namespace {
+
+std::string_view table_key(RegisterTable t) {
+  switch (t) {
+    case RegisterTable::Holding:
+      return "holding";
+    case RegisterTable::Input:
+      return "input";
+    case RegisterTable::Coils:
+      return "coils";
+    case RegisterTable::DiscreteInputs:
+      return "discrete_inputs";
+    case RegisterTable::Registers:
+      break;
+  }
+  return "registers";
+}
+
+}  // namespace
+
+void append_latest_value_json(std::string& out, const LatestValue& v) {
+  if (v.value.def != nullptr) {
+    append_value_json(out, v.value, v.dialect);
+    return;
+  }
+  out += "{\"register\":";
+  append_json_string(out, format_value_address(v.value, v.dialect).view());
+  out += ",\"name\":";
+  if (v.coil != nullptr) {
+    append_json_string(out, v.coil->name);
+  } else {
+    out += "null";
+  }
+  const std::uint8_t function = table_function(v.table);
+  if (function != 0) {
+    out += ",\"function\":";
+    append_uint(out, function);
+  }
+  out += ",\"table\":\"";
+  out += table_key(v.table);
+  out += "\",\"key\":";
+  append_json_string(
+      out, v.coil != nullptr ? v.coil->key : unmapped_key(v.table, v.value.address).view());
+  out += ",\"value\":";
+  append_uint(out, v.value.raw);
+  out += '}';
+}
+
 void append_function(std::string& out, Dialect d, std::uint8_t function) {
   out += fc::function_name(d, function);
   out += " (";

@@ -42,6 +42,15 @@ void append_value_number(std::string& out, const DecodedValue& v);
 // "battery voltage 52.3 V" (or "0x1099 0x00AB" for a word outside the map).
 void append_value_words(std::string& out, const DecodedValue& v, Dialect d);
 
+// A station's newest value (LatestValue): its name, or for one no map names its table
+// ("holding register", "coil"); its reading ("0x00E6 (230)" for an unmapped word, "on" or
+// "off" for a bit); as JSON, an unmapped value with its function and table:
+// {"register":"0x0836","name":null,"function":3,"table":"holding","key":"reg_0x0836",
+// "value":17357}.
+std::string latest_value_name(const LatestValue& v);
+std::string latest_value_text(const LatestValue& v);
+void append_latest_value_json(std::string& out, const LatestValue& v);
+
 // The function as text: "read holding registers (0x03)".
 void append_function(std::string& out, Dialect d, std::uint8_t function);
 

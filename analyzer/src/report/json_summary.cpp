@@ -69,7 +69,7 @@ void station_object(std::string& o, const StationSummary& s) {
   o += '[';
   for (std::size_t i = 0; i < s.latest_values.size(); ++i) {
     if (i > 0) o += ',';
-    append_value_json(o, s.latest_values[i].value, s.latest_values[i].dialect);
+    append_latest_value_json(o, s.latest_values[i]);
   }
   o += "]}";
 }

@@ -380,10 +380,9 @@ void latest_values(const AuditReport& r, const BusReport& b, std::string& o) {
       o += report_line("  station %u", s.station);
     }
     for (const LatestValue& v : s.latest_values) {
-      const std::string value = format_value(v.value);
       o += report_line("    %-7s %-8s %-40s %s", std::string(to_string(v.dialect)).c_str(),
                        std::string(format_value_address(v.value, v.dialect).view()).c_str(),
-                       std::string(v.value.name()).c_str(), value.c_str());
+                       latest_value_name(v).c_str(), latest_value_text(v).c_str());
     }
   }
 }

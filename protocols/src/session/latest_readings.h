@@ -18,12 +18,12 @@ namespace pvtap::detail {
 // StationReadings: the decoded newest values of one station and when the newest arrived.
 struct StationReadings {
   double last_time = 0;
-  std::vector<LatestValue> values;  // sorted by dialect, then address
+  std::vector<LatestValue> values;  // sorted by dialect, table, then address
 };
 
 class LatestReadings {
  public:
-  // Distinct blocks (station, dialect, function, start) kept; later new blocks are dropped,
+  // Distinct blocks (station, dialect, function, start, count) kept; later new blocks are dropped,
   // so that memory stays bounded on a bus that reads ever new addresses.
   static constexpr std::size_t kMaxBlocks = 4096;
 
