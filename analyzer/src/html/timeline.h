@@ -13,6 +13,7 @@
 #include "html/time_buckets.h"
 #include "pvtap/codec/dialect.h"
 #include "pvtap/registers/register_map.h"
+#include "pvtap/session/bus_report.h"
 
 namespace pvtap::analyzer {
 

@@ -29,8 +29,9 @@ struct PipelineSettings {
   double timeout = 1.0;        // seconds a request waits for its reply
   double gateway_gap_ms = 50;  // see ReassemblerOptions::boundary_gap
   std::vector<std::uint16_t> ports;
-  bool decode_values = true;   // per-frame values for the output (not for --summary-only)
-  bool has_timestamps = true;  // false for plain dumps
+  bool decode_values = true;    // per-frame values for the output (not for --summary-only)
+  bool infer_registers = true;  // the report's inferred blocks (every report shows them)
+  bool has_timestamps = true;   // false for plain dumps
   GslIdReading gsl_ids = GslIdReading::Decimal;  // for the report's wording
   ProtocolChoices given;
 };

@@ -32,8 +32,12 @@ void LatestReadings::store(const Frame& reply, const Frame* request, double time
   if (it == blocks_.end()) {
     if (blocks_.size() >= kMaxBlocks) return;
     it = blocks_.emplace(*key, Block{}).first;
+    if (infer_) it->second.inference = start_inference(reply, request);
   }
   Block& b = it->second;
+  if (b.inference >= 0) {
+    inference_[static_cast<std::size_t>(b.inference)].stats.add(reply.words.span());
+  }
   b.sequence = sequence_++;
   b.time = time;
   b.reply = reply;
@@ -43,6 +47,66 @@ void LatestReadings::store(const Frame& reply, const Frame* request, double time
     b.request_start = request->start;
     b.request_count = request->count;
   }
+}
+
+// A new block's words are decoded once: the runs no map names are inferred, the block's
+// replies feed the statistics from now on. Bits and blocks without such words are not.
+std::int32_t LatestReadings::start_inference(const Frame& reply, const Frame* request) {
+  if (inference_.size() >= kMaxInferred || reply.words.size() < 1 ||
+      is_bit_table(unmapped_table(reply.dialect, reply.function))) {
+    return -1;
+  }
+  scratch_.clear();
+  const DecodeReport decoded = decoder_.decode(reply, request, scratch_);
+  if (decoded.status != DecodeStatus::Decoded) return -1;
+  const unsigned step = address_step(reply.dialect);
+  std::vector<std::pair<std::uint16_t, std::uint16_t>> runs;
+  for (std::size_t k = decoded.first; k < decoded.first + decoded.count; ++k) {
+    const DecodedValue& v = scratch_[k];
+    if (v.def != nullptr) continue;
+    const auto offset =
+        static_cast<std::uint16_t>((v.wire_address - decoded.start) / step);  // wraps: not mapped
+    if (offset >= reply.words.size()) continue;
+    if (!runs.empty() && runs.back().first + runs.back().second == offset) {
+      ++runs.back().second;
+    } else {
+      runs.emplace_back(offset, 1);
+    }
+  }
+  if (runs.empty()) return -1;
+  Inference inference{BlockInference(reply.words.size()),
+                      std::move(runs),
+                      reply.station,
+                      reply.dialect,
+                      reply.function,
+                      decoded.start};
+  inference_.push_back(std::move(inference));
+  return static_cast<std::int32_t>(inference_.size() - 1);
+}
+
+std::map<std::uint8_t, std::vector<InferredBlock>> LatestReadings::inferred() const {
+  std::map<std::uint8_t, std::vector<InferredBlock>> out;
+  for (const Inference& in : inference_) {
+    InferredBlock b;
+    b.dialect = in.dialect;
+    b.table = unmapped_table(in.dialect, in.function);
+    b.function = in.function;
+    b.start = in.start;
+    b.count = static_cast<std::uint16_t>(in.stats.size());
+    b.replies = in.stats.samples();
+    for (const auto& [from, count] : in.runs) {
+      std::vector<InferredValue> values = in.stats.infer(from, count);
+      b.values.insert(b.values.end(), std::make_move_iterator(values.begin()),
+                      std::make_move_iterator(values.end()));
+    }
+    out[in.station].push_back(std::move(b));
+  }
+  for (auto& [station, blocks] : out) {
+    std::sort(blocks.begin(), blocks.end(), [](const InferredBlock& a, const InferredBlock& b) {
+      return std::tie(a.table, a.start, a.count) < std::tie(b.table, b.start, b.count);
+    });
+  }
+  return out;
 }
 
 Frame LatestReadings::request_of(const Block& b) {

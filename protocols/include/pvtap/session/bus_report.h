@@ -13,6 +13,7 @@
 #include "pvtap/framing/stream_reassembler.h"
 #include "pvtap/matching/match_events.h"
 #include "pvtap/registers/register_decoder.h"
+#include "pvtap/registers/register_inference.h"
 #include "pvtap/statistics/distribution_summary.h"
 #include "pvtap/statistics/timing_statistics.h"
 
@@ -90,6 +91,20 @@ struct LatestValue {
   bool mapped() const { return value.def != nullptr || coil != nullptr; }
 };
 
+// InferredBlock: a polled block with words no map names, and what they probably hold
+// (register_inference.h), from every good reply to it.
+struct InferredBlock {
+  Dialect dialect = Dialect::Modbus;
+  RegisterTable table = RegisterTable::Holding;
+  std::uint8_t function = 0;  // of the replies
+  std::uint16_t start = 0;    // wire address of the block's first word
+  std::uint16_t count = 0;    // words
+  std::uint32_t replies = 0;
+  // The values of its unmapped runs; a value's first word is at start + offset (ASCII: two
+  // addresses a word).
+  std::vector<InferredValue> values;
+};
+
 // DeviceName: what a device said of itself (device identification objects 0-2, or the text of
 // its report server ID reply); empty strings where it said nothing.
 struct DeviceName {
@@ -124,6 +139,9 @@ struct StationSummary {
   // The newest value of every register the station reported (read replies and write echoes
   // with good checks), sorted by dialect and address.
   std::vector<LatestValue> latest_values;
+  // The blocks with unmapped words, sorted by table and start (BusSessionOptions::
+  // infer_registers).
+  std::vector<InferredBlock> inferred;
 };
 
 // ClaimedStation: an address that damaged frames of no station claimed, and how many did.
