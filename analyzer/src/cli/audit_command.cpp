@@ -5,7 +5,12 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cctype>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "cli/common_options.h"
@@ -17,6 +22,7 @@
 #include "logic/plan/logic_plan.h"
 #include "pipeline/pipeline.h"
 #include "pvtap/capture/link_types.h"
+#include "pvtap/session/draft_map.h"
 #include "run/run_output.h"
 #include "sources/capture_reader.h"
 
@@ -131,6 +137,9 @@ CLI::App* add_audit_command(CLI::App& app, AuditOptions& options) {
   add_input_options(*audit, options);
   add_protocol_options(*audit, options, kBaudRange);
   add_output_options(*audit, options);
+  audit->add_option("--draft-map", options.draft_map_dir,
+                    "write DIR/station-N.toml, a draft register map of each station with "
+                    "registers no map names, their types inferred (load it with --map N=FILE)");
   add_mqtt_options(*audit, options.mqtt);
   return audit;
 }
@@ -148,6 +157,39 @@ bool logic_inputs_fit(const AuditOptions& options, bool logic) {
   }
   if (why != nullptr) std::fprintf(stderr, "pvtap: %s\n", why);
   return why == nullptr;
+}
+
+// --draft-map DIR: station-N.toml for each station with inferred blocks. A file that cannot be
+// written is named on stderr; the audit goes on.
+void write_draft_maps(const AuditOptions& options, const AuditReport& report) {
+  if (options.draft_map_dir.empty()) return;
+  const std::string source = !options.captures.empty()    ? options.captures.front()
+                             : !options.raw_dumps.empty() ? options.raw_dumps.front()
+                                                          : std::string("the capture");
+  std::error_code error;
+  std::filesystem::create_directories(options.draft_map_dir, error);
+  for (const BusFindings& bus : report.buses) {
+    for (const StationSummary& s : bus.report.stations) {
+      const std::string text = draft_register_map(s, source);
+      if (text.empty()) continue;
+      std::string name = "station-" + std::to_string(s.station);
+      // Stations of several buses may share an address: the bus keeps their files apart.
+      if (report.buses.size() > 1 && !bus.name.empty()) {
+        std::string safe;
+        for (const char c : bus.name) safe += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+        name = safe + "-" + name;
+      }
+      const std::string path =
+          (std::filesystem::path(options.draft_map_dir) / (name + ".toml")).string();
+      std::ofstream file(path, std::ios::binary);
+      file << text;
+      file.close();
+      if (!file) {
+        std::fprintf(stderr, "pvtap: cannot write the draft map %s: %s\n", path.c_str(),
+                     error ? error.message().c_str() : std::strerror(errno));
+      }
+    }
+  }
 }
 
 int audit_logic(const AuditOptions& options, const RegisterDecoder& decoder, OutputStream& out) {
@@ -169,6 +211,7 @@ int audit_logic(const AuditOptions& options, const RegisterDecoder& decoder, Out
   report.written_records = output.written_records();
   output.write_summary(report);
   out.flush();
+  write_draft_maps(options, report);
   if (!output.close(report)) return kExitBadInput;
   if (!run.error.empty()) {
     std::fprintf(stderr, "pvtap: %s: %s\n", plan.path.c_str(), run.error.c_str());
@@ -255,6 +298,7 @@ int audit(const AuditOptions& options, const RegisterDecoder& decoder, OutputStr
   report.written_records = output.written_records();
   output.write_summary(report);
   out.flush();
+  write_draft_maps(options, report);
   if (!output.close(report)) return kExitBadInput;
   if (!complete) {
     reader.report_problems();

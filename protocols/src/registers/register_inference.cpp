@@ -447,6 +447,7 @@ InferredValue BlockInference::single(std::size_t i) const {
   const bool low_run = (changed & (changed + 1)) == 0;  // only bits 0..k change: a number
   if (!low_run && std::popcount(changed) <= 6 && w.changes >= 2) {
     out.kind = InferredKind::Bits;
+    out.changed_bits = w.changed_bits;
     out.confidence = 0.6;
     std::string list;
     for (unsigned b = 0; b < 16; ++b) {

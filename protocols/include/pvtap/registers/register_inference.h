@@ -38,6 +38,7 @@ struct InferredValue {
   bool constant = false;                   // the same in every value
   bool counter = false;                    // never decreases but by wrapping
   std::uint32_t wraps = 0;                 // of a counter
+  std::uint16_t changed_bits = 0;          // Bits: the flags seen to change
   double confidence = 0;                   // 0..1
   std::uint32_t samples = 0;
   double min = 0, max = 0, last = 0;  // the values as the kind reads them (not Text)
