@@ -55,7 +55,8 @@ def check_draft_maps(pvtap, capture, work, got, failures):
         return
     args = [pvtap, "audit", "--summary-only", "--format", "jsonl"]
     for name in names:
-        args += ["--map", "%s=%s" % (name[len("station-"):-len(".toml")], os.path.join(folder, name))]
+        station = name[len("station-"):-len(".toml")]
+        args += ["--map", "%s=%s" % (station, os.path.join(folder, name))]
     summary = json.loads(run(args + [capture]).splitlines()[-1])
     # A map does not tell holding and input registers apart: an address both read is left out.
     tables = {}

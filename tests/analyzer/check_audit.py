@@ -310,8 +310,8 @@ def mode_station_maps(options, checks):
     checks.equal("unmapped words are input registers read by 0x04",
                  {(v["function"], v["table"]) for v in plain.values()}, {(4, "input")})
     checks.equal("unmapped keys name table and address",
-                 [v for v in plain.values() if v["key"] != "input_reg_0x%s" % v["register"][2:].lower()],
-                 [])
+                 [v for v in plain.values()
+                  if v["key"] != "input_reg_0x%s" % v["register"][2:].lower()], [])
     named = station_values(options, ["--map", meter, capture], "10", checks)
     checks.equal("phase 1 voltage from the example map", named.get("0x0000"),
                  ("phase 1 line to neutral voltage", 230.1))
