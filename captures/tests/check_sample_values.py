@@ -62,8 +62,17 @@ def expected_rows(pvtap, capture):
         for v in f["values"]:
             rows.append({"ts": f["ts"], "bus": f.get("bus"), "station": f["station"],
                          "dialect": f["dialect"], "register": v["register"], "name": v["name"],
-                         "value": v["value"], "unit": v.get("unit")})
+                         "value": v["value"], "unit": v.get("unit"),
+                         "unmapped_key": None if v["name"] is not None else
+                         unmapped_key(f["dialect"], f["function"], v["register"])})
     return rows
+
+
+def unmapped_key(dialect, function, register):
+    """The key of a word no map names: its table and address ("input_reg_0x0002")."""
+    address = int(register, 16) if register.startswith("0x") else int(register)
+    table = "input_reg" if dialect in ("gsl", "modbus") and function == 4 else "reg"
+    return "%s_0x%04x" % (table, address)
 
 
 def read_values(pvtap, capture, fmt, path):
@@ -105,13 +114,14 @@ def check_jsonl(rows, text, failures):
                 failures.append("jsonl row %s: %s is %r, the frame says %r"
                                 % (g, field, g[field], e[field]))
                 return
-        if (g["key"] is None) != (e["name"] is None):
-            failures.append("jsonl row %s: a key exactly when the map names the register" % g)
+        if g["key"] is None or (e["name"] is None and g["key"] != e["unmapped_key"]):
+            failures.append("jsonl row %s: the map's key, or for a word no map names %s"
+                            % (g, e["unmapped_key"]))
             return
 
 
 def check_influx(rows, text, failures):
-    numeric = [r for r in rows if r["name"] is not None and
+    numeric = [r for r in rows if
                isinstance(r["value"], (int, float)) and not isinstance(r["value"], bool)]
     lines = text.splitlines()
     if len(lines) != len(numeric):
@@ -132,7 +142,8 @@ def check_influx(rows, text, failures):
         if {k: tags.get(k) for k in want_tags} != want_tags or set(tags) - {"bus", "station",
                                                                               "dialect", "key"}:
             problems.append("tags %s" % tags)
-        if "key" not in tags or list(fields) != ["value"] or float(fields["value"]) != e["value"]:
+        if "key" not in tags or list(fields) != ["value"] or float(fields["value"]) != e["value"] \
+                or (e["unmapped_key"] is not None and tags["key"] != e["unmapped_key"]):
             problems.append("fields %s" % fields)
         if stamp is None or stamp != str(int(("%.6f" % e["ts"]).replace(".", "")) * 1000):
             problems.append("timestamp %s for ts %s" % (stamp, e["ts"]))

@@ -11,6 +11,7 @@
 #include "bus/bus_master.h"
 #include "bus/frame_shapes.h"
 #include "bus/poll_blocks.h"
+#include "devices/battery.h"
 #include "faults/fault_plan.h"
 #include "faults/frame_damage.h"
 #include "outputs/ground_truth.h"
@@ -404,6 +405,90 @@ TEST(GroundTruth, KeepsTimeoutsDamagedRepliesAndIgnoredRequestsApart) {
   EXPECT_TRUE(has("\"fault\":\"corrupt_request\""));
   EXPECT_GT(damaged_replies, 0u);
   EXPECT_GT(t.unanswered_damaged_requests.size(), 0u);
+}
+
+}  // namespace
+}  // namespace pvtap::sim
+
+namespace pvtap::sim {
+namespace {
+
+// The words of every good reply of `station` to `function` at `start`, parsed back.
+std::vector<WordList> replies_of(const BusTimeline& t, std::uint8_t station) {
+  std::vector<WordList> out;
+  for (const BusEvent& e : t.events) {
+    if (e.kind != BusEvent::Kind::Frame || e.station != station || e.role != Role::Response ||
+        !e.check_ok)
+      continue;
+    const auto parsed = parse_frame(e.bytes, Dialect::Modbus, Role::Response);
+    if (parsed) out.push_back(parsed->words);
+  }
+  return out;
+}
+
+TEST(Devices, MeterWordOrderSwapsTheWordsOfEveryFloat) {
+  SimConfig high;
+  high.inverters = 0;
+  high.meter_station = 11;
+  high.duration_s = 10;
+  SimConfig low = high;
+  low.meter_low_first = true;
+  const std::vector<WordList> a = replies_of(BusMaster(high).run(), 11);
+  const std::vector<WordList> b = replies_of(BusMaster(low).run(), 11);
+  ASSERT_EQ(a.size(), b.size());
+  ASSERT_FALSE(a.empty());
+  std::size_t floats = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    ASSERT_EQ(a[i].size(), b[i].size());
+    for (std::size_t w = 0; w + 1 < a[i].size(); w += 2, ++floats) {
+      EXPECT_EQ(a[i][w], b[i][w + 1]);
+      EXPECT_EQ(a[i][w + 1], b[i][w]);
+    }
+  }
+  EXPECT_GT(floats, 10u);
+  const auto layout = BusMaster(low).run().devices.at(0).layout;
+  ASSERT_FALSE(layout.empty());
+  EXPECT_TRUE(std::all_of(layout.begin(), layout.end(), [](auto& l) { return l.low_first; }));
+}
+
+// The battery's layout is what its words hold: signed values change sign, the counter only
+// grows and wraps its low word, the fill words are fill, the text is printable.
+TEST(Devices, BatteryWordsHoldWhatItsLayoutSays) {
+  SimConfig c;
+  c.inverters = 0;
+  c.battery_station = 5;
+  c.duration_s = 600;
+  const BusTimeline t = BusMaster(c).run();
+  ASSERT_EQ(t.devices.size(), 1u);
+  EXPECT_EQ(t.devices[0].label.kind, "battery");
+  std::vector<WordList> status;
+  std::string text;
+  for (const WordList& w : replies_of(t, 5)) {
+    if (w.size() == Battery::kStatusCount) status.push_back(w);
+    if (w.size() == Battery::kNameCount && text.empty())
+      for (std::uint16_t x : w) text += {static_cast<char>(x >> 8), static_cast<char>(x & 0xFF)};
+  }
+  ASSERT_GT(status.size(), 50u);
+  bool negative = false, positive = false;
+  std::uint32_t last = 0;
+  bool wrapped = false;
+  for (const WordList& w : status) {
+    const auto current = static_cast<std::int16_t>(w[1]);
+    negative = negative || current < -50;
+    positive = positive || current > 50;
+    const std::uint32_t energy = std::uint32_t{w[4]} << 16 | w[5];
+    EXPECT_GE(energy, last);
+    wrapped = wrapped || (last != 0 && w[5] < (last & 0xFFFF));
+    last = energy;
+    EXPECT_EQ(w[10], 0xFFFF);
+    EXPECT_EQ(w[13], 0x8000);
+    // s32, low word first: the high word is the low word's sign.
+    EXPECT_EQ(w[7], static_cast<std::int16_t>(w[6]) < 0 ? 0xFFFF : 0x0000);
+  }
+  EXPECT_TRUE(negative && positive);
+  EXPECT_TRUE(wrapped);
+  EXPECT_EQ(text.substr(0, 12), "PVTAP-BAT-5K");
+  EXPECT_EQ(t.devices[0].layout.size(), 14u);
 }
 
 }  // namespace

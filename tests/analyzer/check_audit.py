@@ -285,13 +285,14 @@ def mode_user_maps(options, checks):
         shutil.rmtree(home, ignore_errors=True)
 
 
-def station_values(options, args, station, checks):
-    """{register: (name, value)} of one station in the summary of an audit."""
+def station_values(options, args, station, checks, full=False):
+    """{register: (name, value)} of one station in the summary of an audit (full: the whole
+    value objects)."""
     lines = audit_jsonl(options, args, checks)
     if not lines:
         return {}
     values = lines[-1]["stations"].get(station, {}).get("values", [])
-    return {v["register"]: (v["name"], v["value"]) for v in values}
+    return {v["register"]: v if full else (v["name"], v["value"]) for v in values}
 
 
 def mode_station_maps(options, checks):
@@ -300,8 +301,17 @@ def mode_station_maps(options, checks):
     d = options.dir
     capture = capture_path(d, "station_map")
     meter = f"10={options.example_map}"
-    plain = station_values(options, [capture], "10", checks)
-    checks.equal("without a map the summary names no value of the meter", plain, {})
+    plain = station_values(options, [capture], "10", checks, full=True)
+    checks.true("without a map the meter's words are values of the summary", len(plain) > 0)
+    checks.equal("without a map the summary names no value of the meter",
+                 [v for v in plain.values() if v["name"] is not None], [])
+    # The meter's floats are input registers: raw words of function 0x04, keyed as a draft map
+    # would name them.
+    checks.equal("unmapped words are input registers read by 0x04",
+                 {(v["function"], v["table"]) for v in plain.values()}, {(4, "input")})
+    checks.equal("unmapped keys name table and address",
+                 [v for v in plain.values()
+                  if v["key"] != "input_reg_0x%s" % v["register"][2:].lower()], [])
     named = station_values(options, ["--map", meter, capture], "10", checks)
     checks.equal("phase 1 voltage from the example map", named.get("0x0000"),
                  ("phase 1 line to neutral voltage", 230.1))

@@ -3,7 +3,12 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <cctype>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "cli/audit_input.h"
@@ -12,6 +17,7 @@
 #include "cli/mqtt_command_options.h"
 #include "pipeline/pipeline.h"
 #include "pvtap/capture/link_types.h"
+#include "pvtap/session/draft_map.h"
 #include "run/run_output.h"
 
 namespace pvtap::analyzer {
@@ -86,9 +92,49 @@ CLI::App* add_audit_command(CLI::App& app, AuditOptions& options) {
   add_input_options(*audit, options);
   add_protocol_options(*audit, options, kBaudRange);
   add_output_options(*audit, options);
+  audit->add_option("--draft-map", options.draft_map_dir,
+                    "write DIR/station-N.toml, a draft register map of each station with "
+                    "registers no map names, their types inferred (load it with --map N=FILE)");
   add_mqtt_options(*audit, options.mqtt);
   return audit;
 }
+
+namespace {
+
+// --draft-map DIR: station-N.toml for each station with inferred blocks. A file that cannot be
+// written is named on stderr; the audit goes on.
+void write_draft_maps(const AuditOptions& options, const AuditReport& report) {
+  if (options.draft_map_dir.empty()) return;
+  const std::string source = !options.captures.empty()    ? options.captures.front()
+                             : !options.raw_dumps.empty() ? options.raw_dumps.front()
+                                                          : std::string("the capture");
+  std::error_code error;
+  std::filesystem::create_directories(options.draft_map_dir, error);
+  for (const BusFindings& bus : report.buses) {
+    for (const StationSummary& s : bus.report.stations) {
+      const std::string text = draft_register_map(s, source);
+      if (text.empty()) continue;
+      std::string name = "station-" + std::to_string(s.station);
+      // Stations of several buses may share an address: the bus keeps their files apart.
+      if (report.buses.size() > 1 && !bus.name.empty()) {
+        std::string safe;
+        for (const char c : bus.name) safe += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+        name = safe + "-" + name;
+      }
+      const std::string path =
+          (std::filesystem::path(options.draft_map_dir) / (name + ".toml")).string();
+      std::ofstream file(path, std::ios::binary);
+      file << text;
+      file.close();
+      if (!file) {
+        std::fprintf(stderr, "pvtap: cannot write the draft map %s: %s\n", path.c_str(),
+                     error ? error.message().c_str() : std::strerror(errno));
+      }
+    }
+  }
+}
+
+}  // namespace
 
 int run_audit(AuditOptions& options) {
   apply_choices(options);
@@ -119,6 +165,7 @@ int audit(const AuditOptions& options, const RegisterDecoder& decoder, OutputStr
   report.written_records = output.written_records();
   output.write_summary(report);
   out.flush();
+  write_draft_maps(options, report);
   if (!output.close(report)) return kExitBadInput;
   if (!complete) {
     input.report_problems();

@@ -54,6 +54,8 @@ struct CommonOptions {
 struct AuditOptions : CommonOptions {
   std::vector<std::string> captures;   // pcap/pcapng files, read in order as one capture
   std::vector<std::string> raw_dumps;  // plain bus byte dumps (--raw)
+  // --draft-map: a folder for station-N.toml, a draft map of each station with unmapped words.
+  std::string draft_map_dir;
   // --channels: a logic recording's channels to decode, by name; empty for every channel
   // with UART traffic.
   std::vector<std::string> logic_channels;

@@ -50,6 +50,9 @@ void add_mqtt_options(CLI::App& command, MqttOptions& o) {
       ->default_str("10");
   command.add_flag("--mqtt-discovery", o.discovery,
                    "publish Home Assistant discovery configs under homeassistant/");
+  command.add_flag("--mqtt-raw", o.raw,
+                   "also publish the words no register map names, as raw words keyed by table "
+                   "and address (reg_0x0836, input_reg_0x0002)");
   // Each of them describes the --mqtt connection: alone it would do nothing.
   for (CLI::Option* option : command.get_options()) {
     if (option != mqtt && option->get_name().rfind("--mqtt-", 0) == 0) option->needs(mqtt);

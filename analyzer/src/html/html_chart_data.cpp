@@ -206,12 +206,14 @@ void loads(std::string& o, const Timeline& t) {
 
 bool wanted(const ValueSeries& s, const HtmlOptions& options) {
   if (options.plot_keys.empty()) return s.changed();
-  return std::find(options.plot_keys.begin(), options.plot_keys.end(), s.def->key) !=
+  return std::find(options.plot_keys.begin(), options.plot_keys.end(), s.key) !=
          options.plot_keys.end();
 }
 
-// Numbers chart by unit; enums, bits and raw words as step lanes of their own.
+// Numbers chart by unit; enums, bits and raw words as step lanes of their own; words no map
+// names in a chart of their own.
 std::string group_of(const ValueSeries& s) {
+  if (s.def == nullptr) return "unmapped words";
   switch (s.def->kind) {
     case RegisterKind::Enum:
     case RegisterKind::Bits:
@@ -228,28 +230,39 @@ void value_series(std::string& o, const AuditReport& r, const Timeline& t, const
   o += ",\"label\":";
   std::string label = lane_label(r, t.lanes[s.lane]);
   label += ' ';
-  label.append(s.def->key);
-  if (s.instance > 0) {
+  if (s.def == nullptr) {
+    label += table_name(s.table);
+    label += ' ';
+    label += s.address;
+  } else {
+    label.append(s.def->key);
+  }
+  if (s.def != nullptr && s.instance > 0) {
     label += '[';
     append_uint(label, s.instance);
     label += ']';
   }
   append_json_string(o, label);
   o += ",\"key\":";
-  append_json_string(o, s.def->key);
+  append_json_string(o, s.key);
   o += ",\"name\":";
-  append_json_string(o, s.def->name);
+  if (s.def == nullptr) {
+    append_json_string(o, std::string(table_name(s.table)) + " " + s.address);
+  } else {
+    append_json_string(o, s.def->name);
+  }
   o += ",\"address\":";
   append_json_string(o, s.address);
   o += ",\"dialect\":\"";
   o += to_string(s.dialect);
   o += "\",\"unit\":";
-  append_json_string(o, s.def->unit);
+  append_json_string(o, s.def != nullptr ? s.def->unit : std::string_view{});
   o += ",\"step\":";
   o += group_of(s) == "states" ? "true" : "false";
   o += ",\"points\":";
-  const bool scaled = s.def->kind == RegisterKind::Number || s.def->kind == RegisterKind::Bcd ||
-                      s.def->kind == RegisterKind::BcdPhaseCapacity;
+  const bool scaled = s.def != nullptr &&
+                      (s.def->kind == RegisterKind::Number || s.def->kind == RegisterKind::Bcd ||
+                       s.def->kind == RegisterKind::BcdPhaseCapacity);
   ranges(o, s.points, 1.0, scaled ? s.def->decimals : 0, false);
   o += '}';
 }
@@ -259,6 +272,10 @@ void values(std::string& o, const AuditReport& r, const Timeline& t, const HtmlO
   for (const ValueSeries& s : t.values) {
     if (wanted(s, options)) groups[group_of(s)].push_back(&s);
   }
+  // Whether --plot chose the registers: then no chart means none of them was read, not that
+  // nothing changed.
+  o += ",\"plot_chosen\":";
+  o += options.plot_keys.empty() ? "false" : "true";
   o += ",\"values\":[";
   bool first = true;
   for (const auto& [group, members] : groups) {

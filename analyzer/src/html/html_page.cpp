@@ -79,6 +79,7 @@ void write_html_report(const AuditReport& report, const Timeline& timeline,
   append_html_bus_timing(o, report);
   append_html_findings(o, report);
   append_html_latest_values(o, report);
+  append_html_inferred(o, report);
   o += "</main>\n";
   append_scripts(o, report, timeline, options);
   o += "</body>\n</html>\n";

@@ -385,11 +385,51 @@ void append_html_latest_values(std::string& o, const AuditReport& r) {
         o += "<tr>";
         cell(o, to_string(v.dialect));
         cell(o, format_value_address(v.value, v.dialect).view());
-        cell(o, v.value.name());
-        cell(o, format_value(v.value));
+        cell(o, latest_value_name(v));
+        cell(o, latest_value_text(v));
         o += "</tr>\n";
       }
       o += "</table></details>\n";
+    }
+  }
+  o += "</section>\n";
+}
+
+void append_html_inferred(std::string& o, const AuditReport& r) {
+  bool any = false;
+  for (const BusFindings& bus : r.buses) {
+    for (const StationSummary& s : bus.report.stations) any = any || !s.inferred.empty();
+  }
+  if (!any) return;
+  o += "<section id=\"inferred\"><h2>Unmapped registers</h2>\n"
+       "<p class=\"hint\">Blocks of words no register map names, their types inferred from "
+       "every reply (<code>pvtap audit --draft-map DIR</code> writes them as maps).</p>\n";
+  for (const BusFindings& bus : r.buses) {
+    for (const StationSummary& s : bus.report.stations) {
+      for (const InferredBlock& b : s.inferred) {
+        o += "<details><summary>station ";
+        append_html_escaped(o, station_key(r, bus, s.station));
+        o += ": ";
+        append_html_escaped(o, table_name(b.table));
+        o += " at ";
+        append_html_escaped(o, format_register_address(b.dialect, b.start).view());
+        o += ", " + std::to_string(b.count) + " words, " + std::to_string(b.replies) +
+             " replies</summary>\n<table class=\"inferred\"><tr>";
+        for (const char* head : {"register", "type", "reading", "confidence", "evidence"}) {
+          cell(o, head, "th");
+        }
+        o += "</tr>\n";
+        for (const InferredValue& v : b.values) {
+          o += "<tr>";
+          cell(o, inferred_address(b, v));
+          cell(o, inferred_type(v));
+          cell(o, inferred_reading(v));
+          cell(o, std::to_string(static_cast<int>(v.confidence * 100.0 + 0.5)) + " %");
+          cell(o, v.hint.empty() ? v.evidence : v.evidence + "; " + v.hint);
+          o += "</tr>\n";
+        }
+        o += "</table></details>\n";
+      }
     }
   }
   o += "</section>\n";

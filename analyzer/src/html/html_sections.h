@@ -4,8 +4,8 @@
 
 #include <string>
 
-#include "report/audit_report.h"
 #include "html/timeline.h"
+#include "report/audit_report.h"
 
 namespace pvtap::analyzer {
 
@@ -15,6 +15,8 @@ void append_html_polling(std::string& o, const AuditReport& r, const Timeline& t
 void append_html_findings(std::string& o, const AuditReport& r);
 // What each station last reported: the text report's "latest values".
 void append_html_latest_values(std::string& o, const AuditReport& r);
+// A table per polled block with words no map names: their inferred types.
+void append_html_inferred(std::string& o, const AuditReport& r);
 
 // A poll silence is a finding when it lasts more than twice the bus's longest poll period
 // (or kMinSilence when no block was polled twice).

@@ -13,6 +13,7 @@
 #include "html/time_buckets.h"
 #include "pvtap/codec/dialect.h"
 #include "pvtap/registers/register_map.h"
+#include "pvtap/session/bus_report.h"
 
 namespace pvtap::analyzer {
 
@@ -69,9 +70,11 @@ struct BusLoad {
 struct ValueSeries {
   std::uint32_t lane = 0;
   Dialect dialect = Dialect::Gsl;
-  const RegisterDef* def = nullptr;  // points into the register map
+  const RegisterDef* def = nullptr;  // points into the register map; null: an unmapped word
   std::uint16_t instance = 0;
-  std::string address;  // as the reference writes it
+  RegisterTable table = RegisterTable::Registers;  // of an unmapped word
+  std::string key;                                 // the map's key, or "reg_0x0003"
+  std::string address;                             // as the reference writes it
   BucketSeries points;
   double min = 0, max = 0;  // over the whole run
   bool changed() const { return min != max; }

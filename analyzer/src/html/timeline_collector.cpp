@@ -150,9 +150,14 @@ void TimelineCollector::mark_frame(std::uint32_t lane, const SessionFrame& f) {
 }
 
 void TimelineCollector::add_values(std::uint32_t lane, std::size_t bucket, const SessionFrame& f) {
+  // Words no map names are kept apart by their table (holding and input registers).
+  const RegisterTable unmapped =
+      f.frame != nullptr ? unmapped_table(f.dialect, f.frame->function) : RegisterTable::Registers;
   for (const DecodedValue& v : f.values) {
-    if (v.def == nullptr || reading_kind(v) != ReadingKind::Number) continue;
-    const SeriesKey key{lane, v.def, v.instance};
+    if (reading_kind(v) != ReadingKind::Number) continue;
+    const bool mapped = v.def != nullptr;
+    const SeriesKey key = mapped ? SeriesKey{lane, v.def, v.instance, RegisterTable::Registers}
+                                 : SeriesKey{lane, nullptr, v.address, unmapped};
     auto [it, added] =
         series_.try_emplace(key, static_cast<std::uint32_t>(timeline_.values.size()));
     if (added) {
@@ -161,13 +166,15 @@ void TimelineCollector::add_values(std::uint32_t lane, std::size_t bucket, const
       s.dialect = f.dialect;
       s.def = v.def;
       s.instance = v.instance;
+      s.table = key.table;
+      s.key = mapped ? v.def->key : unmapped_key(unmapped, v.address).view();
       s.address = format_value_address(v, f.dialect).view();
       s.min = s.max = v.value;
       timeline_.values.push_back(std::move(s));
     }
     ValueSeries& s = timeline_.values[it->second];
     // Enums, bits and raw words chart as their integer; numbers as the scaled value.
-    const double reading = v.def->kind == RegisterKind::Number ||
+    const double reading = !mapped || v.def->kind == RegisterKind::Number ||
                                    v.def->kind == RegisterKind::Bcd ||
                                    v.def->kind == RegisterKind::BcdPhaseCapacity
                                ? v.value

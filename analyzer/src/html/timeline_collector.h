@@ -34,13 +34,15 @@ class TimelineCollector : public EventWriter {
   };
   struct SeriesKey {
     std::uint32_t lane;
-    const RegisterDef* def;
+    const RegisterDef* def;  // null: a word no map names, at `instance` of `table`
     std::uint16_t instance;
+    RegisterTable table;
     bool operator==(const SeriesKey&) const = default;
   };
   struct SeriesKeyHash {
     std::size_t operator()(const SeriesKey& k) const {
-      return std::hash<const void*>{}(k.def) ^ (std::size_t{k.lane} << 20) ^ k.instance;
+      return std::hash<const void*>{}(k.def) ^ (std::size_t{k.lane} << 20) ^ k.instance ^
+             (std::size_t{static_cast<std::uint8_t>(k.table)} << 16);
     }
   };
 

@@ -16,6 +16,7 @@ struct MqttOptions {
   std::string key_file;
   double interval = 10;    // seconds between value, state and health publications
   bool discovery = false;  // Home Assistant discovery configs under homeassistant/
+  bool raw = false;        // also the words no map names, as reg_0x0836 (--mqtt-raw)
   // The bus of the run's one serial tap (a capture of serial records, or sniff with one
   // --device): its topic level is "bus", so that topics and Home Assistant entities stay the
   // same whether the bus was heard live or from a capture, and when the adapter's path changes.

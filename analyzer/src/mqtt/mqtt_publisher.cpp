@@ -22,7 +22,7 @@ MqttPublisher::MqttPublisher(std::unique_ptr<MqttClient> client, const MqttOptio
     : client_(std::move(client)),
       topics_(std::move(prefix), options.lone_serial_bus),
       schedule_(options.interval, live),
-      retained_(*client_, topics_, schedule_, options.discovery) {}
+      retained_(*client_, topics_, schedule_, options.discovery, options.raw) {}
 
 MqttPublisher::~MqttPublisher() {
   // Ended without finish() (a device that could not be opened after the broker accepted

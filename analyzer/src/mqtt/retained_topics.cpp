@@ -7,8 +7,8 @@
 namespace pvtap::analyzer {
 
 RetainedTopics::RetainedTopics(MqttClient& client, const MqttTopics& topics,
-                               const PublishSchedule& schedule, bool discovery)
-    : client_(client), topics_(topics), schedule_(schedule), discovery_(discovery) {}
+                               const PublishSchedule& schedule, bool discovery, bool raw)
+    : client_(client), topics_(topics), schedule_(schedule), discovery_(discovery), raw_(raw) {}
 
 MqttBus& RetainedTopics::bus(std::string_view name) {
   auto it = buses_.find(name);
@@ -16,6 +16,7 @@ MqttBus& RetainedTopics::bus(std::string_view name) {
     MqttBus bus;
     bus.name = std::string(name);
     bus.level = topics_.bus_level(name);
+    bus.stations.publish_raw(raw_);
     it = buses_.emplace(bus.name, std::move(bus)).first;
   }
   return it->second;

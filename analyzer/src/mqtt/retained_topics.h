@@ -30,8 +30,9 @@ struct MqttBus {
 // reconnection, since a restarted broker may have lost it.
 class RetainedTopics {
  public:
+  // `raw`: the stations' words no map names are published too (--mqtt-raw).
   RetainedTopics(MqttClient& client, const MqttTopics& topics, const PublishSchedule& schedule,
-                 bool discovery);
+                 bool discovery, bool raw = false);
 
   // Made on first use.
   MqttBus& bus(std::string_view name);
@@ -51,6 +52,7 @@ class RetainedTopics {
   const MqttTopics& topics_;
   const PublishSchedule& schedule_;
   bool discovery_;
+  bool raw_;
   std::map<std::string, MqttBus, std::less<>> buses_;
   ValueJsonCache values_;
   std::string scratch_;

@@ -100,13 +100,16 @@ void StationTable::record(const SessionFrame& f) {
   s.replied_since_state = true;
   touch_block(s, f);
   std::string payload;
+  const RegisterTable unmapped =
+      f.frame != nullptr ? unmapped_table(f.dialect, f.frame->function) : RegisterTable::Registers;
   for (const DecodedValue& v : f.values) {
-    if (v.def == nullptr || !v.complete()) continue;
-    const std::string key = value_key(v);
+    if (!v.complete() || (v.def == nullptr && !raw_)) continue;
+    const std::string key =
+        v.def != nullptr ? value_key(v) : std::string(unmapped_key(unmapped, v.address).view());
     auto it = s.values.find(key);
     if (it == s.values.end()) it = s.values.emplace(key, HeldValue{}).first;
     HeldValue& held = it->second;
-    if (is_identity_key(v.def->key)) {
+    if (v.def != nullptr && is_identity_key(v.def->key)) {
       payload.clear();
       append_value_payload(payload, v);
       const bool first = held.time == 0;

@@ -63,6 +63,8 @@ class StationTable {
  public:
   // Takes the values of a good reply; other frames change nothing.
   void record(const SessionFrame& f);
+  // Whether words no map names are held (and so published) too, keyed reg_0x0836.
+  void publish_raw(bool raw) { raw_ = raw; }
   std::map<std::uint8_t, StationState>& stations() { return stations_; }
   const std::map<std::uint8_t, StationState>& stations() const { return stations_; }
   std::size_t blocks() const;
@@ -70,6 +72,7 @@ class StationTable {
 
  private:
   std::map<std::uint8_t, StationState> stations_;
+  bool raw_ = false;
 };
 
 // Keys whose value names the device (Home Assistant shows them on the device's card).

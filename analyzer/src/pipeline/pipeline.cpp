@@ -106,6 +106,7 @@ BusSessionOptions Pipeline::carrier_options(Carrier carrier) const {
   o.reassembler.baud = settings_.baud;
   o.matcher.timeout = settings_.timeout;
   o.decode_values = settings_.decode_values;
+  o.infer_registers = settings_.infer_registers;
   apply_carrier_timing(CarrierTiming{carrier, settings_.gateway_gap_ms / 1000.0, {}}, o);
   return o;
 }

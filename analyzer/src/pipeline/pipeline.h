@@ -30,6 +30,7 @@ struct PipelineSettings {
   double gateway_gap_ms = 50;  // see ReassemblerOptions::boundary_gap
   std::vector<std::uint16_t> ports;
   bool decode_values = true;          // per-frame values for the output (not for --summary-only)
+  bool infer_registers = true;        // the report's inferred blocks (every report shows them)
   bool has_timestamps = true;         // false for plain dumps
   bool from_recording_start = false;  // a logic recording's sample clock, no wall clock
   GslIdReading gsl_ids = GslIdReading::Decimal;  // for the report's wording

@@ -280,6 +280,174 @@ void append_value_words(std::string& out, const DecodedValue& v, Dialect d) {
   pvtap::append_value_text(out, v);
 }
 
+std::string latest_value_name(const LatestValue& v) {
+  if (v.coil != nullptr) return std::string(v.coil->name);
+  if (v.value.def != nullptr) return std::string(v.value.def->name);
+  return std::string(table_name(v.table));
+}
+
+std::string latest_value_text(const LatestValue& v) {
+  if (is_bit_table(v.table)) return v.value.raw != 0 ? "on" : "off";
+  std::string text = format_value(v.value);
+  if (v.value.def == nullptr) {
+    text += " (";
+    append_uint(text, v.value.raw);
+    text += ')';
+  }
+  return text;
+}
+
+namespace {
+
+std::string_view table_key(RegisterTable t) {
+  switch (t) {
+    case RegisterTable::Holding:
+      return "holding";
+    case RegisterTable::Input:
+      return "input";
+    case RegisterTable::Coils:
+      return "coils";
+    case RegisterTable::DiscreteInputs:
+      return "discrete_inputs";
+    case RegisterTable::Registers:
+      break;
+  }
+  return "registers";
+}
+
+}  // namespace
+
+void append_latest_value_json(std::string& out, const LatestValue& v) {
+  if (v.value.def != nullptr) {
+    append_value_json(out, v.value, v.dialect);
+    return;
+  }
+  out += "{\"register\":";
+  append_json_string(out, format_value_address(v.value, v.dialect).view());
+  out += ",\"name\":";
+  if (v.coil != nullptr) {
+    append_json_string(out, v.coil->name);
+  } else {
+    out += "null";
+  }
+  const std::uint8_t function = table_function(v.table);
+  if (function != 0) {
+    out += ",\"function\":";
+    append_uint(out, function);
+  }
+  out += ",\"table\":\"";
+  out += table_key(v.table);
+  out += "\",\"key\":";
+  append_json_string(
+      out, v.coil != nullptr ? v.coil->key : unmapped_key(v.table, v.value.address).view());
+  out += ",\"value\":";
+  append_uint(out, v.value.raw);
+  out += '}';
+}
+
+std::string inferred_address(const InferredBlock& b, const InferredValue& v) {
+  const auto address = static_cast<std::uint16_t>(b.start + v.offset * address_step(b.dialect));
+  return std::string(format_register_address(b.dialect, address).view());
+}
+
+std::string inferred_type(const InferredValue& v) {
+  std::string t(to_string(v.kind));
+  if (v.words == 2) t += v.order == WordOrder::HighFirst ? " high word first" : " low word first";
+  if (v.kind == InferredKind::Text) {
+    t += ", ";
+    append_uint(t, v.words);
+    t += " words";
+  }
+  if (v.counter) t += " counter";
+  if (v.constant && v.kind != InferredKind::Unused) t += " constant";
+  return t;
+}
+
+std::string inferred_reading(const InferredValue& v) {
+  if (v.kind == InferredKind::Text) return "\"" + v.text + "\"";
+  if (v.kind == InferredKind::Unused) return "-";
+  const int decimals = v.kind == InferredKind::Float32 ? 3 : 0;
+  std::string text;
+  if (v.kind == InferredKind::Bits) {
+    text = "0x";
+    static constexpr char kHex[] = "0123456789ABCDEF";
+    const auto raw = static_cast<unsigned>(v.last);
+    for (int shift = 12; shift >= 0; shift -= 4) text += kHex[(raw >> shift) & 0xFu];
+    return text;
+  }
+  append_fixed(text, v.last, decimals);
+  if (!v.constant) {
+    text += " (";
+    append_fixed(text, v.min, decimals);
+    text += "..";
+    append_fixed(text, v.max, decimals);
+    text += ')';
+  }
+  return text;
+}
+
+void append_inferred_block_json(std::string& out, const InferredBlock& b) {
+  out += "{\"table\":\"";
+  out += table_key(b.table);
+  out += '"';
+  append_json_count(out, "function", b.function);
+  append_json_key(out, "start");
+  append_json_string(out, format_register_address(b.dialect, b.start).view());
+  append_json_count(out, "count", b.count);
+  append_json_count(out, "replies", b.replies);
+  append_json_key(out, "values");
+  out += '[';
+  for (std::size_t i = 0; i < b.values.size(); ++i) {
+    const InferredValue& v = b.values[i];
+    if (i > 0) out += ',';
+    const auto address = static_cast<std::uint16_t>(b.start + v.offset * address_step(b.dialect));
+    out += "{\"register\":";
+    append_json_string(out, inferred_address(b, v));
+    append_json_key(out, "key");
+    append_json_string(out, unmapped_key(b.table, address).view());
+    append_json_key(out, "type");
+    append_json_string(out, to_string(v.kind));
+    append_json_count(out, "words", v.words);
+    append_json_key(out, "word_order");
+    if (v.words == 2) {
+      append_json_string(out, v.order == WordOrder::HighFirst ? "high_first" : "low_first");
+    } else {
+      out += "null";
+    }
+    out += ",\"constant\":";
+    out += v.constant ? "true" : "false";
+    out += ",\"counter\":";
+    out += v.counter ? "true" : "false";
+    append_json_key(out, "confidence");
+    append_fixed(out, v.confidence, 2);
+    if (v.kind == InferredKind::Text) {
+      append_json_key(out, "text");
+      append_json_string(out, v.text);
+    } else if (v.kind != InferredKind::Unused) {
+      const int decimals = v.kind == InferredKind::Float32 ? 6 : 0;
+      for (const auto& [name, number] :
+           {std::pair{"min", v.min}, std::pair{"max", v.max}, std::pair{"last", v.last}}) {
+        append_json_key(out, name);
+        append_fixed(out, number, decimals);
+      }
+    }
+    append_json_key(out, "evidence");
+    append_json_string(out, v.evidence);
+    if (!v.hint.empty()) {
+      append_json_key(out, "hint");
+      append_json_string(out, v.hint);
+    }
+    out += '}';
+  }
+  out += "]}";
+}
+
+std::string function_text(Dialect d, std::uint8_t function) {
+  std::string text;
+  append_function(text, d, function);
+  return text;
+}
+
 void append_function(std::string& out, Dialect d, std::uint8_t function) {
   out += fc::function_name(d, function);
   out += " (";

@@ -47,6 +47,29 @@ void append_value_number(std::string& out, const DecodedValue& v);
 // "battery voltage 52.3 V" (or "0x1099 0x00AB" for a word outside the map).
 void append_value_words(std::string& out, const DecodedValue& v, Dialect d);
 
+// A station's newest value (LatestValue): its name, or for one no map names its table
+// ("holding register", "coil"); its reading ("0x00E6 (230)" for an unmapped word, "on" or
+// "off" for a bit); as JSON, an unmapped value with its function and table:
+// {"register":"0x0836","name":null,"function":3,"table":"holding","key":"reg_0x0836",
+// "value":17357}.
+std::string latest_value_name(const LatestValue& v);
+std::string latest_value_text(const LatestValue& v);
+void append_latest_value_json(std::string& out, const LatestValue& v);
+
+// An inferred value (register_inference.h): the address of its first word ("0x0836"), its
+// type ("float32 high word first", "u16 counter", "text, 8 words"), its reading
+// ("235.1 (230.2..235.3)", "\"PVTAP-BAT\"").
+std::string inferred_address(const InferredBlock& b, const InferredValue& v);
+std::string inferred_type(const InferredValue& v);
+std::string inferred_reading(const InferredValue& v);
+// {"table":"holding","function":3,"start":"0x0836","count":80,"replies":172,"values":[
+// {"register":"0x0836","key":"reg_0x0836","type":"float32","words":2,"word_order":"high_first",
+// "constant":false,"counter":false,"confidence":0.99,"min":..,"max":..,"last":..,
+// "evidence":"...","hint":"..."},...]}
+void append_inferred_block_json(std::string& out, const InferredBlock& b);
+// "read holding registers (0x03)"
+std::string function_text(Dialect d, std::uint8_t function);
+
 // The function as text: "read holding registers (0x03)".
 void append_function(std::string& out, Dialect d, std::uint8_t function);
 

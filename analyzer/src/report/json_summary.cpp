@@ -69,9 +69,20 @@ void station_object(std::string& o, const StationSummary& s) {
   o += '[';
   for (std::size_t i = 0; i < s.latest_values.size(); ++i) {
     if (i > 0) o += ',';
-    append_value_json(o, s.latest_values[i].value, s.latest_values[i].dialect);
+    append_latest_value_json(o, s.latest_values[i]);
   }
-  o += "]}";
+  o += ']';
+  // Only stations with blocks no map names carry them.
+  if (!s.inferred.empty()) {
+    append_json_key(o, "inferred");
+    o += '[';
+    for (std::size_t i = 0; i < s.inferred.size(); ++i) {
+      if (i > 0) o += ',';
+      append_inferred_block_json(o, s.inferred[i]);
+    }
+    o += ']';
+  }
+  o += '}';
 }
 
 void stations(std::string& o, const AuditReport& report) {

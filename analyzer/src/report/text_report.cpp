@@ -375,10 +375,34 @@ void latest_values(const AuditReport& r, const BusReport& b, std::string& o) {
       o += report_line("  station %u", s.station);
     }
     for (const LatestValue& v : s.latest_values) {
-      const std::string value = format_value(v.value);
       o += report_line("    %-7s %-8s %-40s %s", std::string(to_string(v.dialect)).c_str(),
                        std::string(format_value_address(v.value, v.dialect).view()).c_str(),
-                       std::string(v.value.name()).c_str(), value.c_str());
+                       latest_value_name(v).c_str(), latest_value_text(v).c_str());
+    }
+  }
+}
+
+// One section per station with blocks no map names: each block's values as inferred, with
+// their evidence and hints.
+void inferred_blocks(const AuditReport& r, const BusFindings& bus, std::string& o) {
+  bool any = false;
+  for (const StationSummary& s : bus.report.stations) any = any || !s.inferred.empty();
+  if (!any) return;
+  o += report_line("unmapped registers, their types inferred from every reply:");
+  for (const StationSummary& s : bus.report.stations) {
+    if (s.inferred.empty()) continue;
+    o += report_line("  station %s", station_key(r, bus, s.station).c_str());
+    for (const InferredBlock& b : s.inferred) {
+      o += report_line(
+          "    %s at %s, %u words (%s), %u replies:", std::string(table_name(b.table)).c_str(),
+          std::string(format_register_address(b.dialect, b.start).view()).c_str(),
+          unsigned{b.count}, function_text(b.dialect, b.function).c_str(), b.replies);
+      for (const InferredValue& v : b.values) {
+        o += report_line("      %-8s %-28s %-26s %3.0f%%  %s", inferred_address(b, v).c_str(),
+                         inferred_type(v).c_str(), inferred_reading(v).c_str(),
+                         v.confidence * 100.0, v.evidence.c_str());
+        if (!v.hint.empty()) o += report_line("      %-8s hint: %s", "", v.hint.c_str());
+      }
     }
   }
 }
@@ -423,6 +447,7 @@ void write_text_report(const AuditReport& report, OutputStream& out) {
     polling(report, bus.report, o);
     bus_timing(report, bus.report, o);
     latest_values(report, bus.report, o);
+    inferred_blocks(report, bus, o);
   }
   out.done();
 }

@@ -22,6 +22,12 @@ struct ValueRow {
   const SessionFrame& frame;
   const DecodedValue& value;
   std::uint8_t station() const { return frame.frame != nullptr ? frame.frame->station : 0; }
+  // The map's key, or for a word no map names its table and address ("input_reg_0x0002"), so
+  // that holding and input registers stay apart.
+  UnmappedKey key_buffer() const {
+    if (value.def != nullptr || frame.frame == nullptr) return {};
+    return unmapped_key(unmapped_table(frame.dialect, frame.frame->function), value.address);
+  }
 };
 
 void append_csv_row(std::string& o, const ValueRow& r, std::string& scratch) {
@@ -35,7 +41,8 @@ void append_csv_row(std::string& o, const ValueRow& r, std::string& scratch) {
   o += ',';
   o += format_value_address(r.value, r.frame.dialect).view();
   o += ',';
-  append_csv_field(o, r.value.key());
+  const UnmappedKey unmapped = r.key_buffer();
+  append_csv_field(o, r.value.def != nullptr ? r.value.key() : unmapped.view());
   o += ',';
   append_csv_field(o, r.value.name());
   o += ',';
@@ -79,7 +86,8 @@ void append_jsonl_row(std::string& o, const ValueRow& r, std::string& scratch) {
   o += "\",\"register\":\"";
   o += format_value_address(r.value, r.frame.dialect).view();
   o += "\",\"key\":";
-  append_json_or_null(o, r.value.key());
+  const UnmappedKey unmapped = r.key_buffer();
+  append_json_or_null(o, r.value.def != nullptr ? r.value.key() : unmapped.view());
   o += ",\"name\":";
   append_json_or_null(o, r.value.name());
   o += ",\"value\":";
@@ -129,16 +137,19 @@ void append_influx_time(std::string& o, double seconds) {
 }
 
 void append_influx_row(std::string& o, const ValueRow& r) {
-  // Line protocol fields are numbers here; a tag needs a value, so a word outside the map
-  // (no key) has no line either.
-  if (reading_kind(r.value) != ReadingKind::Number || r.value.key().empty()) return;
+  // Line protocol fields are numbers here; a word outside the map is tagged with its table
+  // and address.
+  if (reading_kind(r.value) != ReadingKind::Number) return;
+  const UnmappedKey unmapped = r.key_buffer();
+  const std::string_view key = r.value.def != nullptr ? r.value.key() : unmapped.view();
+  if (key.empty()) return;
   o += "pvtap";
   if (!r.context.bus.empty()) append_influx_tag(o, "bus", r.context.bus);
   o += ",station=";
   append_uint(o, r.station());
   o += ",dialect=";
   o += to_string(r.frame.dialect);
-  append_influx_tag(o, "key", r.value.key());
+  append_influx_tag(o, "key", key);
   o += " value=";
   append_value_number(o, r.value);
   if (r.context.has_timestamps) {

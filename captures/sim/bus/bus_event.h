@@ -62,10 +62,24 @@ struct FaultTruth {
   std::string kind;
 };
 
-// DeviceTruth: a plain Modbus device on the bus and what it is.
+// LayoutTruth: the type of one value a plain Modbus device holds, the truth an analyzer's
+// inference of unmapped registers is scored against.
+struct LayoutTruth {
+  std::uint8_t function = 0;  // 0x03 holding, 0x04 input
+  std::uint16_t address = 0;  // first register
+  std::uint8_t words = 1;
+  // u16 s16 u32 s32 float32 text bits unused (0xFFFF or 0x8000 fill)
+  std::string type;
+  bool low_first = false;  // 2-word values: the low word comes first on the wire
+  bool counter = false;    // only grows (and wraps)
+  std::string key;
+};
+
+// DeviceTruth: a plain Modbus device on the bus, what it is and what its registers hold.
 struct DeviceTruth {
   std::uint8_t station = 0;
   DeviceLabel label;
+  std::vector<LayoutTruth> layout;  // empty for devices that publish none
 };
 
 // BusTimeline: everything the simulated bus carried, in time order.

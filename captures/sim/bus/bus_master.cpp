@@ -191,7 +191,7 @@ BusTimeline BusMaster::run() {
   set_aside_unexpired_timeouts();
   timeline_.events = wire_.take_events();
   for (const auto& device : devices_)
-    timeline_.devices.push_back({device->station(), device->label()});
+    timeline_.devices.push_back({device->station(), device->label(), device->layout()});
   return std::move(timeline_);
 }
 

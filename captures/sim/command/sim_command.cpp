@@ -35,18 +35,25 @@ std::string station_problem(const SimConfig& c, unsigned first_station) {
   const auto taken = [&](std::optional<std::uint8_t> s) {
     return s && *s >= first_station && *s < first_station + c.inverters;
   };
-  if (c.inverters == 0 && !c.meter_station && !c.io_module_station && !c.test_server_station)
-    return "--inverters 0 needs a --meter, an --io-module or a --test-server";
-  if (taken(c.meter_station) || taken(c.io_module_station) || taken(c.test_server_station))
-    return "--meter, --io-module and --test-server need stations no inverter has";
+  if (c.inverters == 0 && !c.meter_station && !c.io_module_station && !c.test_server_station &&
+      !c.battery_station)
+    return "--inverters 0 needs a --meter, an --io-module, a --battery or a --test-server";
+  if (taken(c.meter_station) || taken(c.io_module_station) || taken(c.test_server_station) ||
+      taken(c.battery_station))
+    return "--meter, --io-module, --battery and --test-server need stations no inverter has";
   if (c.meter_station && c.meter_station == c.io_module_station)
     return "--meter and --io-module need different stations";
+  if (c.battery_station &&
+      (c.battery_station == c.meter_station || c.battery_station == c.io_module_station ||
+       c.battery_station == c.test_server_station))
+    return "--battery needs a station of its own";
   if (c.test_server_station) {
     // The test server's master also asks the station next to it, which must stay empty.
     const TestSuiteServer probe(*c.test_server_station);
     const std::uint8_t absent = probe.absent_station();
     if (c.test_server_station == c.meter_station || c.test_server_station == c.io_module_station ||
-        absent == c.meter_station || absent == c.io_module_station || taken(absent))
+        absent == c.meter_station || absent == c.io_module_station || absent == c.battery_station ||
+        taken(absent))
       return "--test-server needs its station and the next one to itself";
   }
   return {};
@@ -57,7 +64,7 @@ std::string station_problem(const SimConfig& c, unsigned first_station) {
 std::optional<SimCommand> parse_sim_command(int argc, char** argv, int& exit_code) {
   SimCommand cmd;
   SimConfig& c = cmd.config;
-  std::string dialects = "gsl", faults = "none";
+  std::string dialects = "gsl", faults = "none", meter_order = "high_first";
   unsigned first_station = c.first_station;
   double start_s = static_cast<double>(c.start) / 1e6;
   CLI::App app{"pvtap-sim: a simulated RS485 bus of PV inverters, written as captures"};
@@ -79,6 +86,14 @@ std::optional<SimCommand> parse_sim_command(int argc, char** argv, int& exit_cod
   app.add_option("--meter", c.meter_station,
                  "station of a plain Modbus energy meter (SDM630 float registers, device "
                  "identification) polled after the inverters")
+      ->check(CLI::Range(1, 247));
+  app.add_option("--meter-word-order", meter_order,
+                 "high_first (default) or low_first: which word of each float the meter sends "
+                 "first")
+      ->check(CLI::IsMember({"high_first", "low_first"}));
+  app.add_option("--battery", c.battery_station,
+                 "station of a plain Modbus home battery (signed, 32-bit, counter, flag and text "
+                 "registers, no map) polled after the inverters")
       ->check(CLI::Range(1, 247));
   app.add_option("--io-module", c.io_module_station,
                  "station of a plain Modbus IO module (coils, discrete inputs, registers; "
@@ -112,6 +127,7 @@ std::optional<SimCommand> parse_sim_command(int argc, char** argv, int& exit_cod
     return std::nullopt;
   }
   c.faults = *plan;
+  c.meter_low_first = meter_order == "low_first";
   // The ASCII dialect's station field holds 0x00-0x1F.
   const bool ascii =
       std::find(c.dialects.begin(), c.dialects.end(), Dialect::Ascii) != c.dialects.end();

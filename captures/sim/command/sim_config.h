@@ -24,6 +24,8 @@ struct SimConfig {
   FaultPlan faults;
   // Plain Modbus devices beside the inverters, polled after them in every round.
   std::optional<std::uint8_t> meter_station;
+  bool meter_low_first = false;                 // the meter sends each float's low word first
+  std::optional<std::uint8_t> battery_station;  // a home battery of plain Modbus registers
   std::optional<std::uint8_t> io_module_station;
   std::optional<std::uint8_t> test_server_station;  // a Modbus library's test suite server
 };

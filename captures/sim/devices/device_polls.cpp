@@ -4,6 +4,7 @@
 
 #include "bus/bus_master.h"
 #include "bus/frame_shapes.h"
+#include "devices/battery.h"
 #include "devices/energy_meter.h"
 #include "devices/io_module.h"
 #include "devices/modbus_frames.h"
@@ -63,8 +64,11 @@ void BusMaster::add_devices() {
     return kw;
   };
   if (config_.meter_station)
-    devices_.push_back(std::make_unique<EnergyMeter>(*config_.meter_station, config_.seed,
-                                                     config_.start, plant_kw));
+    devices_.push_back(std::make_unique<EnergyMeter>(
+        *config_.meter_station, config_.seed, config_.start, plant_kw, config_.meter_low_first));
+  if (config_.battery_station)
+    devices_.push_back(
+        std::make_unique<Battery>(*config_.battery_station, config_.seed, config_.start));
   if (config_.io_module_station)
     devices_.push_back(std::make_unique<IoModule>(*config_.io_module_station, config_.seed));
   if (config_.test_server_station)

@@ -24,9 +24,10 @@ std::string hex_address(std::uint16_t address) {
 }  // namespace
 
 EnergyMeter::EnergyMeter(std::uint8_t station, std::uint64_t seed, Micros start,
-                         std::function<double()> plant_kw)
+                         std::function<double()> plant_kw, bool low_first)
     : ModbusDevice(station),
       plant_kw_(std::move(plant_kw)),
+      low_first_(low_first),
       random_(seed ^ 0x3E7E4ull * (station + 1)),
       now_(start) {
   using Q = MeterQuantity;
@@ -40,6 +41,14 @@ EnergyMeter::EnergyMeter(std::uint8_t station, std::uint64_t seed, Micros start,
 
 DeviceLabel EnergyMeter::label() const {
   return {"meter", kVendor, kProduct, kRevision, {}};
+}
+
+// Every float of the table is polled (the holding registers in the first round only).
+std::vector<LayoutTruth> EnergyMeter::layout() const {
+  std::vector<LayoutTruth> out;
+  for (const MeterRegister& r : meter_registers())
+    out.push_back({r.function, r.address, 2, "float32", low_first_, false, r.key});
+  return out;
 }
 
 std::vector<Frame> EnergyMeter::requests(unsigned round) const {
@@ -88,14 +97,16 @@ BusEvent EnergyMeter::register_event(const Frame& request) const {
     const auto address = static_cast<std::uint16_t>(start + offset);
     const MeterRegister* r = meter_register_at(request.function, address);
     const float v = r ? value(r->quantity) : 0.0f;
-    push_float(words, v);
+    push_float(words, v, low_first_);
     if (r) truth.push_back({hex_address(address), r->key, float_bits(v), v, true, {}});
   }
-  // A read of an odd count (a count one short) ends on a float's high word.
+  // A read of an odd count (a count one short) ends on a float's first word.
   if (count % 2 == 1) {
     const auto address = static_cast<std::uint16_t>(start + count - 1);
     const MeterRegister* r = meter_register_at(request.function, address);
-    words.push_back(static_cast<std::uint16_t>(float_bits(r ? value(r->quantity) : 0.0f) >> 16));
+    WordList both;
+    push_float(both, r ? value(r->quantity) : 0.0f, low_first_);
+    words.push_back(both[0]);
   }
   BusEvent e = frame_event(register_reply(request, words));
   e.values = std::move(truth);

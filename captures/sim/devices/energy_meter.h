@@ -14,11 +14,13 @@ namespace pvtap::sim {
 
 class EnergyMeter : public ModbusDevice {
  public:
-  // `plant_kw()`: the AC power the inverters feed now.
+  // `plant_kw()`: the AC power the inverters feed now. `low_first`: the meter sends the low
+  // word of each float first (as some makers do).
   EnergyMeter(std::uint8_t station, std::uint64_t seed, Micros start,
-              std::function<double()> plant_kw);
+              std::function<double()> plant_kw, bool low_first = false);
 
   DeviceLabel label() const override;
+  std::vector<LayoutTruth> layout() const override;
   std::vector<Frame> requests(unsigned round) const override;
   BusEvent reply(const Frame& request, Micros request_end) override;
 
@@ -31,6 +33,7 @@ class EnergyMeter : public ModbusDevice {
   BusEvent register_event(const Frame& request) const;
 
   std::function<double()> plant_kw_;
+  bool low_first_ = false;
   SimRandom random_;
   Micros now_;
   double load_kw_ = 0.9;

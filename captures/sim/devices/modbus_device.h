@@ -18,6 +18,8 @@ class ModbusDevice {
 
   std::uint8_t station() const { return station_; }
   virtual DeviceLabel label() const = 0;
+  // What its polled registers hold, for the ground truth (empty: not published).
+  virtual std::vector<LayoutTruth> layout() const { return {}; }
   // The requests of poll round `round`, in the order the logger sends them (round 0 adds the
   // start-up requests: diagnostics, identification, settings).
   virtual std::vector<Frame> requests(unsigned round) const = 0;

@@ -140,10 +140,12 @@ std::uint32_t float_bits(float value) {
   return std::bit_cast<std::uint32_t>(value);
 }
 
-void push_float(WordList& words, float value) {
+void push_float(WordList& words, float value, bool low_first) {
   const std::uint32_t bits = float_bits(value);
-  words.push_back(static_cast<std::uint16_t>(bits >> 16));
-  words.push_back(static_cast<std::uint16_t>(bits & 0xFFFF));
+  const auto high = static_cast<std::uint16_t>(bits >> 16);
+  const auto low = static_cast<std::uint16_t>(bits & 0xFFFF);
+  words.push_back(low_first ? low : high);
+  words.push_back(low_first ? high : low);
 }
 
 }  // namespace pvtap::sim

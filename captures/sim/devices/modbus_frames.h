@@ -36,8 +36,8 @@ Frame device_identification_reply(const Frame& request, std::string_view vendor,
 // Server ID byte, run indicator 0xFF (running), then `text`.
 Frame server_id_reply(const Frame& request, std::uint8_t server_id, std::string_view text);
 
-// The words of an IEEE-754 single, high word first (the usual meter order).
-void push_float(WordList& words, float value);
+// The words of an IEEE-754 single, high word first (the usual meter order) unless `low_first`.
+void push_float(WordList& words, float value, bool low_first = false);
 std::uint32_t float_bits(float value);
 
 }  // namespace pvtap::sim

@@ -79,6 +79,23 @@ void write_config(std::ostream& o, const SimConfig& c) {
   o << "}";
 }
 
+// "layout":[{"function":4,"register":0,"words":2,"type":"float32","word_order":"high_first",
+// "key":"voltage_l1"},...]: what the device's registers hold, when it says.
+void write_layout(std::ostream& o, const std::vector<LayoutTruth>& layout) {
+  if (layout.empty()) return;
+  o << ",\"layout\":[";
+  for (std::size_t i = 0; i < layout.size(); ++i) {
+    const LayoutTruth& l = layout[i];
+    o << (i ? "," : "") << "{\"function\":" << int{l.function} << ",\"register\":" << l.address
+      << ",\"words\":" << int{l.words} << ",\"type\":\"" << l.type << "\"";
+    if (l.words == 2)
+      o << ",\"word_order\":\"" << (l.low_first ? "low_first" : "high_first") << "\"";
+    if (l.counter) o << ",\"counter\":true";
+    o << ",\"key\":\"" << l.key << "\"}";
+  }
+  o << "]";
+}
+
 // The plain Modbus devices, named only when there are any (the older samples keep their bytes).
 void write_devices(std::ostream& o, const std::vector<DeviceTruth>& devices) {
   if (devices.empty()) return;
@@ -91,6 +108,7 @@ void write_devices(std::ostream& o, const std::vector<DeviceTruth>& devices) {
       o << ",\"vendor\":\"" << d.label.vendor << "\",\"product\":\"" << d.label.product
         << "\",\"revision\":\"" << d.label.revision << "\"";
     if (!d.label.name.empty()) o << ",\"name\":\"" << d.label.name << "\"";
+    write_layout(o, d.layout);
     o << "}";
   }
   o << "]";

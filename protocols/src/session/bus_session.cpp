@@ -436,9 +436,13 @@ BusReport BusSession::report() const {
   r.timing = m.times.report(m.timestamp_quality());
   m.tally.fill_stations(r);
   const auto readings = m.replies.latest();
+  const auto inferred = m.replies.inferred();
   for (StationSummary& s : r.stations) {
     for (const StationLatency& l : r.timing.latency_by_station) {
       if (l.station == s.station) s.latency = l.latency;
+    }
+    if (const auto blocks = inferred.find(s.station); blocks != inferred.end()) {
+      s.inferred = blocks->second;
     }
     const auto it = readings.find(s.station);
     if (it == readings.end()) continue;

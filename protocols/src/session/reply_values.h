@@ -18,7 +18,8 @@ class ReplyValues {
   ReplyValues(const RegisterDecoder& decoder, const BusSessionOptions& options)
       : decoder_(decoder),
         has_timestamps_(options.has_timestamps),
-        decode_values_(options.decode_values) {}
+        decode_values_(options.decode_values),
+        latest_(decoder, options.infer_registers) {}
 
   void remember_request(const SessionFrame& out, const Frame& request) {
     requests_.remember(out.id, request, out.start_time, out.end_time, out.check.ok);
@@ -32,6 +33,8 @@ class ReplyValues {
   void take(SessionFrame& out, const Frame& frame, const FrameMatch& match);
   // The newest values of every station, decoded now.
   std::map<std::uint8_t, StationReadings> latest() const { return latest_.decode(decoder_); }
+  // The inferred blocks of every station.
+  std::map<std::uint8_t, std::vector<InferredBlock>> inferred() const { return latest_.inferred(); }
 
  private:
   const RequestRecord* answered_request(SessionFrame& out, const FrameMatch& match) const;

@@ -382,7 +382,41 @@ def check_replay(args):
     return bad.exit_status("replay")
 
 
-CHECKS = {"values": check_values, "availability": check_availability, "outage": check_outage, "bad_login": check_bad_login,
+def check_raw(args):
+    """MQTT publishes mapped values only; --mqtt-raw adds the words no map names (a meter's
+    floats, an IO module's registers), keyed by table and address, as the summary has them."""
+    bad = Failures()
+    capture = os.path.join(HERE, "..", "..", "..", "captures", "samples", "plant-mixed.pdu.pcap")
+    raw_key = re.compile(r"/(input_)?reg_0x[0-9a-f]{4}$")
+    for extra in ((), ("--mqtt-raw",)):
+        broker = Broker(args.scratch, "raw" + "".join(extra))
+        sub = Subscriber(broker)
+        prefix = "test/raw"
+        run = subprocess.run([args.pvtap, "audit", "--summary-only", "--format", "jsonl", capture,
+                              *mqtt_args(broker, prefix, *extra)],
+                             capture_output=True, text=True, timeout=GUARD_S)
+        bad.check(run.returncode == 0, f"audit exit {run.returncode}: {run.stderr}")
+        summary = json.loads(run.stdout.splitlines()[-1])
+        sub.wait_for(lambda m: any(t.startswith(prefix + "/bus/") for t, _, _ in m))
+        time.sleep(1.0)
+        latest = sub.latest(prefix)
+        raw = {t: p for t, p in latest.items() if raw_key.search(t)}
+        if not extra:
+            bad.check(not raw, f"without --mqtt-raw, raw words were published: {sorted(raw)[:5]}")
+        else:
+            want = {f"{prefix}/bus/{station}/{v['key']}": v["value"]
+                    for station, st in summary["stations"].items() for v in st["values"]
+                    if v["name"] is None and v.get("table") in ("holding", "input")}
+            bad.check(want and set(want) == set(raw),
+                      f"--mqtt-raw published {len(raw)} raw topics, the summary has {len(want)}")
+            wrong = [t for t, p in raw.items() if t in want and float(p) != float(want[t])]
+            bad.check(not wrong, f"raw payloads differ from the summary: {wrong[:5]}")
+        sub.close()
+        broker.stop()
+    return bad.exit_status("raw")
+
+
+CHECKS = {"raw": check_raw, "values": check_values, "availability": check_availability, "outage": check_outage, "bad_login": check_bad_login,
           "tls": check_tls, "unreachable": check_unreachable, "replay": check_replay}
 
 

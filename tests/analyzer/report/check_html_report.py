@@ -152,6 +152,13 @@ def latest_values(text_report):
         if m:
             station = m.group(1)
             continue
+        # A word no map names: its table, its hex and decimal reading, keyed as its chart is.
+        m = re.match(r"^    (\S+)\s+0x([0-9A-F]+)\s+(holding|input) register\s+0x[0-9A-F]+ "
+                     r"\((\d+)\)$", line)
+        if m and station is not None:
+            key = "%sreg_0x%s" % ("input_" if m.group(3) == "input" else "", m.group(2).lower())
+            values[(station, m.group(1), key)] = float(m.group(4))
+            continue
         m = re.match(r"^    (\S+)\s+(\S+)\s+.*?\s(-?\d+(?:\.\d+)?)(?: \S+)?$", line)
         if m and station is not None:
             values[(station, m.group(1), m.group(2))] = float(m.group(3))
@@ -294,7 +301,8 @@ def main():
         failures.append("no value chart drawn")
     for point in page["last"]:
         station = point["lane"].split()[-1]
-        key = (station, point["dialect"], point["address"])
+        mapped = not re.match(r"^(input_)?reg_0x[0-9a-f]{4}$", point["key"] or "")
+        key = (station, point["dialect"], point["address"] if mapped else point["key"])
         if key not in latest:
             failures.append("%s: no latest value in the text report" % point["label"])
         elif abs(latest[key] - point["value"]) > 1e-9:

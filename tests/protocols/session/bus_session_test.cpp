@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -116,6 +117,44 @@ TEST_F(BusSessionTest, TapOnTheBusGivesTransactionsLatencyAndLatestValues) {
 // A gateway or pty faster than the configured baud rate: the reply's bytes arrive 2 ms after
 // the request, although 19 characters take 20 ms at 9600 baud. Estimated back from its last
 // byte, the reply would start before its request ended; on a half-duplex bus it cannot.
+// Every register a reply carries is a latest value, mapped or not: words no map names keep
+// their table (holding and input registers at one address apart), coils are bits.
+TEST_F(BusSessionTest, UnmappedWordsAndBitsAreLatestValuesOfTheirTable) {
+  make();
+  const auto reply = [](std::uint8_t function, WordList words) {
+    Frame f = test::frame_of(Dialect::Modbus, Role::Response, 7, function);
+    f.byte_count = static_cast<std::uint8_t>(2 * words.size());
+    f.words = words;
+    return f;
+  };
+  feed(encode_frame(test::read_request(Dialect::Modbus, 7, 0x03, 0x2000, 2)), 1.0);
+  feed(encode_frame(reply(0x03, {0x00E6, 0x0001})), 1.05);
+  feed(encode_frame(test::read_request(Dialect::Modbus, 7, 0x04, 0x2000, 1)), 2.0);
+  feed(encode_frame(reply(0x04, {0x1234})), 2.05);
+  feed(encode_frame(test::read_request(Dialect::Modbus, 7, 0x01, 19, 10)), 3.0);
+  Frame coils = test::frame_of(Dialect::Modbus, Role::Response, 7, 0x01);
+  coils.byte_count = 2;
+  coils.data = ByteList{0x05, 0x02};  // coils 19 and 21 on, 28 on
+  feed(encode_frame(coils), 3.05);
+  feed(encode_frame(test::read_request(Dialect::Modbus, 7, 0x03, 0x2000, 1)), 4.0);
+  feed(encode_frame(reply(0x03, {0x00E7})), 4.05);  // newer: 0x2000 holding only
+  session_->finish();
+
+  report_ = session_->report();
+  ASSERT_EQ(report_.stations.size(), 1u);
+  std::map<std::string, std::uint32_t> seen;
+  for (const LatestValue& v : report_.stations[0].latest_values) {
+    EXPECT_FALSE(v.mapped());
+    seen[std::string(unmapped_key(v.table, v.value.address).view())] = v.value.raw;
+  }
+  const std::map<std::string, std::uint32_t> expected{
+      {"reg_0x2000", 0x00E7}, {"reg_0x2001", 1},  {"input_reg_0x2000", 0x1234}, {"coil_0x0013", 1},
+      {"coil_0x0014", 0},     {"coil_0x0015", 1}, {"coil_0x0016", 0},           {"coil_0x0017", 0},
+      {"coil_0x0018", 0},     {"coil_0x0019", 0}, {"coil_0x001a", 0},           {"coil_0x001b", 0},
+      {"coil_0x001c", 1}};
+  EXPECT_EQ(seen, expected);
+}
+
 TEST_F(BusSessionTest, FrameNeverStartsBeforeThePreviousFrameEnded) {
   BusSessionOptions options;
   options.reassembler.timestamps = TimestampTrust::Untrusted;

@@ -327,7 +327,9 @@
   function buildValues() {
     const container = element('value-charts');
     if (data.values.length === 0) {
-      container.textContent = 'No numeric register changed its value.';
+      container.textContent = data.plot_chosen
+        ? 'No register that --plot names was read with a numeric value.'
+        : 'No numeric register changed its value.';
       return [];
     }
     return data.values.map(group => ({ group: group.group, series: group.series,

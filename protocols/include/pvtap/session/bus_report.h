@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "pvtap/codec/dialect.h"
@@ -12,6 +13,7 @@
 #include "pvtap/framing/stream_reassembler.h"
 #include "pvtap/matching/match_events.h"
 #include "pvtap/registers/register_decoder.h"
+#include "pvtap/registers/register_inference.h"
 #include "pvtap/statistics/distribution_summary.h"
 #include "pvtap/statistics/timing_statistics.h"
 
@@ -49,10 +51,58 @@ struct RoleCounts {
   std::uint64_t responses = 0;
 };
 
-// LatestValue: the newest reading of one register and the dialect it was read in.
+// RegisterTable: which of a device's four address spaces a value is of. Maps do not tell
+// holding and input registers apart, so a mapped value is of `Registers`; a word no map covers
+// is kept apart by the function that read it (Modbus family), or of `Registers` (the inverter
+// dialects have one address space).
+enum class RegisterTable : std::uint8_t {
+  Registers,       // mapped registers, and the inverter dialects' words
+  Holding,         // 0x03 (and the register writes, 0x17)
+  Input,           // 0x04
+  Coils,           // 0x01 (and 0x05, 0x0F)
+  DiscreteInputs,  // 0x02
+};
+
+// "holding register", "input register", "coil", "discrete input", "register".
+std::string_view table_name(RegisterTable t);
+// The read function of a table (0x03, 0x04, 0x01, 0x02), 0 for Registers.
+std::uint8_t table_function(RegisterTable t);
+bool is_bit_table(RegisterTable t);
+// The table of the words or bits a frame of `function` carries, when no map names them.
+RegisterTable unmapped_table(Dialect d, std::uint8_t function);
+// UnmappedKey: the key of an unmapped value, as a draft map names it, in a fixed buffer:
+// "reg_0x0836" (holding registers, the inverter dialects' words), "input_reg_0x0002",
+// "coil_0x0013", "discrete_0x0002".
+struct UnmappedKey {
+  std::array<char, 24> chars{};
+  std::uint8_t length = 0;
+  std::string_view view() const { return {chars.data(), length}; }
+};
+UnmappedKey unmapped_key(RegisterTable t, std::uint16_t address);
+
+// LatestValue: the newest reading of one register and the dialect it was read in. A value no
+// map names has a null value.def and its raw word (a bit of coils and discrete inputs: 0 or 1);
+// `table` keeps such values of different address spaces apart.
 struct LatestValue {
   Dialect dialect = Dialect::Gsl;
+  RegisterTable table = RegisterTable::Registers;
   DecodedValue value;
+  const CoilDef* coil = nullptr;  // a bit the map names ([[coil]], [[discrete_input]])
+  bool mapped() const { return value.def != nullptr || coil != nullptr; }
+};
+
+// InferredBlock: a polled block with words no map names, and what they probably hold
+// (register_inference.h), from every good reply to it.
+struct InferredBlock {
+  Dialect dialect = Dialect::Modbus;
+  RegisterTable table = RegisterTable::Holding;
+  std::uint8_t function = 0;  // of the replies
+  std::uint16_t start = 0;    // wire address of the block's first word
+  std::uint16_t count = 0;    // words
+  std::uint32_t replies = 0;
+  // The values of its unmapped runs; a value's first word is at start + offset (ASCII: two
+  // addresses a word).
+  std::vector<InferredValue> values;
 };
 
 // DeviceName: what a device said of itself (device identification objects 0-2, or the text of
@@ -89,6 +139,9 @@ struct StationSummary {
   // The newest value of every register the station reported (read replies and write echoes
   // with good checks), sorted by dialect and address.
   std::vector<LatestValue> latest_values;
+  // The blocks with unmapped words, sorted by table and start (BusSessionOptions::
+  // infer_registers).
+  std::vector<InferredBlock> inferred;
 };
 
 // ClaimedStation: an address that damaged frames of no station claimed, and how many did.

@@ -36,6 +36,9 @@ struct BusSessionOptions {
   // Decode register values of every frame for the sink (output); the latest-value table of
   // the report is kept either way.
   bool decode_values = true;
+  // Feed the register inference of every polled block with words no map names (the report's
+  // inferred blocks): one look-up per reply, and the statistics of those blocks' words.
+  bool infer_registers = false;
 };
 
 // SessionFrame: one frame with everything the session learned about it. Valid only during
