@@ -1,6 +1,7 @@
 #include "pvtap/statistics/poll_masters.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <numeric>
 
@@ -9,36 +10,43 @@
 namespace pvtap {
 namespace {
 
-constexpr double kBinWidth = 0.05;  // relative width of an interval bin
 constexpr double kShortest = 1e-4;  // seconds: shorter intervals share the lowest bin
 
+// The bin of an interval from its binary exponent and the top four bits of its mantissa: 16
+// bins an octave, 3-6 % wide, with no logarithm on the hot path.
 std::int32_t bin_of(double interval) {
-  return static_cast<std::int32_t>(
-      std::floor(std::log(std::max(interval, kShortest)) / std::log1p(kBinWidth)));
+  const auto bits = std::bit_cast<std::uint64_t>(std::max(interval, kShortest));
+  return static_cast<std::int32_t>(bits >> 48);  // sign (0), exponent, 4 mantissa bits
 }
 
-// Whether `cycle` is a whole multiple of `base` (base <= cycle).
-bool multiple_of(double cycle, double base) {
+// How far `cycle` is from a whole multiple of `base` (base <= cycle), in units of base; a
+// cycle of k rounds gathers the overruns of k rounds, so the tolerance grows from
+// kSameMasterTolerance for one round to a quarter of a round for several.
+double misfit(double cycle, double base) {
   const double ratio = cycle / base;
   const double k = std::max(1.0, std::round(ratio));
-  return std::abs(ratio / k - 1.0) <= kSameMasterTolerance;
+  const double tolerance = k < 2 ? kSameMasterTolerance : kSeveralRoundsTolerance;
+  return std::abs(ratio - k) / tolerance;  // <= 1: fits
+}
+
+bool multiple_of(double cycle, double base) {
+  return misfit(cycle, base) <= 1.0;
 }
 
 }  // namespace
 
 namespace {
-constexpr double kMedianFirstBin = 1e-3;  // seconds
-constexpr double kMedianRatio = 1.4;
+constexpr std::int64_t kMillisecondExponent = 1013;  // the binary exponent field of 2^-10 s
 }  // namespace
 
 void CoarseMedian::add(double seconds) {
-  double edge = kMedianFirstBin;
-  std::size_t bin = 0;
-  while (bin + 1 < kBins && seconds >= edge) {
-    edge *= kMedianRatio;
-    ++bin;
-  }
-  ++bins_[bin];
+  // Half octaves from 2^-10 s (about 1 ms): the exponent field, and the mantissa's top bit
+  // (1.5 and above), with no logarithm on the hot path.
+  const auto bits = std::bit_cast<std::uint64_t>(std::max(seconds, 0.0));
+  const auto half_octaves = 2 * (static_cast<std::int64_t>(bits >> 52) - kMillisecondExponent) +
+                            static_cast<std::int64_t>((bits >> 51) & 1) - 1;
+  const auto bin = std::clamp<std::int64_t>(half_octaves, 0, kBins - 1);
+  ++bins_[static_cast<std::size_t>(bin)];
   ++n_;
 }
 
@@ -49,15 +57,20 @@ void CoarseMedian::merge(const CoarseMedian& other) {
 
 std::optional<double> CoarseMedian::median() const {
   if (n_ == 0) return std::nullopt;
+  // Bin b >= 1 begins at 2^-10 s times 2^((b+1)/2), or 1.5 times that when b+1 is odd.
+  const auto lower = [](std::size_t b) {
+    if (b == 0) return 0.0;
+    const std::size_t h = b + 1;
+    return std::ldexp(h % 2 ? 1.5 : 1.0, static_cast<int>(h / 2) - 10);
+  };
   std::uint64_t seen = 0;
-  double low = 0, high = kMedianFirstBin;
-  for (std::size_t i = 0; i < kBins; ++i) {
-    seen += bins_[i];
-    if (2 * seen >= n_) return i == 0 ? high / 2 : std::sqrt(low * high);
-    low = high;
-    high *= kMedianRatio;
+  for (std::size_t b = 0; b < kBins; ++b) {
+    seen += bins_[b];
+    if (2 * seen < n_) continue;
+    if (b == 0) return lower(1) / 2;
+    return std::sqrt(lower(b) * lower(b + 1));
   }
-  return low;
+  return lower(kBins - 1);
 }
 
 void ModalInterval::add(double interval) {

@@ -16,7 +16,7 @@ struct PollBlock;
 struct PollPeriod;
 
 // ModalInterval: the most frequent interval of an event stream (its cycle), in constant memory.
-// Intervals are put in bins 5 % wide on a log scale and counted with the Misra-Gries summary of
+// Intervals are put in bins 3-6 % wide (16 an octave) and counted with the Misra-Gries summary of
 // kSlots counters, which keeps any bin holding more than 1/(kSlots+1) of the intervals. A poll
 // cycle survives the longer intervals that a lost reply or a busy bus put into some rounds,
 // which move a mean but not a mode.
@@ -48,8 +48,8 @@ class ModalInterval {
   std::uint64_t n_ = 0;
 };
 
-// CoarseMedian: the median of short durations (a master's turnaround) within a bin of 40 %,
-// in 96 bytes: bins from 1 ms up, each 1.4 times the one before (the last one open-ended).
+// CoarseMedian: the median of short durations (a master's turnaround) within a bin of 33-50 %,
+// in 96 bytes: half-octave bins from about 1 ms (2^-10 s) up (the last one open-ended).
 class CoarseMedian {
  public:
   static constexpr std::size_t kBins = 24;
@@ -76,7 +76,9 @@ struct MasterPlan {
 
 // Two cycles belong to one master when one is a whole multiple of the other (a logger reads
 // fast values every round and slow ones every tenth) within this relative tolerance.
+// For a cycle of several rounds (whose overruns add up), a quarter of a round.
 inline constexpr double kSameMasterTolerance = 0.06;
+inline constexpr double kSeveralRoundsTolerance = 0.25;
 // A block needs this many intervals before its cycle names a master.
 inline constexpr std::uint64_t kMinCycleIntervals = 3;
 
