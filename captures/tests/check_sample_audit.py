@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
 """Runs `pvtap audit --format jsonl` on one sample capture and compares what it finds with
 the simulator's ground truth: frames (bytes, roles, check verdicts), timeouts, noise, register
-values, the poll blocks, the stations, the masters and the summary's totals. Timestamps, latencies and poll
-periods are compared only on the link type 252 carrier, whose records keep the bus timing; the
-other carriers re-time the bytes.
+values, the poll blocks, the stations, the masters and the summary's totals. Timestamps,
+latencies and poll periods are compared only on the link type 252 carrier, whose records keep
+the bus timing; the other carriers re-time the bytes.
 
 usage: check_sample_audit.py PVTAP CAPTURE TRUTH
 """
@@ -215,7 +215,8 @@ def compare_masters(summary, truth, bad):
         found = len(bus.get("masters", []))
         if found != want:
             periods = [m.get("period_ms") for m in bus.get("masters", [])]
-            bad.add(f"masters on bus {bus['bus']}: audit {found} (cycles {periods} ms), truth {want}")
+            bad.add(f"masters on bus {bus['bus']}: audit {found} (cycles {periods} ms), "
+                    f"truth {want}")
 
 
 def compare_stations(summary, truth, bad):
