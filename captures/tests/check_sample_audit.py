@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
 """Runs `pvtap audit --format jsonl` on one sample capture and compares what it finds with
 the simulator's ground truth: frames (bytes, roles, check verdicts), timeouts, noise, register
-values, the poll blocks, the stations and the summary's totals. Timestamps, latencies and poll
-periods are compared only on the link type 252 carrier, whose records keep the bus timing; the
-other carriers re-time the bytes.
+values, the poll blocks, the stations, the masters and the summary's totals. Timestamps,
+latencies and poll periods are compared only on the link type 252 carrier, whose records keep
+the bus timing; the other carriers re-time the bytes.
 
 usage: check_sample_audit.py PVTAP CAPTURE TRUTH
 """
@@ -207,6 +207,18 @@ def compare_polls(summary, truth_frames, timed, bad):
                     f"truth {want[1:]}")
 
 
+def compare_masters(summary, truth, bad):
+    """As many masters on the bus as the truth has (a sample without a "masters" list has one),
+    so a single logger's bus raises no "two masters" finding."""
+    want = len(truth.get("masters", [])) or 1
+    for bus in summary.get("buses", []):
+        found = len(bus.get("masters", []))
+        if found != want:
+            periods = [m.get("period_ms") for m in bus.get("masters", [])]
+            bad.add(f"masters on bus {bus['bus']}: audit {found} (cycles {periods} ms), "
+                    f"truth {want}")
+
+
 def compare_stations(summary, truth, bad):
     """The stations are the simulated inverters and plain Modbus devices: a damaged frame's
     station byte names none. The bad checks are each counted once, under a station or the
@@ -269,6 +281,7 @@ def main():
                 f"truth {len(truth['unanswered_at_end'])}")
     compare_polls(summary, [e for e in truth["events"] if e["type"] == "frame"], timed, bad)
     compare_stations(summary, truth, bad)
+    compare_masters(summary, truth, bad)
     compare_example_lists(pvtap, capture, bad)
     for key in SUMMARY_KEYS:
         if summary.get(key) != truth["summary"][key]:

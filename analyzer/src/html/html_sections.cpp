@@ -263,6 +263,53 @@ void poll_table(std::string& o, const AuditReport& r, const BusReport& b) {
   o += "</table>\n";
 }
 
+// The masters told apart by their poll cycles; two or more are a finding.
+void masters_table(std::string& o, const AuditReport& r, const BusReport& b) {
+  const std::vector<MasterPlan>& list = b.timing.masters;
+  if (list.empty()) return;
+  o += report_line("<h4>Masters: %zu</h4>\n", list.size());
+  if (list.size() > 1) {
+    o += report_line(
+        "<p class=\"finding\">%zu masters on one bus: %zu independent poll cycles; "
+        "%llu requests sent while another request's reply was due.</p>\n",
+        list.size(), list.size(),
+        static_cast<unsigned long long>(b.timing.requests_while_reply_due));
+  }
+  o += "<table><tr>";
+  term_heading(o, "master", "master");
+  o += "<th>cycle ms</th><th>requests</th><th>share %</th><th>turnaround ms</th>"
+       "<th>poll plan</th></tr>\n";
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const MasterPlan& m = list[i];
+    std::string plan;
+    for (const std::size_t k : m.polls) {
+      const PollBlock& block = b.timing.poll_periods[k].block;
+      if (!plan.empty()) plan += "; ";
+      plan += "st ";
+      append_uint(plan, block.station);
+      plan += ' ';
+      append_function(plan, block.dialect, block.function);
+      plan += ' ';
+      plan += block_start_text(r.settings, block);
+      if (block.count) {
+        plan += " x";
+        append_uint(plan, *block.count);
+      }
+    }
+    o += "<tr>";
+    cell(o, std::to_string(i + 1));
+    cell(o, m.period > 0 ? ms_text(m.period) : "-");
+    count_cell(o, m.requests);
+    char share[16];
+    std::snprintf(share, sizeof share, "%.1f", m.share * 100.0);
+    cell(o, share);
+    cell(o, m.turnaround ? ms_text(*m.turnaround) : "-");
+    cell(o, plan);
+    o += "</tr>\n";
+  }
+  o += "</table>\n";
+}
+
 void silence_list(std::string& o, const AuditReport& r, const BusFindings& bus, const Timeline& t) {
   std::string items;
   std::size_t n = 0;
@@ -366,6 +413,7 @@ void append_html_polling(std::string& o, const AuditReport& r, const Timeline& t
     append_html_escaped(o, bus_title(bus));
     o += "</h3>\n";
     poll_table(o, r, bus.report);
+    masters_table(o, r, bus.report);
     silence_list(o, r, bus, t);
   }
   o += "</section>\n";

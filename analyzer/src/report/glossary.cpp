@@ -57,6 +57,9 @@ constexpr std::array kTerms = {
     GlossaryTerm{"p50", "latency_ms.p50", "the median: half of the values are at or below it"},
     GlossaryTerm{"p95", "latency_ms.p95", "95 % of the values are at or below it"},
     GlossaryTerm{"mean", "latency_ms.mean", "the sum of the values divided by their count"},
+    GlossaryTerm{"master", "buses[].masters",
+                 "a device that sends requests (a data logger, a meter reader), told apart from "
+                 "another by its own poll cycle: its plan, period, share and turnaround"},
     GlossaryTerm{"poll period", "buses[].polls[].period_ms",
                  "the time between two requests of the same kind to the same station, in ms"},
     GlossaryTerm{"jitter", "buses[].polls[].jitter_ms",

@@ -189,6 +189,53 @@ void polls(std::string& o, const BusReport& r) {
   o += ']';
 }
 
+// The masters told apart by their poll cycles: each with its cycle, share, turnaround and the
+// poll blocks of its plan (as "polls" writes them, by station, function, start and count).
+void masters(std::string& o, const BusReport& r) {
+  o += '[';
+  for (std::size_t i = 0; i < r.timing.masters.size(); ++i) {
+    const MasterPlan& m = r.timing.masters[i];
+    if (i > 0) o += ',';
+    o += "{\"period_ms\":";
+    if (m.period > 0) {
+      milliseconds(o, m.period);
+    } else {
+      o += "null";
+    }
+    append_json_count(o, "requests", m.requests);
+    append_json_key(o, "share");
+    append_fixed(o, m.share, 3);
+    append_json_key(o, "turnaround_ms");
+    if (m.turnaround) {
+      milliseconds(o, *m.turnaround);
+    } else {
+      o += "null";
+    }
+    append_json_key(o, "plan");
+    o += '[';
+    for (std::size_t k = 0; k < m.polls.size(); ++k) {
+      const PollPeriod& p = r.timing.poll_periods[m.polls[k]];
+      if (k > 0) o += ',';
+      o += "{\"station\":";
+      append_uint(o, p.block.station);
+      append_json_key(o, "dialect");
+      append_json_string(o, to_string(p.block.dialect));
+      append_json_count(o, "function", p.block.function);
+      optional_count(o, "start", p.block.start);
+      optional_count(o, "count", p.block.count);
+      append_json_key(o, "cycle_ms");
+      if (p.cycle) {
+        milliseconds(o, *p.cycle);
+      } else {
+        o += "null";
+      }
+      o += '}';
+    }
+    o += "]}";
+  }
+  o += ']';
+}
+
 void buses(std::string& o, const AuditReport& report) {
   append_json_key(o, "buses");
   o += '[';
@@ -209,6 +256,9 @@ void buses(std::string& o, const AuditReport& report) {
     append_json_key(o, "polls");
     polls(o, bus.report);
     append_json_count(o, "untracked_poll_requests", bus.report.timing.untracked_poll_requests);
+    append_json_key(o, "masters");
+    masters(o, bus.report);
+    append_json_count(o, "requests_while_reply_due", bus.report.timing.requests_while_reply_due);
     o += '}';
   }
   o += ']';

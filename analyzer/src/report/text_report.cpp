@@ -347,6 +347,47 @@ void polling(const AuditReport& r, const BusReport& b, std::string& o) {
   }
 }
 
+// The masters told apart by their poll cycles, each with its plan; two or more are a finding
+// with its evidence.
+void masters(const AuditReport& r, const BusReport& b, std::string& o) {
+  const std::vector<MasterPlan>& list = b.timing.masters;
+  if (list.empty()) return;
+  if (list.size() > 1) {
+    std::string cycles;
+    for (const MasterPlan& m : list) {
+      char buf[48];
+      std::snprintf(buf, sizeof buf, "%s%.1f ms", cycles.empty() ? "" : ", ", ms(m.period));
+      cycles += buf;
+    }
+    o += report_line(
+        "FINDING: %zu masters on one bus: %zu independent poll cycles (%s); %llu "
+        "requests sent while another request's reply was due",
+        list.size(), list.size(), cycles.c_str(), u(b.timing.requests_while_reply_due));
+  }
+  o += report_line("masters: %zu (told apart by their poll cycles)", list.size());
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const MasterPlan& m = list[i];
+    std::string cycle = "no cycle measured", turnaround = "none measured";
+    char buf[64];
+    if (m.period > 0) {
+      std::snprintf(buf, sizeof buf, "cycle %.1f ms", ms(m.period));
+      cycle = buf;
+    }
+    if (m.turnaround) {
+      std::snprintf(buf, sizeof buf, "%.1f ms", ms(*m.turnaround));
+      turnaround = buf;
+    }
+    o += report_line("  master %zu: %s, %llu requests (%.1f %% of the bus's), turnaround %s", i + 1,
+                     cycle.c_str(), u(m.requests), m.share * 100.0, turnaround.c_str());
+    for (const std::size_t k : m.polls) {
+      const PollBlock& block = b.timing.poll_periods[k].block;
+      o += report_line("    %-7s st %-4u %-40s %s", std::string(to_string(block.dialect)).c_str(),
+                       block.station, function_text(block.dialect, block.function).c_str(),
+                       block_text(r.settings, block).c_str());
+    }
+  }
+}
+
 void bus_timing(const AuditReport& r, const BusReport& b, std::string& o) {
   const BusGapReport& g = b.timing.bus;
   o += report_line("bus timing at %u baud (t1.5 = %.3f ms, t3.5 = %.3f ms):", r.settings.baud,
@@ -445,6 +486,7 @@ void write_text_report(const AuditReport& report, OutputStream& out) {
     findings(report, bus, o);
     latency(report, bus.report, o);
     polling(report, bus.report, o);
+    masters(report, bus.report, o);
     bus_timing(report, bus.report, o);
     latest_values(report, bus.report, o);
     inferred_blocks(report, bus, o);

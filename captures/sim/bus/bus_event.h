@@ -44,6 +44,10 @@ struct BusEvent {
                        // damaged an ASCII frame beyond delimiting)
   Micros latency = 0;  // replies: from the end of the request to the first byte
   std::vector<RegisterTruth> values;
+  // A shared bus (--masters 2): the master whose exchange (its request and what answered it)
+  // the event belongs to, and that exchange's number, counted from 1 over the run.
+  std::uint8_t master = 1;
+  std::uint32_t exchange = 0;
 };
 
 // TimeoutTruth: a request that the master gave up on (station and function as its bytes say).
@@ -82,6 +86,45 @@ struct DeviceTruth {
   std::vector<LayoutTruth> layout;  // empty for devices that publish none
 };
 
+// PollTruth: one block of a master's poll plan.
+struct PollTruth {
+  std::uint8_t station = 0;
+  std::uint8_t function = 0;
+  std::uint16_t start = 0;
+  std::uint16_t count = 0;
+};
+
+// MasterTruth: one master on a shared bus, its plan and its cycle.
+struct MasterTruth {
+  std::uint8_t master = 1;
+  double period_s = 0;
+  Micros turnaround_min = 0, turnaround_max = 0;  // from a reply's end to its next request
+  std::vector<PollTruth> plan;
+};
+
+// DestroyedExchange: an exchange a collision destroyed: its request itself, or (the request
+// heard whole) the reply to it.
+struct DestroyedExchange {
+  std::uint8_t master = 1;
+  std::uint8_t station = 0;
+  std::uint8_t function = 0;
+  Micros request_start = 0;
+  bool request_lost = false;
+};
+
+// CollisionTruth: two transmissions that overlapped on the line, and what they destroyed.
+struct CollisionTruth {
+  Micros start = 0;  // the first of the two began
+  Micros end = 0;    // the last of the two ended
+  std::vector<DestroyedExchange> destroyed;
+};
+
+// ConflictTruth: a second device answering to an address that already has one.
+struct ConflictTruth {
+  std::uint8_t station = 0;
+  std::uint64_t second_replies = 0;  // replies of the second device that reached the line whole
+};
+
 // BusTimeline: everything the simulated bus carried, in time order.
 struct BusTimeline {
   std::vector<BusEvent> events;
@@ -92,6 +135,12 @@ struct BusTimeline {
   // Requests still waiting when the capture ends: no capture can show their timeout.
   std::vector<TimeoutTruth> unanswered_at_end;
   std::vector<DeviceTruth> devices;  // the plain Modbus devices, in poll order
+  // A shared bus: its masters (listed only with --masters 2), the collisions, the address
+  // conflict and the requests an echoing adapter gave twice.
+  std::vector<MasterTruth> masters;
+  std::vector<CollisionTruth> collisions;
+  std::vector<ConflictTruth> conflicts;
+  std::uint64_t echoes = 0;
 };
 
 }  // namespace pvtap::sim

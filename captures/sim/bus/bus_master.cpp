@@ -1,6 +1,7 @@
 #include "bus/bus_master.h"
 
 #include <algorithm>
+#include <array>
 
 #include "bus/frame_shapes.h"
 #include "faults/frame_damage.h"
@@ -29,11 +30,17 @@ void mark_damaged(BusEvent& event, const FrameDamage& damage, FaultKind kind) {
 }  // namespace
 
 BusMaster::BusMaster(const SimConfig& config)
-    : config_(config), random_(config.seed), wire_(config.baud) {
+    : config_(config),
+      random_(config.seed),
+      second_random_(config.seed ^ 0x5EC0'0D0Bull),
+      wire_(config.baud, config.echo) {
   for (unsigned i = 0; i < config.inverters; ++i) {
     const auto station = static_cast<std::uint8_t>(config.first_station + i);
     const Dialect d = config.dialects[i % config.dialects.size()];
     inverters_.emplace_back(station, d, config.seed, config.start);
+    // Another plant with the same address: other values in every register.
+    if (config.address_conflict == station)
+      impostor_.emplace(station, d, config.seed ^ 0xC0'4F11C7ull, config.start);
   }
   add_devices();
 }
@@ -98,7 +105,10 @@ Micros BusMaster::poll(Inverter& inv, const PollBlock& block, Micros at) {
     return timeout_after(request_end);
   }
   BusEvent rep = inv.reply(block, fault, request_end, random_);
-  return answer(std::move(rep), fault, {at, request_end, inv.station(), block.function, {}});
+  const Micros free =
+      answer(std::move(rep), fault, {at, request_end, inv.station(), block.function, {}});
+  if (fault || !impostor_ || impostor_->station() != inv.station()) return free;
+  return conflicting_reply(block, request_end, free, random_, kTurnaroundMinMs, kTurnaroundMaxMs);
 }
 
 Micros BusMaster::answer(BusEvent rep, std::optional<FaultKind> fault, TimeoutTruth request) {
@@ -172,23 +182,70 @@ void BusMaster::close_on_a_good_frame(Micros at) {
   }
 }
 
+std::vector<BusMaster::PollStep> BusMaster::round_steps(const PollCursor& cursor) {
+  if (cursor.master != 1) return second_round_steps();
+  std::vector<PollStep> steps;
+  for (Inverter& inv : inverters_)
+    for (const PollBlock& block : poll_blocks(inv.dialect()))
+      if (!block.first_round_only || cursor.round == 0) steps.push_back({&inv, block, nullptr, {}});
+  for (auto& device : devices_)
+    for (const Frame& request : device->requests(cursor.round))
+      steps.push_back({nullptr, {}, device.get(), request});
+  return steps;
+}
+
+void BusMaster::begin_round(PollCursor& c, Micros stop) {
+  while (!c.done && c.next == c.steps.size()) {
+    if (c.next > 0 || c.round > 0) {
+      c.round_start = std::max(c.round_start + ms(c.period_s * 1000.0), c.at);
+      ++c.round;
+    }
+    if (c.round_start >= stop) {
+      c.done = true;
+      return;
+    }
+    SimRandom& random = c.master == 1 ? random_ : second_random_;
+    c.at = c.round_start + random.between(0, 30) * 1000;  // the logger's own jitter
+    c.steps = round_steps(c);
+    c.next = 0;
+  }
+}
+
+Micros BusMaster::poll_step(const PollCursor& c) {
+  const PollStep& step = c.steps[c.next];
+  if (c.master != 1) return second_poll(*step.inverter, step.block, c.at);
+  if (step.device) return poll_device(*step.device, step.request, c.at);
+  return poll(*step.inverter, step.block, c.at);
+}
+
 BusTimeline BusMaster::run() {
   const Micros stop = config_.start + ms(config_.duration_s * 1000.0);
-  Micros round_start = config_.start;
-  for (unsigned round = 0; round_start < stop; ++round) {
-    Micros at = round_start + random_.between(0, 30) * 1000;  // the logger's own jitter
-    for (Inverter& inv : inverters_) {
-      for (const PollBlock& block : poll_blocks(inv.dialect())) {
-        if (block.first_round_only && round > 0) continue;
-        at = poll(inv, block, at);
-      }
-    }
-    for (auto& device : devices_)
-      for (const Frame& request : device->requests(round)) at = poll_device(*device, request, at);
-    round_start = std::max(round_start + ms(config_.period_s * 1000.0), at);
+  std::array<PollCursor, 2> cursors;
+  cursors[0].period_s = config_.period_s;
+  cursors[0].round_start = config_.start;
+  begin_round(cursors[0], stop);
+  cursors[1].master = 2;
+  cursors[1].done = config_.masters < 2 || inverters_.empty();
+  cursors[1].period_s = config_.second_period_s > 0 ? config_.second_period_s
+                                                    : config_.period_s * kSecondPeriodFactor;
+  cursors[1].round_start = config_.start + second_random_.between(100, 700) * 1000;
+  if (!cursors[1].done) begin_round(cursors[1], stop);
+  while (!cursors[0].done || !cursors[1].done) {
+    // The master whose next request comes first sends it, whatever the line carries then.
+    const bool second = !cursors[1].done && (cursors[0].done || cursors[1].at < cursors[0].at);
+    PollCursor& c = cursors[second ? 1 : 0];
+    const std::size_t first = wire_.events().size();
+    wire_.begin_exchange(c.master);
+    Micros free = poll_step(c);
+    if (config_.masters > 1) free = settle_collision(first, free, cursors[second ? 0 : 1]);
+    c.at = free;
+    ++c.next;
+    begin_round(c, stop);
   }
-  close_on_a_good_frame(round_start);  // the next round's first poll
+  if (config_.masters > 1) wire_.sort_by_time();
+  close_on_a_good_frame(cursors[0].round_start);  // the next round's first poll
   set_aside_unexpired_timeouts();
+  describe_shared_bus();
   timeline_.events = wire_.take_events();
   for (const auto& device : devices_)
     timeline_.devices.push_back({device->station(), device->label(), device->layout()});

@@ -1,6 +1,8 @@
 // BusMaster: plays a data logger polling every inverter of the bus in rounds, then the plain
 // Modbus devices beside them (a meter, an IO module), faults included; the result is the
-// timeline of bus bytes.
+// timeline of bus bytes. On a shared bus (--masters 2) a second master polls a plan of its own
+// at a period of its own, and where the two masters' exchanges meet on the line they collide
+// (bus_wire.cpp says how; shared_bus.cpp plays the second master and the consequences).
 #pragma once
 
 #include <memory>
@@ -42,6 +44,39 @@ class BusMaster {
   BusEvent device_reply(ModbusDevice& device, const Frame& request, std::optional<FaultKind> fault,
                         Micros request_end);
   Micros late_reply_from_absent(ModbusDevice& device, const Frame& request, Micros at);
+
+  // One poll of a master's round: an inverter's block or a device's request.
+  struct PollStep {
+    Inverter* inverter = nullptr;
+    PollBlock block;
+    ModbusDevice* device = nullptr;
+    Frame request;
+  };
+  // A master's place in its plan: its round, the polls of that round, and when it sends next.
+  struct PollCursor {
+    std::uint8_t master = 1;
+    double period_s = 0;
+    unsigned round = 0;
+    Micros round_start = 0;
+    Micros at = 0;
+    std::size_t next = 0;
+    std::vector<PollStep> steps;
+    bool done = false;
+  };
+  std::vector<PollStep> round_steps(const PollCursor& cursor);
+  void begin_round(PollCursor& cursor, Micros stop);
+  // The cursor's next poll, sent at cursor.at; returns when that master may send again.
+  Micros poll_step(const PollCursor& cursor);
+  // shared_bus.cpp: the second master's poll (no faults of its own), the second device that
+  // answers to the conflicting address, and what a collision leaves of both exchanges.
+  std::vector<PollStep> second_round_steps();
+  Micros second_poll(Inverter& inv, const PollBlock& block, Micros at);
+  Micros conflicting_reply(const PollBlock& block, Micros request_end, Micros free,
+                           SimRandom& random, std::int64_t turnaround_min_ms,
+                           std::int64_t turnaround_max_ms);
+  Micros settle_collision(std::size_t first, Micros free, PollCursor& other);
+  void forget_truth_of(const DestroyedExchange& exchange, Micros request_end);
+  void describe_shared_bus();
   Micros refused_request(const Frame& request, Micros at);
   void add_devices();
   std::optional<FaultKind> pick_fault(Dialect d);
@@ -58,10 +93,16 @@ class BusMaster {
   // adapter's latency timer, so both can reach a capture in one chunk.
   static constexpr std::int64_t kCloseRequestMs = 8;
 
+  static constexpr double kSecondPeriodFactor = 1.37;
+  static constexpr std::int64_t kSecondTurnaroundMinMs = 5, kSecondTurnaroundMaxMs = 15;
+  static constexpr std::int64_t kTurnaroundMinMs = 20, kTurnaroundMaxMs = 60;
+
   SimConfig config_;
   SimRandom random_;
+  SimRandom second_random_;  // the second master's chance: the first keeps its own draws
   std::vector<Inverter> inverters_;
   std::vector<std::unique_ptr<ModbusDevice>> devices_;  // polled after the inverters
+  std::optional<Inverter> impostor_;  // --address-conflict: the second device at that address
   BusWire wire_;
   BusTimeline timeline_;  // the ground truth; its events stay on wire_ until the run ends
   bool closing_ = false;  // the last poll of a run: no faults

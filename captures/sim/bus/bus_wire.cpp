@@ -1,5 +1,6 @@
 #include "bus/bus_wire.h"
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -13,9 +14,84 @@ Micros BusWire::char_time(std::size_t bytes) const {
 Micros BusWire::put(BusEvent event, Micros at) {
   event.start = at;
   event.end = at + char_time(event.bytes.size());
+  event.master = master_;
+  event.exchange = exchange_;
   const Micros end = event.end;
+  const bool echoed = echo_ && event.kind == BusEvent::Kind::Frame && event.role == Role::Request;
   events_.push_back(std::move(event));
-  return end;
+  if (!echoed) return end;
+  // The adapter hands the request back as it goes out; the tap records it after the request.
+  BusEvent copy = events_.back();
+  copy.fault = "echo";
+  copy.start = end;
+  copy.end = end + (end - at);
+  events_.push_back(std::move(copy));
+  return events_.back().end;
+}
+
+// Collisions. RS485 has no dominant level (CAN has one): where two drivers drive opposite
+// levels at once, the differential voltage at a receiver falls near 0 V, inside the +-200 mV a
+// receiver needs, and the bus's fail-safe bias reads it as idle (mark, a 1 bit). Where both
+// drive the same level, that level is read. So neither talker wins: the line carries the
+// bitwise OR of the two, taken here character by character on the first talker's grid (the
+// second's characters are shifted to it), from the first one's first byte to the last one's
+// last byte. Every receiver reads that garbage: the slave asked ignores it, the master waiting
+// for a reply gets none and waits out its timeout. Both frames are lost, and the rest of both
+// exchanges never happens (a slave answers only a request it heard whole).
+std::optional<Overlap> BusWire::collide(std::size_t first) {
+  if (first >= events_.size()) return std::nullopt;
+  const std::uint8_t fresh_master = events_[first].master;
+  std::optional<std::pair<std::size_t, std::size_t>> hit;  // (older, fresh)
+  Micros hit_at = 0;
+  for (std::size_t f = first; f < events_.size(); ++f) {
+    for (std::size_t o = 0; o < first; ++o) {
+      const BusEvent& a = events_[o];
+      const BusEvent& b = events_[f];
+      if (a.master == fresh_master || a.end <= b.start || b.end <= a.start) continue;
+      if (a.fault == "echo" || b.fault == "echo") continue;  // the tap's copy, not on the line
+      const Micros at = std::max(a.start, b.start);
+      if (!hit || at < hit_at) {
+        hit = {o, f};
+        hit_at = at;
+      }
+    }
+  }
+  if (!hit) return std::nullopt;
+  Overlap out;
+  out.older = events_[hit->first];
+  out.fresh = events_[hit->second];
+  const BusEvent& lead = out.older.start <= out.fresh.start ? out.older : out.fresh;
+  const BusEvent& late = out.older.start <= out.fresh.start ? out.fresh : out.older;
+  const auto shift = static_cast<std::size_t>(std::llround(
+      static_cast<double>(late.start - lead.start) / static_cast<double>(char_time(1))));
+  std::vector<std::uint8_t> garbage(std::max(lead.bytes.size(), shift + late.bytes.size()), 0);
+  for (std::size_t i = 0; i < lead.bytes.size(); ++i) garbage[i] = lead.bytes[i];
+  for (std::size_t i = 0; i < late.bytes.size(); ++i)
+    garbage[shift + i] = static_cast<std::uint8_t>(garbage[shift + i] | late.bytes[i]);
+  out.start = lead.start;
+  out.end = std::max(lead.end, late.end);
+  // Both transmissions go, with whatever followed them in their exchanges.
+  const auto gone = [&](const BusEvent& e) {
+    return (e.exchange == out.older.exchange && e.start >= out.older.start) ||
+           (e.exchange == out.fresh.exchange && e.start >= out.fresh.start);
+  };
+  std::erase_if(events_, gone);
+  BusEvent line;
+  line.kind = BusEvent::Kind::Noise;
+  line.role = Role::Response;
+  line.fault = "collision";
+  line.bytes = std::move(garbage);
+  line.master = out.fresh.master;
+  line.exchange = out.fresh.exchange;
+  line.start = out.start;
+  line.end = out.end;
+  events_.push_back(std::move(line));
+  return out;
+}
+
+void BusWire::sort_by_time() {
+  std::stable_sort(events_.begin(), events_.end(),
+                   [](const BusEvent& a, const BusEvent& b) { return a.start < b.start; });
 }
 
 Micros BusWire::put_noise(Micros at, SimRandom& random) {

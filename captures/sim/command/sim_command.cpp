@@ -47,6 +47,9 @@ std::string station_problem(const SimConfig& c, unsigned first_station) {
       (c.battery_station == c.meter_station || c.battery_station == c.io_module_station ||
        c.battery_station == c.test_server_station))
     return "--battery needs a station of its own";
+  if (c.address_conflict && !taken(c.address_conflict))
+    return "--address-conflict needs the station of an inverter";
+  if (c.masters > 1 && c.inverters == 0) return "--masters 2 needs inverters to poll";
   if (c.test_server_station) {
     // The test server's master also asks the station next to it, which must stay empty.
     const TestSuiteServer probe(*c.test_server_station);
@@ -103,6 +106,18 @@ std::optional<SimCommand> parse_sim_command(int argc, char** argv, int& exit_cod
                  "station of a Modbus library's test suite server: report server ID, read/write "
                  "multiple registers (0x17), writes, a late reply for the station after it")
       ->check(CLI::Range(1, 247));
+  app.add_option("--masters", c.masters,
+                 "masters on the bus: 2 adds a second logger with a poll plan and period of its "
+                 "own; where the two talk at once their frames collide")
+      ->check(CLI::Range(1, 2));
+  app.add_option("--second-period", c.second_period_s,
+                 "--masters 2: seconds between the second master's rounds (--period x 1.37)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--address-conflict", c.address_conflict,
+                 "a second device answering to this inverter's address, with other values, "
+                 "after the first")
+      ->check(CLI::Range(1, 247));
+  app.add_flag("--echo", c.echo, "the tap's adapter echoes every request back to back");
   app.add_option("--pdu", cmd.outputs.pdu, "write a link type 252 capture");
   app.add_option("--gateway", cmd.outputs.gateway, "write an Ethernet/IPv4/TCP gateway capture");
   app.add_option("--chunked", cmd.outputs.chunked, "write a USER0 chunked serial capture");

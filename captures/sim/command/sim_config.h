@@ -28,6 +28,13 @@ struct SimConfig {
   std::optional<std::uint8_t> battery_station;  // a home battery of plain Modbus registers
   std::optional<std::uint8_t> io_module_station;
   std::optional<std::uint8_t> test_server_station;  // a Modbus library's test suite server
+  // A shared bus: a second master (a meter reader, a BMS, a second logger) with a poll plan and
+  // period of its own (0: period_s x 1.37); a second device answering to one inverter's
+  // address; the tap's adapter echoing every request.
+  unsigned masters = 1;
+  double second_period_s = 0;
+  std::optional<std::uint8_t> address_conflict;
+  bool echo = false;
 };
 
 }  // namespace pvtap::sim

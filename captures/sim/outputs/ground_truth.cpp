@@ -40,7 +40,56 @@ void write_event(std::ostream& o, const BusEvent& e) {
   if (e.role == Role::Response)
     o << ",\"latency_ms\":" << number(static_cast<double>(e.latency) / 1e3);
   if (e.role == Role::Response && e.check_ok) write_values(o, e.values);
+  if (e.master != 1) o << ",\"master\":" << int{e.master};
   o << "}";
+}
+
+// A shared bus: its masters, collisions, conflicts and echoes, written only when it has any
+// (the older samples keep their bytes).
+void write_shared_bus(std::ostream& o, const BusTimeline& t) {
+  if (!t.masters.empty()) {
+    o << ",\n\"masters\":[";
+    for (std::size_t i = 0; i < t.masters.size(); ++i) {
+      const MasterTruth& m = t.masters[i];
+      o << (i ? ",\n" : "\n") << "{\"master\":" << int{m.master}
+        << ",\"period_s\":" << number(m.period_s) << ",\"turnaround_ms\":["
+        << number(static_cast<double>(m.turnaround_min) / 1e3) << ","
+        << number(static_cast<double>(m.turnaround_max) / 1e3) << "],\"plan\":[";
+      for (std::size_t k = 0; k < m.plan.size(); ++k) {
+        const PollTruth& p = m.plan[k];
+        o << (k ? "," : "") << "{\"station\":" << int{p.station}
+          << ",\"function\":" << int{p.function} << ",\"start\":" << p.start
+          << ",\"count\":" << p.count << "}";
+      }
+      o << "]}";
+    }
+    o << "]";
+  }
+  if (!t.masters.empty() || !t.collisions.empty()) {
+    o << ",\n\"collisions\":[";
+    for (std::size_t i = 0; i < t.collisions.size(); ++i) {
+      const CollisionTruth& c = t.collisions[i];
+      o << (i ? ",\n" : "\n") << "{\"ts\":" << seconds(c.start) << ",\"end\":" << seconds(c.end)
+        << ",\"destroyed\":[";
+      for (std::size_t k = 0; k < c.destroyed.size(); ++k) {
+        const DestroyedExchange& x = c.destroyed[k];
+        o << (k ? "," : "") << "{\"master\":" << int{x.master}
+          << ",\"request_ts\":" << seconds(x.request_start) << ",\"station\":" << int{x.station}
+          << ",\"function\":" << int{x.function} << ",\"lost\":\""
+          << (x.request_lost ? "request" : "reply") << "\"}";
+      }
+      o << "]}";
+    }
+    o << "]";
+  }
+  if (!t.conflicts.empty()) {
+    o << ",\n\"address_conflicts\":[";
+    for (std::size_t i = 0; i < t.conflicts.size(); ++i)
+      o << (i ? "," : "") << "{\"station\":" << int{t.conflicts[i].station}
+        << ",\"second_replies\":" << t.conflicts[i].second_replies << "}";
+    o << "]";
+  }
+  if (t.echoes > 0) o << ",\n\"echoes\":" << t.echoes;
 }
 
 struct Totals {
@@ -56,6 +105,7 @@ Totals count(const BusTimeline& t) {
       n.noise += e.bytes.size();
       continue;
     }
+    if (e.fault == "echo") continue;  // the tap's copy of a request: one request on the bus
     ++n.frames;
     ++(e.role == Role::Request ? n.requests : n.responses);
     if (!e.check_ok) ++n.bad;
@@ -145,6 +195,7 @@ std::string write_ground_truth(const BusTimeline& timeline, const SimConfig& con
   write_config(o, config);
   write_devices(o, timeline.devices);
   write_lan(o, lan);
+  write_shared_bus(o, timeline);
   o << ",\n\"events\":[\n";
   for (std::size_t i = 0; i < timeline.events.size(); ++i) {
     write_event(o, timeline.events[i]);

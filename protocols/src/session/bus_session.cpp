@@ -434,6 +434,9 @@ BusReport BusSession::report() const {
   r.first_time = m.times.first();
   r.last_time = m.times.last();
   r.timing = m.times.report(m.timestamp_quality());
+  // Without timestamps (or a cycle) no master is told apart: the requests are one master's.
+  if (r.timing.masters.empty() && r.requests > 0)
+    r.timing.masters.push_back(MasterPlan{0, {}, r.requests, 1.0, std::nullopt});
   m.tally.fill_stations(r);
   const auto readings = m.replies.latest();
   const auto inferred = m.replies.inferred();

@@ -12,6 +12,7 @@
 #include "pvtap/statistics/distribution_summary.h"
 #include "pvtap/statistics/frame_timing.h"
 #include "pvtap/statistics/interval_series.h"
+#include "pvtap/statistics/poll_masters.h"
 
 namespace pvtap {
 
@@ -40,9 +41,16 @@ struct PollBlock {
 // deviation of the intervals; period.max_deviation is the largest |interval - period|. A block
 // requested once has no interval: intervals is 0 and every figure 0 (not measured, the JSON
 // summary writes null). With one interval the jitter and the maximum deviation are 0.
+// cycle is the block's most frequent interval (ModalInterval), which names its master;
+// turnaround the times from a reply's end to this block's request, measured where the frame
+// before the request was a reply and the timestamps are fine.
 struct PollPeriod {
   PollBlock block;
   IntervalSummary period;
+  std::optional<double> cycle;
+  std::optional<double> mode;  // its most frequent interval, regular or not
+  std::uint64_t requests = 0;
+  CoarseMedian turnaround;
 };
 
 // TimingReport: everything TimingStatistics measured, ready to print as text or JSON.
@@ -58,6 +66,12 @@ struct TimingReport {
   // in no poll period.
   std::uint64_t untracked_poll_requests = 0;
   BusGapReport bus;
+  // The masters told apart by their cycles (recognise_masters), busiest first.
+  std::vector<MasterPlan> masters;
+  // Good requests sent less than half the usual latency after another good request that no
+  // reply followed: its reply was still due, which one master never does (another master
+  // spoke). Broadcasts and a request repeated at once (an echo) are not counted.
+  std::uint64_t requests_while_reply_due = 0;
 };
 
 // TimingStatistics: accumulates a capture's timing in memory bounded by the number of
@@ -86,11 +100,26 @@ class TimingStatistics {
   TimingReport report(const TimestampQuality& quality) const;
 
  private:
-  void add_poll(const FrameTiming& request);
+  struct PollTrack {
+    IntervalSeries series;
+    ModalInterval cycle;
+    double last = 0;  // the start of its latest request
+    std::uint64_t requests = 0;
+    CoarseMedian turnaround;
+  };
+  // `after_reply`: the frame before it was a reply that ended this long before it began.
+  void add_poll(const FrameTiming& request, std::optional<double> after_reply);
+  void note_order(const FrameTiming& frame);
 
   DistributionAccumulator latency_;
   std::map<std::uint8_t, DistributionAccumulator> latency_by_station_;
-  std::map<PollBlock, IntervalSeries> polls_;
+  std::map<PollBlock, PollTrack> polls_;
+  // The frame before (for turnarounds and requests sent while a reply was due), and a running
+  // mean of the latencies so far.
+  std::optional<FrameTiming> previous_;
+  double usual_latency_ = 0;
+  std::uint64_t latencies_ = 0;
+  std::uint64_t requests_while_reply_due_ = 0;
   std::uint64_t untracked_poll_requests_ = 0;
   BusGapStatistics gaps_;
 };
