@@ -148,8 +148,8 @@ UnmappedKey unmapped_key(RegisterTable t, std::uint16_t address) {
                                                                        : "reg_0x";
   UnmappedKey key;
   for (const char c : prefix) key.chars[key.length++] = c;
-  for (int shift = 12; shift >= 0; shift -= 4)
-    key.chars[key.length++] = kHex[(address >> shift) & 0xFu];
+  for (unsigned shift = 16; shift > 0; shift -= 4)
+    key.chars[key.length++] = kHex[(static_cast<unsigned>(address) >> (shift - 4)) & 0xFu];
   return key;
 }
 
