@@ -123,6 +123,7 @@ bool TransactionMatcher::try_answer(const ObservedFrame& in, FrameMatch& out) {
   if (own.state == SlotState::Pending && answers(own.request.frame, in.frame)) {
     complete(own, in, out);
     slots_.settle(own, SlotState::Answered);
+    own.answer = in.check_ok ? in.content : 0;
     return true;
   }
   Slot& broadcast = slots_[RequestSlots::kBroadcast];
@@ -141,6 +142,7 @@ bool TransactionMatcher::try_answer(const ObservedFrame& in, FrameMatch& out) {
   }
   complete(*only, in, out);
   slots_.settle(*only, SlotState::Answered);
+  only->answer = 0;
   return true;
 }
 
@@ -156,8 +158,17 @@ bool TransactionMatcher::try_duplicate(const ObservedFrame& in, FrameMatch& out)
     original = &broadcast;
   }
   if (original == nullptr) return false;
-  out.duplicate = DuplicateReply{in.id,   original->request.id, in.frame.dialect,
-                                 station, in.frame.function,    in.check_ok};
+  // A broadcast's window keeps no reply's content: each station answers it once.
+  const bool other_content = original == &own && in.check_ok && in.content != 0 &&
+                             own.answer != 0 && in.content != own.answer;
+  out.duplicate = DuplicateReply{in.id,
+                                 original->request.id,
+                                 in.frame.dialect,
+                                 station,
+                                 in.frame.function,
+                                 in.check_ok,
+                                 other_content,
+                                 in.start_time - original->request.end_time};
   return true;
 }
 

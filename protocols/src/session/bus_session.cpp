@@ -76,7 +76,7 @@ struct BusSession::Impl {
   // `wire` is what the codec parses: the frame's bytes, with a check appended when the
   // carrier took it away.
   void on_frame(Direction direction, const FrameEvent& e, std::span<const std::uint8_t> wire);
-  void handle_parsed(SessionFrame& out, const FrameEvent& e);
+  void handle_parsed(SessionFrame& out, const FrameEvent& e, std::uint32_t content);
   // Timeouts come before the frame that made them due.
   void report(std::span<const Timeout> timeouts) {
     for (const Timeout& t : timeouts) report(t);
@@ -115,12 +115,15 @@ struct BusSession::Impl {
 namespace {
 
 // What the matcher found about a frame, in the frame's event.
-void take_findings(SessionFrame& out, Frame& frame, const FrameMatch& match) {
+void take_findings(SessionFrame& out, Frame& frame, const FrameMatch& match, bool has_timestamps) {
   frame.role = match.role;
   out.role = match.role;
   out.role_corrected = match.role_correction.has_value();
-  out.duplicate = match.duplicate.has_value();
+  // A second reply that differs is another device's answer, not a repetition.
+  out.address_conflict = match.duplicate && match.duplicate->other_content;
+  out.duplicate = match.duplicate && !out.address_conflict;
   if (match.duplicate) out.duplicate_of = match.duplicate->original_request_id;
+  if (out.address_conflict && has_timestamps) out.conflict_after = match.duplicate->since_request;
   out.count_mismatch = match.count_mismatch;
   if (match.unsolicited) {
     out.unsolicited = true;
@@ -129,6 +132,17 @@ void take_findings(SessionFrame& out, Frame& frame, const FrameMatch& match) {
       out.late_for = match.unsolicited->late_for_request_id;
     }
   }
+}
+
+// A frame's content in brief (ObservedFrame::content): its check and length. A carried frame's
+// check is the one computed for the codec, the last two bytes of `wire`.
+std::uint32_t content_of(const FrameEvent& e, std::span<const std::uint8_t> wire) {
+  std::uint32_t check = e.check.found;
+  if (e.check.carried && wire.size() >= 2) {
+    check = static_cast<std::uint32_t>(wire[wire.size() - 2]) |
+            (static_cast<std::uint32_t>(wire.back()) << 8);
+  }
+  return (check << 16) | static_cast<std::uint32_t>(wire.size() & 0xFFFFu);
 }
 
 // The station a latency belongs to: the transaction's, since a damaged reply's may be wrong.
@@ -190,7 +204,7 @@ void BusSession::Impl::on_frame(Direction direction, const FrameEvent& e,
   if (own == nullptr && of_dialect == nullptr) of_dialect = &decoder.map(label.dialect);
   out.map = own != nullptr ? own : of_dialect;
   out.frame = &frame;
-  handle_parsed(out, e);
+  handle_parsed(out, e, content_of(e, wire));
   if (out.role == Role::Request && e.check.ok) {
     request_dialects[frame.station] =
         static_cast<std::uint8_t>(static_cast<unsigned>(out.dialect) + 1);
@@ -199,15 +213,17 @@ void BusSession::Impl::on_frame(Direction direction, const FrameEvent& e,
   sink.on_frame(out);
 }
 
-void BusSession::Impl::handle_parsed(SessionFrame& out, const FrameEvent& e) {
+void BusSession::Impl::handle_parsed(SessionFrame& out, const FrameEvent& e,
+                                     std::uint32_t content) {
   const bool role_known = out.direction != Direction::Unknown;
   FrameSummary summary = summarize(frame);
-  const FrameMatch match = matcher.on_frame(ObservedFrame{
-      out.id, summary, out.start_time, out.end_time, e.check.ok, role_known, answers_pending});
+  const FrameMatch match =
+      matcher.on_frame(ObservedFrame{out.id, summary, out.start_time, out.end_time, e.check.ok,
+                                     role_known, answers_pending, content});
   // Before the request is remembered: a request it gave up is looked up by its slot.
   report(match.timeouts);
   if (match.transaction) tally.add_transaction(*match.transaction);
-  take_findings(out, frame, match);
+  take_findings(out, frame, match, options.has_timestamps);
   out.station = frame_station(e.check.ok, frame.station, match);
   if (match.role == Role::Request) {
     // Only the Modbus family limits quantities: the call is skipped for the rest.

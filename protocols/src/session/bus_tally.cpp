@@ -53,6 +53,7 @@ void BusTally::add_frame(const SessionFrame& f) {
     }
   }
   if (f.duplicate) ++counts_.duplicates;
+  if (f.address_conflict) ++counts_.address_conflicts;
   if (f.count_mismatch) ++counts_.count_mismatches;
   if (f.role_corrected) ++counts_.role_corrections;
   if (f.dialect_changed_from) ++counts_.dialect_changes;

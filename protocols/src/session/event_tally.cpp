@@ -9,6 +9,7 @@ EventCounts& EventCounts::operator+=(const EventCounts& o) {
   damaged_frames += o.damaged_frames;
   exceptions += o.exceptions;
   unsolicited += o.unsolicited;
+  address_conflicts += o.address_conflicts;
   timeouts += o.timeouts;
   gateway_timeouts += o.gateway_timeouts;
   unanswered_damaged_requests += o.unanswered_damaged_requests;
@@ -31,6 +32,7 @@ void EventTally::add(const SessionFrame& f) {
     ++counts_.exceptions;
   }
   if (f.unsolicited) ++counts_.unsolicited;
+  if (f.address_conflict) ++counts_.address_conflicts;
   if (f.latency) {
     latency_.add(*f.latency);
     last_latency_ = TimedLatency{*f.latency, f.end_time};

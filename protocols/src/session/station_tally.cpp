@@ -38,6 +38,13 @@ void StationTally::count_frame(StationSummary& s, const SessionFrame& f) {
   if (!f.check.ok) ++s.bad_checks;
   if (f.unsolicited) ++s.unsolicited;
   if (f.duplicate) ++s.duplicates;
+  if (f.address_conflict) {
+    ++s.address_conflicts;
+    if (f.conflict_after) {
+      s.address_conflict_latency += (*f.conflict_after - s.address_conflict_latency) /
+                                    static_cast<double>(s.address_conflicts);
+    }
+  }
   if (f.count_mismatch) ++s.count_mismatches;
   if (f.dialect_changed_from) ++s.dialect_changes;
   // Only two Modbus functions name a device: the call is skipped for the rest (and for

@@ -353,6 +353,41 @@ TEST_F(TransactionMatcherTest, RepeatedReplyIsADuplicateOfTheOriginalRequest) {
   EXPECT_EQ(sink.transactions[1].request_id, 4u);
 }
 
+// A reply of other contents after the first is a second device at the address; the same
+// contents again are a repetition. Without contents known (0), nothing can be told.
+TEST_F(TransactionMatcherTest, SecondReplyWithOtherContentsIsAnAddressConflict) {
+  const auto reply = [](std::uint64_t id, double start, std::uint32_t content,
+                        bool check_ok = true) {
+    ObservedFrame o = observed(id, rtu_reply(Dialect::Modbus, 2, fc::kGslReadHolding, 4), start,
+                               start + 0.009, check_ok);
+    o.content = content;
+    return o;
+  };
+  const auto request = [](std::uint64_t id, double start) {
+    return observed(id, test::read_request(Dialect::Modbus, 2, fc::kGslReadHolding, 0, 2), start,
+                    start + 0.008);
+  };
+  matcher.on_frame(request(1, 0.0));
+  matcher.on_frame(reply(2, 0.02, 0xABCD0009));
+  matcher.on_frame(reply(3, 0.04, 0x12340009));
+  matcher.on_frame(reply(4, 0.06, 0xABCD0009));
+  ASSERT_EQ(sink.duplicates.size(), 2u);
+  EXPECT_TRUE(sink.duplicates[0].other_content);
+  EXPECT_NEAR(sink.duplicates[0].since_request, 0.032, 1e-9);
+  EXPECT_FALSE(sink.duplicates[1].other_content);
+
+  // A damaged second reply, or a first reply whose contents are unknown, is a duplicate.
+  matcher.on_frame(request(5, 0.1));
+  matcher.on_frame(reply(6, 0.12, 0xABCD0009));
+  matcher.on_frame(reply(7, 0.14, 0x55550009, false));
+  matcher.on_frame(request(8, 0.2));
+  matcher.on_frame(reply(9, 0.22, 0));
+  matcher.on_frame(reply(10, 0.24, 0x12340009));
+  ASSERT_EQ(sink.duplicates.size(), 4u);
+  EXPECT_FALSE(sink.duplicates[2].other_content);
+  EXPECT_FALSE(sink.duplicates[3].other_content);
+}
+
 TEST_F(TransactionMatcherTest, HybridByteCountMismatch) {
   // The seed's own example: a 0x17 read of 0x49 registers answered with n = 0x5E.
   matcher.on_frame(

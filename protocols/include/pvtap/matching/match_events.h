@@ -69,6 +69,8 @@ struct UnsolicitedReply {
 };
 
 // DuplicateReply: a station answered the same request again with no new request in between.
+// When both replies had good checks and their bytes differ, two devices answer to one
+// address (an address conflict): a device repeating itself sends the same bytes again.
 struct DuplicateReply {
   std::uint64_t response_id = 0;
   std::uint64_t original_request_id = 0;
@@ -76,6 +78,8 @@ struct DuplicateReply {
   std::uint8_t station = 0;
   std::uint8_t function = 0;
   bool check_ok = true;
+  bool other_content = false;
+  double since_request = 0;  // from the request's end to this reply's start, seconds
 };
 
 // CountUnit: what ByteCountMismatch counts.

@@ -29,6 +29,8 @@ class RequestSlots {
   struct Slot {
     State state = State::Idle;
     RequestRecord request;
+    // Answered: the content of the reply with a good check that answered it (0: none had).
+    std::uint32_t answer = 0;
   };
   static constexpr std::size_t kBroadcast = 256;  // after the 256 stations
   static constexpr std::size_t kSlots = 257;

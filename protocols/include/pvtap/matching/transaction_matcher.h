@@ -32,6 +32,9 @@ struct ObservedFrame {
   // The carrier paired this reply with its station's pending request (Modbus/TCP, by
   // transaction id): however late it comes, time does not give that request up first.
   bool answers_pending = false;
+  // What the frame's bytes were, in brief: its check and length (two frames alike in both
+  // carry the same bytes, bar a chance in 65,536). 0: not known.
+  std::uint32_t content = 0;
 };
 
 // TransactionMatcher: pairs requests with replies and returns, as values, the timeouts,

@@ -131,6 +131,10 @@ struct StationSummary {
   std::uint64_t exceptions = 0;       // GSL exceptions and Hybrid error replies
   std::uint64_t unsolicited = 0;
   std::uint64_t duplicates = 0;
+  std::uint64_t address_conflicts = 0;  // second replies that differ (SessionFrame)
+  // Their mean time from the request's end to their start (with timestamps), seconds: the
+  // second device's pattern beside the station's own `latency`.
+  double address_conflict_latency = 0;
   std::uint64_t count_mismatches = 0;
   std::uint64_t dialect_changes = 0;
   DeviceName device;  // the newest identification the station gave
@@ -188,6 +192,7 @@ struct BusCounters {
   std::uint64_t unsolicited = 0;
   std::uint64_t late_replies = 0;  // unsolicited replies that fit a timed-out request
   std::uint64_t duplicates = 0;
+  std::uint64_t address_conflicts = 0;  // second replies that differ (SessionFrame)
   std::uint64_t count_mismatches = 0;
   std::uint64_t role_corrections = 0;
   std::uint64_t dialect_changes = 0;       // a station's frames said it changed dialect

@@ -69,7 +69,12 @@ struct SessionFrame {
   std::optional<double> late_by;  // unsolicited, but fits a timed-out request this much later
   std::optional<std::uint64_t> late_for;  // ... that request
   bool duplicate = false;
-  std::optional<std::uint64_t> duplicate_of;  // the request a duplicate answered before
+  // A second reply to one request whose bytes differ from the first's: two devices answer to
+  // this address. Not also a duplicate.
+  bool address_conflict = false;
+  std::optional<double> conflict_after;  // from its request's end (with timestamps), seconds
+  // The request a duplicate or a conflicting reply answered before.
+  std::optional<std::uint64_t> duplicate_of;
   bool role_corrected = false;
   std::optional<ByteCountMismatch> count_mismatch;
   // A request with a good check asking for a quantity its function does not allow.

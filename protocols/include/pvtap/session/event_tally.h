@@ -19,6 +19,7 @@ struct EventCounts {
   // Exception and error replies whose check holds, but a gateway's 0x0B (gateway_timeouts).
   std::uint64_t exceptions = 0;
   std::uint64_t unsolicited = 0;
+  std::uint64_t address_conflicts = 0;  // second replies with other contents (SessionFrame)
   // Good requests the device did not answer: no reply at all, or a gateway's 0x0B.
   std::uint64_t timeouts = 0;
   // Exceptions 0x0B: a gateway's timeout on the serial bus behind it (the request reached
