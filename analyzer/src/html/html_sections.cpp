@@ -178,6 +178,23 @@ void timeouts_list(std::string& o, const AuditReport& r, const BusReport& b, boo
   o += "</table>\n";
 }
 
+// Only where there are some: each station two devices answer for is a finding.
+void address_conflicts(std::string& o, const BusReport& b, bool first) {
+  if (b.address_conflicts == 0) return;
+  o += report_line("<h4%s>Address conflicts: %llu</h4>\n",
+                   id_attr(first, "findings-conflicts").c_str(),
+                   static_cast<unsigned long long>(b.address_conflicts));
+  for (const StationSummary& s : b.stations) {
+    if (s.address_conflicts == 0) continue;
+    o += report_line(
+        "<p class=\"finding\">Two devices answer to station %u: %llu of its requests got a "
+        "second reply with other contents; ",
+        s.station, static_cast<unsigned long long>(s.address_conflicts));
+    append_html_escaped(o, answering_patterns(s));
+    o += ".</p>\n";
+  }
+}
+
 void exception_list(std::string& o, const BusReport& b, bool first) {
   o += report_line("<h4%s>Exceptions and error replies: %llu</h4>\n",
                    id_attr(first, "findings-exceptions").c_str(),
@@ -219,6 +236,7 @@ void bus_findings(std::string& o, const AuditReport& r, const BusFindings& bus, 
       id_attr(first, "findings-replies").c_str(), u(b.unsolicited), u(b.late_replies),
       u(b.duplicates), u(b.count_mismatches));
   examples_table(o, r, b.unsolicited_examples, "check");
+  address_conflicts(o, b, first);
   exception_list(o, b, first);
   o += report_line("<h4%s>Noise: %llu bytes in %llu runs</h4>\n",
                    id_attr(first, "findings-noise").c_str(), u(b.bytes.noise_bytes),

@@ -6,13 +6,14 @@
 
 namespace pvtap::analyzer {
 
-const HealthField kHealthFields[17] = {
+const HealthField kHealthFields[18] = {
     {"frames", "frames", "", true},
     {"damaged_frames", "bad checks", "", true},
     {"timeouts", "timeouts", "", true},
     {"unanswered_damaged_requests", "damaged requests left unanswered", "", true},
     {"exceptions", "exceptions", "", true},
     {"unsolicited", "unsolicited replies", "", true},
+    {"address_conflicts", "address conflicts", "", true},
     {"noise_bytes", "noise bytes", "", true},
     {"gaps", "gaps", "", true},
     {"latency_p50_ms", "latency p50", "ms", false},
@@ -81,6 +82,7 @@ void append_health_json(std::string& out, const BusHealth& h, const HealthContex
   append_json_count(out, "unanswered_damaged_requests", e.unanswered_damaged_requests);
   append_json_count(out, "exceptions", e.exceptions);
   append_json_count(out, "unsolicited", e.unsolicited);
+  append_json_count(out, "address_conflicts", e.address_conflicts);
   append_json_count(out, "noise_bytes", e.noise_bytes);
   append_json_count(out, "gaps", e.gaps.gaps);
   append_latency(out, "latency", h.latency_interval);

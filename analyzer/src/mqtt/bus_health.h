@@ -49,7 +49,7 @@ struct HealthField {
   std::string_view unit;  // empty for counts
   bool counter;           // only grows (total_increasing)
 };
-extern const HealthField kHealthFields[17];
+extern const HealthField kHealthFields[18];
 
 // {"ts":...,"interval_s":10,"frames":...,"latency_p50_ms":...,...,"line_errors":{...},
 // "bus":"..."}; latency fields are null while no reply was timed, line_errors where the

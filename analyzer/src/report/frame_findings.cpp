@@ -134,6 +134,9 @@ void collect_issues(const SessionFrame& f, std::vector<std::string>& out) {
     }
   }
   if (f.duplicate) out.emplace_back("duplicate reply");
+  if (f.address_conflict) {
+    out.emplace_back("address conflict: a second reply to one request, with other contents");
+  }
   if (f.count_mismatch) add_count_mismatch(*f.count_mismatch, out);
   if (f.quantity_problem) add_quantity_problem(*f.quantity_problem, out);
   if (f.write_count_problem) {
@@ -453,6 +456,16 @@ void append_function(std::string& out, Dialect d, std::uint8_t function) {
   out += " (";
   append_hex_byte(out, function);
   out += ')';
+}
+
+std::string answering_patterns(const StationSummary& s) {
+  if (s.latency.count == 0) return "the capture has no times to tell their replies apart by";
+  std::string text = "its first replies came ";
+  append_fixed(text, s.latency.p50 * 1e3, 1);
+  text += " ms after their request (median), the other ones ";
+  append_fixed(text, s.address_conflict_latency * 1e3, 1);
+  text += " ms (mean)";
+  return text;
 }
 
 std::string timeouts_explained(const BusReport& b) {

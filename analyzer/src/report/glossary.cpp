@@ -37,7 +37,11 @@ constexpr std::array kTerms = {
     GlossaryTerm{"unsolicited reply", "unsolicited", "a reply that no waiting request asked for"},
     GlossaryTerm{"late reply", "late_replies",
                  "a reply that came after its request had already timed out"},
-    GlossaryTerm{"duplicate reply", "duplicates", "a second reply to one request"},
+    GlossaryTerm{"duplicate reply", "duplicates",
+                 "a second reply to one request, the same bytes again"},
+    GlossaryTerm{"address conflict", "address_conflicts",
+                 "a second reply to one request with other contents: two devices answer to one "
+                 "address"},
     GlossaryTerm{"byte count mismatch", "byte_count_mismatches",
                  "a frame whose byte count disagrees with its request or with the quantity it "
                  "carries"},

@@ -60,6 +60,7 @@ void station_object(std::string& o, const StationSummary& s) {
   append_json_count(o, "exceptions", s.exceptions);
   append_json_count(o, "unsolicited", s.unsolicited);
   append_json_count(o, "duplicates", s.duplicates);
+  append_json_count(o, "address_conflicts", s.address_conflicts);
   // Only stations that named themselves, or changed dialect, carry these keys.
   if (!s.device.empty()) device_object(o, s.device);
   if (s.dialect_changes > 0) append_json_count(o, "dialect_changes", s.dialect_changes);
@@ -322,6 +323,7 @@ void details(std::string& o, const AuditReport& report, const BusReport& t) {
   append_json_count(o, "unsolicited", t.unsolicited);
   append_json_count(o, "late_replies", t.late_replies);
   append_json_count(o, "duplicates", t.duplicates);
+  append_json_count(o, "address_conflicts", t.address_conflicts);
   append_json_count(o, "byte_count_mismatches", t.count_mismatches);
   // Findings of plain Modbus traffic: only where there are some, so that a report of
   // inverters alone keeps its shape.

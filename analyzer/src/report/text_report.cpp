@@ -202,6 +202,19 @@ void station_notes(const BusReport& b, std::string& o) {
   }
 }
 
+// Each station two devices answer for is a finding, with both answering patterns.
+void address_conflicts(const BusReport& b, std::string& o) {
+  o += report_line("address conflicts: %llu (second replies to one request with other contents)",
+                   u(b.address_conflicts));
+  for (const StationSummary& s : b.stations) {
+    if (s.address_conflicts == 0) continue;
+    o += report_line(
+        "FINDING: two devices answer to station %u: %llu of its requests got a second reply "
+        "with other contents; %s",
+        s.station, u(s.address_conflicts), answering_patterns(s).c_str());
+  }
+}
+
 void station_table(const AuditReport& r, const BusReport& b, std::string& o) {
   // Noise alone (a file of other bytes) makes no table: the findings count it.
   if (b.stations.empty() && b.unknown_station.damaged_frames == 0) return;
@@ -281,6 +294,7 @@ void findings(const AuditReport& r, const BusFindings& bus, std::string& o) {
       "unsolicited replies: %llu (%llu late for a timed-out request); duplicate replies: "
       "%llu; byte count mismatches: %llu",
       u(b.unsolicited), u(b.late_replies), u(b.duplicates), u(b.count_mismatches));
+  address_conflicts(b, o);
   if (b.quantity_problems > 0) {
     o += report_line("requests asking a quantity out of the specification's range: %llu",
                      u(b.quantity_problems));

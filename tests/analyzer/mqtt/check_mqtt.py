@@ -135,7 +135,8 @@ def check_values_and_events(sub, prefix, lines, bad, discovery=True):
     health = json.loads(latest.get(f"{prefix}/bus/health", "{}"))
     if summary is not None:
         for key, skey in (("frames", "frames"), ("damaged_frames", "bad_checks"),
-                          ("timeouts", "timeouts"), ("noise_bytes", "noise_bytes")):
+                          ("timeouts", "timeouts"), ("noise_bytes", "noise_bytes"),
+                          ("address_conflicts", "address_conflicts")):
             bad.check(health.get(key) == summary[skey],
                       f"health {key} {health.get(key)}, summary {skey} {summary[skey]}")
 
