@@ -34,8 +34,8 @@ GOOD, BAD = 1, 0  # PROTO_CHECKSUM_E_GOOD, PROTO_CHECKSUM_E_BAD
 
 PROTOCOLS = ("invrtu", "invascii")
 # Verdicts of the plugin that pvtap audit reports otherwise; compared between the passes.
-OTHER_VERDICTS = ("exception", "duplicate", "unsolicited", "late_reply", "count_mismatch",
-                  "malformed", "unknown_function_frame")
+OTHER_VERDICTS = ("exception", "duplicate", "address_conflict", "unsolicited", "late_reply",
+                  "count_mismatch", "malformed", "unknown_function_frame")
 
 
 def pvtap_binary():

@@ -32,6 +32,7 @@ struct FrameRecord {
   bool timed_out = false;
   bool unsolicited = false;
   bool duplicate = false;
+  bool address_conflict = false;  // a second reply with other contents (SessionFrame)
   bool count_mismatch = false;
   bool has_latency = false;
   bool values_trusted = false;  // a good check: its values may be decoded

@@ -66,7 +66,9 @@ void register_response_time_stats(InverterProtocol& p) {
 }
 
 void queue_response_time(packet_info* pinfo, const InverterProtocol& p, const FrameRecord& reply) {
-  if (reply.role != Role::Response || reply.request == nullptr || reply.duplicate) return;
+  if (reply.role != Role::Response || reply.request == nullptr || reply.duplicate ||
+      reply.address_conflict)
+    return;
   if (reply.request->packet == 0) return;  // not shown yet: no time to measure from
   auto* sample = wmem_new(pinfo->pool, ResponseTimeSample);
   sample->function = reply.request->function;

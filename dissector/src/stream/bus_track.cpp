@@ -100,6 +100,7 @@ void fill_frame_record(FrameRecord& rec, const SessionFrame& f) {
   r->role_corrected = f.role_corrected;
   r->unsolicited = f.unsolicited;
   r->duplicate = f.duplicate;
+  r->address_conflict = f.address_conflict;
   r->values_trusted = f.values_trusted;
   if (f.latency) {
     r->has_latency = true;

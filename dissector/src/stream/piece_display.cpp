@@ -40,6 +40,15 @@ void add_info(packet_info* pinfo, const InverterProtocol& p, const char* text) {
   }
 }
 
+// The Info column's text of a frame: its summary, and what its reply was when it was a second.
+const char* info_summary(packet_info* pinfo, const FrameRecord& record, const char* summary) {
+  if (record.duplicate) return wmem_strdup_printf(pinfo->pool, "%s (duplicate)", summary);
+  if (record.address_conflict) {
+    return wmem_strdup_printf(pinfo->pool, "%s (address conflict)", summary);
+  }
+  return summary;
+}
+
 // The packet's pool: freed with the packet, without destructors.
 Arena packet_arena(packet_info* pinfo) {
   constexpr auto allocate = [](void* pool, std::size_t size) {
@@ -72,9 +81,7 @@ void dissect_frame(const TreeTarget& target, std::span<const std::uint8_t> bytes
                                 .reply_timeout_ms = p.settings.reply_timeout_ms};
   const TreeDescription tree = describe_frame(plan, record, dctx);
   // Only now the calls that may longjmp: the plan and the tree's description are plain data.
-  add_info(target.pinfo, p,
-           record.duplicate ? wmem_strdup_printf(target.pinfo->pool, "%s (duplicate)", plan.summary)
-                            : plan.summary);
+  add_info(target.pinfo, p, info_summary(target.pinfo, record, plan.summary));
   queue_response_time(target.pinfo, p, record);
   add_tree(target, tree);
 }

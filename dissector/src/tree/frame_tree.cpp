@@ -98,6 +98,8 @@ expert_field* expert_of(ExpertFields& ei, TreeExpert expert) {
       return &ei.late_reply;
     case TreeExpert::Duplicate:
       return &ei.duplicate;
+    case TreeExpert::AddressConflict:
+      return &ei.address_conflict;
     case TreeExpert::CountMismatch:
       return &ei.count_mismatch;
     case TreeExpert::RoleCorrected:

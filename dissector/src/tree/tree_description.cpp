@@ -389,6 +389,11 @@ void add_reply_links(Builder& b, const FrameRecord& r) {
     b.expert_item(TreeExpert::Duplicate, FieldSpan{},
                   "Duplicate reply: the station answered its request again");
   }
+  if (r.address_conflict) {
+    b.expert_item(TreeExpert::AddressConflict, FieldSpan{},
+                  "Address conflict: a second reply to the request, with other contents: two "
+                  "devices answer to this station");
+  }
   if (r.unsolicited) b.expert_item(TreeExpert::Unsolicited, FieldSpan{}, nullptr);
   if (shown(r.late_for)) {
     b.expert_item(

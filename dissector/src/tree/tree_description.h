@@ -59,6 +59,7 @@ enum class TreeExpert : std::uint8_t {
   Unsolicited,
   LateReply,
   Duplicate,
+  AddressConflict,  // a second reply with other contents: two devices at one address
   CountMismatch,
   RoleCorrected,
   StartUnknown,

@@ -161,6 +161,7 @@ const char* name_of(TreeExpert expert) {
                                            "Unsolicited",
                                            "LateReply",
                                            "Duplicate",
+                                           "AddressConflict",
                                            "CountMismatch",
                                            "RoleCorrected",
                                            "StartUnknown",

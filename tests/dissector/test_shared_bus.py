@@ -1,0 +1,80 @@
+"""A second device answering to an inverter's address (pvtap-sim --address-conflict): the
+plugin raises an address-conflict expert info on each second reply with other contents, as
+many as pvtap audit counts and the simulator's truth holds, in both passes; a repeated
+identical reply stays a duplicate, and no other station gets one.
+"""
+import json
+import os
+import subprocess
+import tempfile
+import unittest
+
+from tshark_runner import PluginTestCase
+
+
+def binary(variable):
+    path = os.environ.get(variable)
+    if not path or not os.access(path, os.X_OK):
+        raise RuntimeError("%s must name a built program (got %r)" % (variable, path))
+    return path
+
+
+class AddressConflict(PluginTestCase, unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        super().setUpClass()
+        cls.work = tempfile.TemporaryDirectory(prefix="pvtap-conflict-")
+        capture = os.path.join(cls.work.name, "conflict.pdu.pcap")
+        truth = os.path.join(cls.work.name, "conflict.truth.json")
+        subprocess.run([binary("PVTAP_SIM"), "--seed", "11", "--inverters", "3", "--period", "1",
+                        "--address-conflict", "2", "--duration", "40", "--pdu", capture,
+                        "--truth", truth], check=True, timeout=120)
+        with open(truth) as f:
+            cls.truth = json.load(f)
+        cls.capture = cls.tshark.write_text("conflict.pdu.pcap", "")
+        with open(capture, "rb") as src, open(cls.capture, "wb") as dst:
+            dst.write(src.read())
+        cls.tshark._hand_over()
+        summary = subprocess.run([binary("PVTAP_BINARY"), "audit", "--summary-only", "--format",
+                                  "jsonl", capture], capture_output=True, text=True,
+                                 check=True, timeout=120).stdout.splitlines()[-1]
+        cls.summary = json.loads(summary)
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.work.cleanup()
+        super().tearDownClass()
+
+    def conflicts_by_station(self, passes):
+        options = ["-2"] if passes == 2 else []
+        rows = self.tshark.fields(self.capture, ["invrtu.station"],
+                                  "invrtu.address_conflict", options=options)
+        stations = {}
+        for row in rows:
+            for station in row[0]:
+                stations[int(station, 0)] = stations.get(int(station, 0), 0) + 1
+        return stations
+
+    def test_each_second_reply_with_other_contents_is_an_expert_info(self):
+        # The second device's replies whose bytes differ from the reply before them: where
+        # both devices hold the same values (a name block), its reply is a duplicate.
+        want, last = {}, {}
+        for e in self.truth["events"]:
+            if e["type"] != "frame" or e["role"] != "response":
+                continue
+            if e.get("fault") == "address_conflict" and last.get(e["station"]) != e["hex"]:
+                want[e["station"]] = want.get(e["station"], 0) + 1
+            last[e["station"]] = e["hex"]
+        self.assertEqual(list(want), [2])
+        self.assertGreater(want[2], 50)
+        audit = {int(k): s["address_conflicts"] for k, s in self.summary["stations"].items()
+                 if s["address_conflicts"]}
+        self.assertEqual(audit, want)
+        second = self.truth["address_conflicts"][0]["second_replies"]
+        self.assertEqual(self.summary["stations"]["2"]["duplicates"], second - want[2])
+        self.assertEqual(self.conflicts_by_station(2), want)
+        self.assertEqual(self.conflicts_by_station(1), want)
+
+
+if __name__ == "__main__":
+    unittest.main()
