@@ -219,6 +219,16 @@ def compare_masters(summary, truth, bad):
                     f"truth {want}")
 
 
+def compare_conflicts(summary, truth, bad):
+    """Address conflicts only where the truth has a second device (none in the library): a
+    station that repeats a reply is not two devices."""
+    want = {c["station"]: c["second_replies"] for c in truth.get("address_conflicts", [])}
+    found = {int(k): s.get("address_conflicts") for k, s in summary.get("stations", {}).items()
+             if s.get("address_conflicts") != 0}
+    if found != want:
+        bad.add(f"address conflicts by station: audit {found}, truth {want}")
+
+
 def compare_stations(summary, truth, bad):
     """The stations are the simulated inverters and plain Modbus devices: a damaged frame's
     station byte names none. The bad checks are each counted once, under a station or the
@@ -282,6 +292,7 @@ def main():
     compare_polls(summary, [e for e in truth["events"] if e["type"] == "frame"], timed, bad)
     compare_stations(summary, truth, bad)
     compare_masters(summary, truth, bad)
+    compare_conflicts(summary, truth, bad)
     compare_example_lists(pvtap, capture, bad)
     for key in SUMMARY_KEYS:
         if summary.get(key) != truth["summary"][key]:

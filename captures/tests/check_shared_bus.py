@@ -3,6 +3,9 @@
 pvtap audit's reading of it: as many masters as the truth has, each truth master's period
 found within 3 %, each truth master's poll blocks in the plan of the master of that period,
 the finding in the text report, and requests sent while another's reply was due counted.
+Then a second device answering to one inverter's address: every second reply it gave is an
+address conflict of that station (and not a duplicate), whether the bytes come as exported
+PDUs or as a USER0 serial stream, with the finding in the text and HTML reports.
 
 usage: check_shared_bus.py PVTAP PVTAP_SIM SCRATCH_DIR
 """
@@ -52,9 +55,67 @@ def main():
                           text=True, check=True).stdout
     if "FINDING: 2 masters on one bus" not in text:
         bad.append("the text report has no finding of two masters")
+    check_address_conflict(pvtap, sim, scratch, bad)
     for line in bad:
         print("shared bus:", line)
     return 1 if bad else 0
+
+
+def second_replies(truth):
+    """The second device's replies by station: those whose bytes differ from the reply before
+    them (conflicts), and those that repeat them (a block whose values both devices share:
+    duplicates, since nothing on the line tells them apart)."""
+    differ, same, last = {}, {}, {}
+    for e in truth["events"]:
+        if e["type"] != "frame" or e["role"] != "response":
+            continue
+        if e.get("fault") == "address_conflict":
+            into = same if last.get(e["station"]) == e["hex"] else differ
+            into[e["station"]] = into.get(e["station"], 0) + 1
+        last[e["station"]] = e["hex"]
+    return differ, same
+
+
+def check_address_conflict(pvtap, sim, scratch, bad):
+    pdu = os.path.join(scratch, "conflict.pdu.pcap")
+    user0 = os.path.join(scratch, "conflict.user0.pcap")
+    truth_path = os.path.join(scratch, "conflict.truth.json")
+    subprocess.run([sim, "--seed", "11", "--inverters", "3", "--period", "1",
+                    "--address-conflict", "2", "--duration", "40", "--pdu", pdu, "--chunked", user0,
+                    "--truth", truth_path], check=True)
+    with open(truth_path, encoding="utf-8") as f:
+        truth = json.load(f)
+    want, repeated = second_replies(truth)
+    if want.get(2, 0) < 50:
+        bad.append(f"the simulator's truth has too few second replies at station 2: {want}")
+    if sum(want.values()) + sum(repeated.values()) != truth["address_conflicts"][0]["second_replies"]:
+        bad.append("the second replies of the truth's events are not its count")
+    for capture in (pdu, user0):
+        run = subprocess.run([pvtap, "audit", "--summary-only", "--format", "jsonl", capture],
+                             capture_output=True, text=True, check=True)
+        summary = json.loads(run.stdout.splitlines()[-1])
+        found = {int(k): s["address_conflicts"] for k, s in summary["stations"].items()
+                 if s["address_conflicts"]}
+        name = os.path.basename(capture)
+        if found != want:
+            bad.append(f"{name}: address conflicts by station {found}, truth {want}")
+        if summary["stations"]["2"]["duplicates"] != repeated.get(2, 0):
+            bad.append(f"{name}: station 2 has {summary['stations']['2']['duplicates']} "
+                       f"duplicates, truth {repeated.get(2, 0)} second replies of the same bytes")
+        if summary.get("address_conflicts") != sum(want.values()):
+            bad.append(f"{name}: the summary counts {summary.get('address_conflicts')} "
+                       "address conflicts")
+    page = os.path.join(scratch, "conflict.html")
+    text = subprocess.run([pvtap, "audit", "--summary-only", "--html", page, pdu],
+                          capture_output=True, text=True, check=True).stdout
+    finding = f"FINDING: two devices answer to station 2: {want.get(2)} of its requests"
+    if finding not in text:
+        bad.append(f"the text report lacks {finding!r}")
+    if "other ones" not in text:
+        bad.append("the text report's finding does not give the second device's latency")
+    with open(page, encoding="utf-8") as f:
+        if "Two devices answer to station 2" not in f.read():
+            bad.append("the HTML report has no address-conflict finding")
 
 
 if __name__ == "__main__":
