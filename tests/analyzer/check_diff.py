@@ -136,11 +136,12 @@ THRESHOLDS = {"--noise-sigmas": "noise_sigmas", "--rate-change": "rate_per_1000"
 
 
 def check_thresholds(checks, pvtap, capture):
-    """The defaults --help states are the ones a run applies (the jsonl summary's)."""
+    """The defaults --help states are the ones a run applies (the jsonl summary's). CLI11
+    writes a default as NAME=3 up to 2.3 (Debian 12) and as NAME [3] from 2.4 (Debian 13)."""
     help_text = run(pvtap, "diff", "--help").stdout
     applied = jsonl(run(pvtap, "diff", "--format", "jsonl", capture, capture).stdout)[-1]
     for option, key in THRESHOLDS.items():
-        stated = re.search(r"^ +%s [A-Z_0-9]+=([0-9.]+)" % re.escape(option), help_text,
+        stated = re.search(r"^ +%s [A-Z_0-9]+(?:=| \[)([0-9.]+)" % re.escape(option), help_text,
                            re.MULTILINE)
         checks.true("--help states the default of " + option, stated is not None)
         if stated:
