@@ -32,6 +32,10 @@ FrameMatch TransactionMatcher::on_frame(const ObservedFrame& in) {
   move_time_to(in.start_time);
   FrameMatch out;
   out.role = in.frame.role;
+  if (is_echo(in)) {
+    take_echo(in, out);
+    return out;
+  }
   if (out.role == Role::Request && !in.role_known) {
     const Slot& own = slots_[in.frame.station];
     if (own.state == SlotState::Pending && echoes_write(own.request.frame, in.frame, in.check_ok)) {
@@ -44,10 +48,38 @@ FrameMatch TransactionMatcher::on_frame(const ObservedFrame& in) {
   } else {
     on_reply(in, out);
   }
+  last_request_ = LastRequest{out.role == Role::Request && in.check_ok && in.content != 0, in.id,
+                              in.frame.station, in.content, in.end_time};
   // The bus is busy until the frame's last byte; later timeouts are judged from there.
   now_ = std::max(now_, in.end_time);
   out.timeouts = timeouts_.view();
   return out;
+}
+
+bool TransactionMatcher::is_echo(const ObservedFrame& in) const {
+  const LastRequest& last = last_request_;
+  if (!config_.echo_within || !last.open || in.frame.role != Role::Request || !in.check_ok ||
+      in.content != last.content || in.frame.station != last.station) {
+    return false;
+  }
+  const double within = reply_is_echo(in.frame.dialect, in.frame.function)
+                            ? config_.echoing_reply_within
+                            : *config_.echo_within;
+  return in.start_time - last.end_time <= within;
+}
+
+// The request's wait starts again at the echo's end; one echo per request.
+void TransactionMatcher::take_echo(const ObservedFrame& in, FrameMatch& out) {
+  out.echo = EchoedRequest{in.id, last_request_.id};
+  last_request_.open = false;
+  const bool broadcast = is_broadcast_request(in.frame);
+  Slot& slot = slots_[broadcast ? RequestSlots::kBroadcast : in.frame.station];
+  if (slot.state == SlotState::Pending && slot.request.id == out.echo->request_id) {
+    slot.request.end_time = in.end_time;
+    slot.request.deadline = in.end_time + config_.timeout;
+  }
+  now_ = std::max(now_, in.end_time);
+  out.timeouts = timeouts_.view();
 }
 
 std::span<const Timeout> TransactionMatcher::advance(double now) {

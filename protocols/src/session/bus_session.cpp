@@ -11,6 +11,7 @@
 #include "pvtap/matching/reply_rules.h"
 #include "pvtap/session/event_tally.h"
 #include "pvtap/session/station_rule.h"
+#include "pvtap/statistics/bus_timing.h"
 #include "session/bus_tally.h"
 #include "session/reply_values.h"
 #include "session/session_times.h"
@@ -38,11 +39,25 @@ struct BusSession::Impl {
   Impl(BusSessionOptions o, const RegisterDecoder& d, BusSessionSink& s)
       : options(o),
         sink(s),
-        matcher(o.matcher),
+        matcher(matcher_config(o)),
         times(options),
         replies(d, options),
         station_dialects(o.reassembler.dialects, d),
         decoder(d) {}
+
+  // Echoes are told by time: a copy within 3.5 characters, where no slave may answer yet
+  // (one for a write whose reply is the same bytes).
+  // Batched timestamps (a USB adapter's) do not judge silences, but the bytes of one batch
+  // are placed back to back, and an echo comes in its request's batch.
+  static MatcherConfig matcher_config(const BusSessionOptions& o) {
+    MatcherConfig config = o.matcher;
+    if (!config.echo_within && o.has_timestamps) {
+      const BusTiming timing(o.reassembler.baud, o.reassembler.bits_per_char);
+      config.echo_within = timing.t35;
+      config.echoing_reply_within = timing.char_time;
+    }
+    return config;
+  }
 
   DirectionStream& stream(Direction d) {
     auto& slot = streams[index_of(d)];
@@ -222,6 +237,13 @@ void BusSession::Impl::handle_parsed(SessionFrame& out, const FrameEvent& e,
                                      role_known, answers_pending, content});
   // Before the request is remembered: a request it gave up is looked up by its slot.
   report(match.timeouts);
+  if (match.echo) {
+    out.echo = true;
+    out.echo_of = match.echo->request_id;
+    out.station = frame.station;
+    times.add(out, frame, std::nullopt, e.max_inner_gap);
+    return;
+  }
   if (match.transaction) tally.add_transaction(*match.transaction);
   take_findings(out, frame, match, options.has_timestamps);
   out.station = frame_station(e.check.ok, frame.station, match);

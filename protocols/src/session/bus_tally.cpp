@@ -31,6 +31,11 @@ void BusTally::count_exception(const SessionFrame& f) {
 }
 
 void BusTally::add_frame(const SessionFrame& f) {
+  // The request it repeats was counted; the echo is the tap's adapter's.
+  if (f.echo) {
+    ++counts_.echoes;
+    return;
+  }
   events_.add(f);
   stations_.add_frame(f);
   if (!f.check.ok && wants_example(bad_check_examples_)) {

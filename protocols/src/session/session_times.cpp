@@ -30,6 +30,12 @@ void SessionTimes::add(const SessionFrame& out, const Frame& frame,
   if (!has_timestamps_) return;
   // A frame's first byte came before the chunk that ended it: the span begins there.
   first_ = std::min(first_, out.start_time);
+  if (out.echo) {
+    FrameTiming echo;
+    echo.end_time = out.end_time;
+    if (!untrusted_) timing_.add_echo(echo);
+    return;
+  }
   // With timestamps declared too coarse the bus gaps are never judged (the report says why
   // instead): requests alone give the poll periods, and no frame feeds the gap statistics.
   if (untrusted_) {

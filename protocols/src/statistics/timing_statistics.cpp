@@ -32,6 +32,11 @@ void TimingStatistics::add_frame_without_gaps(const FrameTiming& frame) {
   if (frame.role == Role::Request && frame.check_ok) add_poll(frame, std::nullopt);
 }
 
+void TimingStatistics::add_echo(const FrameTiming& echo) {
+  gaps_.extend_last(echo.end_time);
+  if (previous_) previous_->end_time = std::max(previous_->end_time, echo.end_time);
+}
+
 void TimingStatistics::note_order(const FrameTiming& frame) {
   if (frame.role == Role::Request && frame.check_ok && previous_ &&
       previous_->role == Role::Request && previous_->check_ok && !broadcast(*previous_) &&

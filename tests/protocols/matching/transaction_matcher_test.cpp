@@ -25,6 +25,7 @@ struct RecordingSink {
   std::vector<DuplicateReply> duplicates;
   std::vector<ByteCountMismatch> mismatches;
   std::vector<RoleCorrection> corrections;
+  std::vector<EchoedRequest> echoes;
 
   void record(std::span<const Timeout> decided) {
     timeouts.insert(timeouts.end(), decided.begin(), decided.end());
@@ -36,11 +37,12 @@ struct RecordingSink {
     if (m.duplicate) duplicates.push_back(*m.duplicate);
     if (m.unsolicited) unsolicited.push_back(*m.unsolicited);
     if (m.count_mismatch) mismatches.push_back(*m.count_mismatch);
+    if (m.echo) echoes.push_back(*m.echo);
   }
 
   std::size_t total() const {
     return transactions.size() + timeouts.size() + unsolicited.size() + duplicates.size() +
-           mismatches.size() + corrections.size();
+           mismatches.size() + corrections.size() + echoes.size();
   }
 };
 
@@ -270,7 +272,7 @@ TEST_F(TransactionMatcherTest, KnownRoleIsNeverCorrected) {
 
 TEST_F(TransactionMatcherTest, TimeoutWhenNoReplyWithinTheTimeout) {
   RecordingSink short_sink;
-  RecordingMatcher short_matcher(short_sink, MatcherConfig{0.2});
+  RecordingMatcher short_matcher(short_sink, MatcherConfig{0.2, std::nullopt, 0});
   short_matcher.on_frame(
       observed(1, test::read_request(Dialect::Gsl, 1, fc::kGslReadHolding, 0, 2), 0.0, 0.008));
   // The reply comes 0.292 s after the request: too late for a 0.2 s timeout.
@@ -386,6 +388,85 @@ TEST_F(TransactionMatcherTest, SecondReplyWithOtherContentsIsAnAddressConflict) 
   ASSERT_EQ(sink.duplicates.size(), 4u);
   EXPECT_FALSE(sink.duplicates[2].other_content);
   EXPECT_FALSE(sink.duplicates[3].other_content);
+}
+
+// A request repeated byte for byte within the echo window is the tap's adapter: one request,
+// which waits for its reply from the echo's end. Later, or with other bytes, or with no window
+// (no timestamps), it is the master's own next request.
+TEST(TransactionMatcherEcho, RequestRepeatedAtOnceIsAnEcho) {
+  RecordingSink sink;
+  RecordingMatcher matcher(sink, MatcherConfig{1.0, 0.004, 0.0015});
+  const auto request = [](std::uint64_t id, double start, std::uint32_t content) {
+    ObservedFrame o = observed(id, test::read_request(Dialect::Gsl, 3, fc::kGslReadHolding, 0, 2),
+                               start, start + 0.008);
+    o.content = content;
+    return o;
+  };
+  matcher.on_frame(request(1, 0.0, 0x45BD0008));
+  matcher.on_frame(request(2, 0.008, 0x45BD0008));
+  ASSERT_EQ(sink.echoes.size(), 1u);
+  EXPECT_EQ(sink.echoes[0].echo_id, 2u);
+  EXPECT_EQ(sink.echoes[0].request_id, 1u);
+  // A third copy is no second echo of the first.
+  matcher.on_frame(request(3, 0.016, 0x45BD0008));
+  EXPECT_EQ(sink.echoes.size(), 1u);
+  matcher.on_frame(observed(4, rtu_reply(Dialect::Gsl, 3, fc::kGslReadHolding, 4), 0.05, 0.06));
+  ASSERT_EQ(sink.transactions.size(), 1u);
+  EXPECT_EQ(sink.transactions[0].request_id, 3u);
+  EXPECT_NEAR(sink.transactions[0].latency, 0.026, 1e-9);
+  ASSERT_EQ(sink.timeouts.size(), 1u);  // request 1, given up for request 3
+  EXPECT_EQ(sink.timeouts[0].request_id, 1u);
+
+  // The echo's end starts the wait: the reply 40 ms later pairs with the request.
+  matcher.on_frame(request(5, 1.0, 0x11110008));
+  matcher.on_frame(request(6, 1.0085, 0x11110008));
+  matcher.on_frame(observed(7, rtu_reply(Dialect::Gsl, 3, fc::kGslReadHolding, 4), 1.0565, 1.07));
+  ASSERT_EQ(sink.echoes.size(), 2u);
+  ASSERT_EQ(sink.transactions.size(), 2u);
+  EXPECT_EQ(sink.transactions[1].request_id, 5u);
+  EXPECT_NEAR(sink.transactions[1].latency, 0.04, 1e-9);
+
+  // Other bytes, or a copy after the window: requests of their own.
+  matcher.on_frame(request(8, 2.0, 0x22220008));
+  matcher.on_frame(request(9, 2.008, 0x33330008));
+  matcher.on_frame(request(10, 2.5, 0x33330008));
+  EXPECT_EQ(sink.echoes.size(), 2u);
+  EXPECT_EQ(sink.timeouts.size(), 3u);
+
+  RecordingSink untimed;
+  RecordingMatcher without_window(untimed);
+  without_window.on_frame(request(1, 0.0, 0x45BD0008));
+  without_window.on_frame(request(2, 0.008, 0x45BD0008));
+  EXPECT_TRUE(untimed.echoes.empty());
+  EXPECT_EQ(untimed.timeouts.size(), 1u);
+}
+
+// A single write's reply is its request's bytes again: a copy 2.5 characters later is a
+// slave answering too early (the reply), one at once is the adapter's echo (the window: one
+// character, 1.04 ms at 9600 baud).
+TEST(TransactionMatcherEcho, AWritesEchoComesAtOnceItsEarlyReplyLater) {
+  RecordingSink sink;
+  RecordingMatcher matcher(sink, MatcherConfig{1.0, 0.004, 0.00104});
+  const auto write = [](std::uint64_t id, double start) {
+    ObservedFrame o = observed(id, test::read_request(Dialect::Gsl, 3, fc::kGslWriteSingle, 7, 1),
+                               start, start + 0.008);
+    o.content = 0x12340008;
+    return o;
+  };
+  matcher.on_frame(write(1, 0.0));
+  EXPECT_EQ(matcher.on_frame(write(2, 0.0106)), Role::Response);  // 2.6 ms after
+  EXPECT_TRUE(sink.echoes.empty());
+  ASSERT_EQ(sink.transactions.size(), 1u);
+  EXPECT_EQ(sink.transactions[0].request_id, 1u);
+
+  matcher.on_frame(write(3, 1.0));
+  EXPECT_EQ(matcher.on_frame(write(4, 1.008)), Role::Request);
+  EXPECT_EQ(matcher.on_frame(write(5, 1.05)), Role::Response);
+  ASSERT_EQ(sink.echoes.size(), 1u);
+  EXPECT_EQ(sink.echoes[0].request_id, 3u);
+  ASSERT_EQ(sink.transactions.size(), 2u);
+  EXPECT_EQ(sink.transactions[1].request_id, 3u);
+  EXPECT_TRUE(sink.timeouts.empty());
 }
 
 TEST_F(TransactionMatcherTest, HybridByteCountMismatch) {

@@ -82,6 +82,13 @@ struct DuplicateReply {
   double since_request = 0;  // from the request's end to this reply's start, seconds
 };
 
+// EchoedRequest: a request seen a second time, byte for byte, as soon as it ended: the tap's
+// own adapter echoing what its master sent. It is one request on the bus, not two.
+struct EchoedRequest {
+  std::uint64_t echo_id = 0;
+  std::uint64_t request_id = 0;  // the request it repeats
+};
+
 // CountUnit: what ByteCountMismatch counts.
 enum class CountUnit : std::uint8_t { Bytes = 0, Words = 1 };
 
@@ -108,8 +115,8 @@ struct RoleCorrection {
 // FrameMatch: what the matcher decided for one frame, in the order it was decided: the
 // timeouts (those the frame's start made due, then the request a new request to the same
 // station gave up), the role correction, the transaction, duplicate or unsolicited reply
-// (at most one of them), the length mismatch. `timeouts` points into the matcher and is
-// valid until its next call.
+// (at most one of them), the length mismatch. An echo decides nothing else. `timeouts` points into
+// the matcher and is valid until its next call.
 struct FrameMatch {
   Role role = Role::Request;  // as corrected (a GSL 0x06 echo is a response)
   std::span<const Timeout> timeouts;
@@ -118,6 +125,7 @@ struct FrameMatch {
   std::optional<DuplicateReply> duplicate;
   std::optional<UnsolicitedReply> unsolicited;
   std::optional<ByteCountMismatch> count_mismatch;
+  std::optional<EchoedRequest> echo;
 };
 
 }  // namespace pvtap

@@ -14,9 +14,19 @@
 
 namespace pvtap {
 
-// MatcherConfig: how long a request may wait for its reply.
+// MatcherConfig: how long a request may wait for its reply, and how soon a copy of it is an
+// echo.
 struct MatcherConfig {
   double timeout = 1.0;  // seconds from the request's end to the reply's start; must be > 0
+  // A request that repeats the one before it byte for byte and starts within this many
+  // seconds of its end is an echo (EchoedRequest): no device answers that soon (a Modbus
+  // slave keeps 3.5 characters of silence), so it is the tap's adapter. nullopt: no echoes
+  // (an input without timestamps cannot tell one from a master's quick retry).
+  std::optional<double> echo_within;
+  // The same for a function whose reply is the request's bytes again (a single write): an
+  // echo comes back at once, while a slave that answers too early still leaves a character or
+  // two: one character time at the bus's baud.
+  double echoing_reply_within = 0;
 };
 
 // ObservedFrame: one frame as the reassembler saw it on the bus.
@@ -50,6 +60,9 @@ struct ObservedFrame {
 // bad check whose station or function does not fit (the damaged byte may be that one)
 // answers the one pending request when exactly one is pending: the slave answered and the
 // line damaged the answer, which is not a timeout.
+//
+// An echo of a request (MatcherConfig::echo_within) leaves the request pending, as if it had
+// ended with its echo: the slave answers after the last copy on the line.
 //
 // What one frame decided comes back as a FrameMatch (see there for the order). Lengths are
 // judged only on replies with a good check: in a corrupted reply the length field itself may
@@ -85,6 +98,17 @@ class TransactionMatcher {
   using Slot = RequestSlots::Slot;
   using SlotState = RequestSlots::State;
 
+  // The last frame when it was a request with a good check, for telling its echo.
+  struct LastRequest {
+    bool open = false;
+    std::uint64_t id = 0;
+    std::uint8_t station = 0;
+    std::uint32_t content = 0;
+    double end_time = 0;
+  };
+
+  bool is_echo(const ObservedFrame& in) const;
+  void take_echo(const ObservedFrame& in, FrameMatch& out);
   void on_request(const ObservedFrame& in);
   void on_reply(const ObservedFrame& in, FrameMatch& out);
   bool try_answer(const ObservedFrame& in, FrameMatch& out);
@@ -103,6 +127,7 @@ class TransactionMatcher {
   // A lower bound on the earliest deadline; stale-early is harmless (one extra scan).
   double next_deadline_ = std::numeric_limits<double>::infinity();
   TimeoutList timeouts_;  // those of the current call
+  LastRequest last_request_;
 };
 
 }  // namespace pvtap

@@ -193,6 +193,7 @@ struct BusCounters {
   std::uint64_t late_replies = 0;  // unsolicited replies that fit a timed-out request
   std::uint64_t duplicates = 0;
   std::uint64_t address_conflicts = 0;  // second replies that differ (SessionFrame)
+  std::uint64_t echoes = 0;             // requests the tap's adapter echoed (SessionFrame)
   std::uint64_t count_mismatches = 0;
   std::uint64_t role_corrections = 0;
   std::uint64_t dialect_changes = 0;       // a station's frames said it changed dialect

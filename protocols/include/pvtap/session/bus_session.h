@@ -76,6 +76,10 @@ struct SessionFrame {
   // The request a duplicate or a conflicting reply answered before.
   std::optional<std::uint64_t> duplicate_of;
   bool role_corrected = false;
+  // A request repeated byte for byte as soon as it ended (EchoedRequest): the tap's adapter's
+  // echo of echo_of. Counted as an echo only, not as a request of its station.
+  bool echo = false;
+  std::optional<std::uint64_t> echo_of;
   std::optional<ByteCountMismatch> count_mismatch;
   // A request with a good check asking for a quantity its function does not allow.
   std::optional<QuantityProblem> quantity_problem;

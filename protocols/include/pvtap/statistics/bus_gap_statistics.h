@@ -49,6 +49,10 @@ class BusGapStatistics {
         inner_silences_(timing.char_time, timing.t15, LineSide::Below),
         frame_silences_(timing.char_time, timing.t35, LineSide::Above) {}
   void add_frame(const FrameTiming& frame);
+  // The last frame went on until `end_time` (its echo): the next gap is measured from there.
+  void extend_last(double end_time) {
+    if (previous_) previous_->end_time = std::max(previous_->end_time, end_time);
+  }
   BusGapReport report(const TimestampQuality& quality) const;
 
  private:

@@ -95,6 +95,9 @@ class TimingStatistics {
   // A frame of a bus whose silences are never judged (timestamps declared too coarse: a
   // gateway's segments): only a request's poll period is kept, the gap statistics are spared.
   void add_frame_without_gaps(const FrameTiming& frame);
+  // A request's echo (the tap's adapter repeating it): the line was busy until its end, but it
+  // is neither a poll nor a gap of the bus's own.
+  void add_echo(const FrameTiming& echo);
   // A latency of no station (both frames of its transaction damaged) is in the bus's alone.
   void add_latency(std::optional<std::uint8_t> station, double seconds);
   TimingReport report(const TimestampQuality& quality) const;
