@@ -237,6 +237,12 @@ void bus_findings(std::string& o, const AuditReport& r, const BusFindings& bus, 
       u(b.duplicates), u(b.count_mismatches));
   examples_table(o, r, b.unsolicited_examples, "check");
   address_conflicts(o, b, first);
+  if (b.echoes > 0) {
+    o += report_line(
+        "<p>Echoes: %llu of %llu requests were seen twice, back to back: the tap's adapter "
+        "repeating what its master sent. Each is counted once, as one request.</p>\n",
+        u(b.echoes), u(b.requests));
+  }
   exception_list(o, b, first);
   o += report_line("<h4%s>Noise: %llu bytes in %llu runs</h4>\n",
                    id_attr(first, "findings-noise").c_str(), u(b.bytes.noise_bytes),

@@ -122,6 +122,7 @@ void TimelineCollector::frame(const EventContext& c, const SessionFrame& f) {
 
 void TimelineCollector::count_frame(BusState& bus, std::uint32_t lane, std::size_t bucket,
                                     const SessionFrame& f) {
+  if (f.echo) return;  // the tap's adapter's copy of a request counted already
   Lane& l = timeline_.lanes[lane];
   BusLoad& load = timeline_.loads[bus.load];
   const auto bytes = static_cast<double>(f.bytes.size());

@@ -115,6 +115,10 @@ void collect_issues(const SessionFrame& f, std::vector<std::string>& out) {
   out.clear();
   if (!f.parse_error.empty()) out.push_back("malformed: " + std::string(f.parse_error));
   if (f.frame == nullptr) return;
+  if (f.echo) {
+    out.emplace_back("echo: the tap's adapter repeating the request before it, counted once");
+    return;
+  }
   // Read as a request, it echoes the pending one: a note only where the function's normal
   // reply is no echo.
   if (f.role_corrected && !reply_is_echo(f.dialect, f.frame->function)) {

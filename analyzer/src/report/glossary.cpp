@@ -42,6 +42,9 @@ constexpr std::array kTerms = {
     GlossaryTerm{"address conflict", "address_conflicts",
                  "a second reply to one request with other contents: two devices answer to one "
                  "address"},
+    GlossaryTerm{"echo", "echoes",
+                 "a request seen twice, back to back and byte for byte: the tap's own adapter "
+                 "repeating what its master sent; counted once, as one request"},
     GlossaryTerm{"byte count mismatch", "byte_count_mismatches",
                  "a frame whose byte count disagrees with its request or with the quantity it "
                  "carries"},

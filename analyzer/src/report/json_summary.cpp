@@ -324,6 +324,7 @@ void details(std::string& o, const AuditReport& report, const BusReport& t) {
   append_json_count(o, "late_replies", t.late_replies);
   append_json_count(o, "duplicates", t.duplicates);
   append_json_count(o, "address_conflicts", t.address_conflicts);
+  append_json_count(o, "echoes", t.echoes);
   append_json_count(o, "byte_count_mismatches", t.count_mismatches);
   // Findings of plain Modbus traffic: only where there are some, so that a report of
   // inverters alone keeps its shape.

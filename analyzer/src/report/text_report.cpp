@@ -295,6 +295,13 @@ void findings(const AuditReport& r, const BusFindings& bus, std::string& o) {
       "%llu; byte count mismatches: %llu",
       u(b.unsolicited), u(b.late_replies), u(b.duplicates), u(b.count_mismatches));
   address_conflicts(b, o);
+  // Not the bus's fault but the tap's: said only where it happens.
+  if (b.echoes > 0) {
+    o += report_line(
+        "echoes: %llu of %llu requests seen twice, back to back (the tap's adapter repeating "
+        "what its master sent; each counted once, as one request)",
+        u(b.echoes), u(b.requests));
+  }
   if (b.quantity_problems > 0) {
     o += report_line("requests asking a quantity out of the specification's range: %llu",
                      u(b.quantity_problems));

@@ -70,6 +70,7 @@ class JsonlEventWriter : public EventWriter {
     }
     o += ']';
     append_contents_json(o, f);
+    if (f.echo) o += ",\"echo\":true";
     o += ",\"issues\":[";
     collect_issues(f, issues_);
     for (std::size_t i = 0; i < issues_.size(); ++i) {

@@ -31,7 +31,7 @@ class TextEventWriter : public EventWriter {
       o += "st ";
       append_uint(o, f.frame->station);
       pad_to(o, start, 16);
-      o += to_string(f.role);
+      o += f.echo ? "echo" : to_string(f.role);
       pad_to(o, start, 26);
       append_function(o, f.dialect, f.frame->function);
     }
