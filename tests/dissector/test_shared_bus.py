@@ -1,7 +1,10 @@
 """A second device answering to an inverter's address (pvtap-sim --address-conflict): the
 plugin raises an address-conflict expert info on each second reply with other contents, as
 many as pvtap audit counts and the simulator's truth holds, in both passes; a repeated
-identical reply stays a duplicate, and no other station gets one.
+identical reply stays a duplicate, and no other station gets one. A tap whose adapter echoes
+every request (pvtap-sim --echo): each echo an echo expert info linked to its request, '(echo)'
+in Info, as many as pvtap audit counts and the truth holds, and the replies paired with the
+requests, so that no request of the truth's is left unanswered.
 """
 import json
 import os
@@ -74,6 +77,52 @@ class AddressConflict(PluginTestCase, unittest.TestCase):
         self.assertEqual(self.summary["stations"]["2"]["duplicates"], second - want[2])
         self.assertEqual(self.conflicts_by_station(2), want)
         self.assertEqual(self.conflicts_by_station(1), want)
+
+
+class Echo(PluginTestCase, unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        super().setUpClass()
+        cls.work = tempfile.TemporaryDirectory(prefix="pvtap-echo-")
+        capture = os.path.join(cls.work.name, "echo.pdu.pcap")
+        truth = os.path.join(cls.work.name, "echo.truth.json")
+        subprocess.run([binary("PVTAP_SIM"), "--seed", "5", "--inverters", "3", "--period", "1",
+                        "--echo", "--faults", "missing=5", "--duration", "30", "--pdu", capture,
+                        "--truth", truth], check=True, timeout=120)
+        with open(truth) as f:
+            cls.truth = json.load(f)
+        cls.capture = cls.tshark.write_text("echo.pdu.pcap", "")
+        with open(capture, "rb") as src, open(cls.capture, "wb") as dst:
+            dst.write(src.read())
+        cls.tshark._hand_over()
+        summary = subprocess.run([binary("PVTAP_BINARY"), "audit", "--summary-only", "--format",
+                                  "jsonl", capture], capture_output=True, text=True,
+                                 check=True, timeout=120).stdout.splitlines()[-1]
+        cls.summary = json.loads(summary)
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.work.cleanup()
+        super().tearDownClass()
+
+    def test_each_echo_is_one_expert_info_linked_to_its_request(self):
+        self.assertGreater(self.truth["echoes"], 50)
+        self.assertEqual(self.summary["echoes"], self.truth["echoes"])
+        for options in ([], ["-2"]):
+            rows = self.tshark.fields(self.capture, ["frame.number", "invrtu.request_in",
+                                                     "_ws.col.Info"], "invrtu.echo",
+                                      options=options)
+            self.assertEqual(len(rows), self.truth["echoes"], options)
+            for number, request_in, info in rows:
+                # The request it repeats is the frame just before it.
+                self.assertEqual([int(n) for n in request_in], [int(number[0]) - 1])
+                self.assertTrue(info[0].endswith("(echo)"), info)
+
+    def test_only_the_truths_timeouts_are_unanswered(self):
+        rows = self.tshark.fields(self.capture, ["frame.number"], "invrtu.unanswered",
+                                  options=["-2"])
+        self.assertEqual(len(rows), self.truth["summary"]["timeouts"])
+        self.assertEqual(self.summary["timeouts"], self.truth["summary"]["timeouts"])
 
 
 if __name__ == "__main__":

@@ -70,6 +70,8 @@ constexpr ExpertSpec kExperts[] = {
     {&ExpertFields::duplicate, "duplicate", PI_SEQUENCE, PI_NOTE, "Duplicate reply"},
     {&ExpertFields::address_conflict, "address_conflict", PI_SEQUENCE, PI_WARN,
      "Address conflict: a second reply with other contents"},
+    {&ExpertFields::echo, "echo", PI_SEQUENCE, PI_NOTE,
+     "Echo of a request: the tap's adapter repeating it"},
     {&ExpertFields::count_mismatch, "count_mismatch", PI_PROTOCOL, PI_WARN,
      "Byte count disagrees with the request"},
     {&ExpertFields::role_corrected, "role_corrected", PI_SEQUENCE, PI_NOTE,

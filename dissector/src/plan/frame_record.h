@@ -33,6 +33,7 @@ struct FrameRecord {
   bool unsolicited = false;
   bool duplicate = false;
   bool address_conflict = false;  // a second reply with other contents (SessionFrame)
+  bool echo = false;              // the tap's adapter repeating `echo_of` (SessionFrame)
   bool count_mismatch = false;
   bool has_latency = false;
   bool values_trusted = false;  // a good check: its values may be decoded
@@ -58,6 +59,7 @@ struct FrameRecord {
   FrameRecord* late_for = nullptr;      // unsolicited replies: a request that timed out
   FrameRecord* next_request = nullptr;  // requests given up for the next one to the station
   FrameRecord* placed_by = nullptr;     // the request whose start places a reply's words
+  FrameRecord* echo_of = nullptr;       // echoes: the request they repeat
   const std::uint8_t* bytes = nullptr;  // requests: their bytes, to decode their replies
   std::uint16_t length = 0;
 };

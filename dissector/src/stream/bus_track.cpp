@@ -60,6 +60,7 @@ void link_frame_record(FrameRecord& r, const SessionFrame& f, std::span<FrameRec
   if (f.duplicate_of) r.request = record(*f.duplicate_of);
   if (f.late_for) r.late_for = record(*f.late_for);
   if (f.placed_by) r.placed_by = record(*f.placed_by);
+  if (f.echo_of) r.echo_of = record(*f.echo_of);
 }
 
 void BusTrack::link(FrameRecord& r, const SessionFrame& f) const {
@@ -101,6 +102,7 @@ void fill_frame_record(FrameRecord& rec, const SessionFrame& f) {
   r->unsolicited = f.unsolicited;
   r->duplicate = f.duplicate;
   r->address_conflict = f.address_conflict;
+  r->echo = f.echo;
   r->values_trusted = f.values_trusted;
   if (f.latency) {
     r->has_latency = true;

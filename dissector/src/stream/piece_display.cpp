@@ -46,6 +46,7 @@ const char* info_summary(packet_info* pinfo, const FrameRecord& record, const ch
   if (record.address_conflict) {
     return wmem_strdup_printf(pinfo->pool, "%s (address conflict)", summary);
   }
+  if (record.echo) return wmem_strdup_printf(pinfo->pool, "%s (echo)", summary);
   return summary;
 }
 

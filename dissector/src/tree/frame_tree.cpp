@@ -100,6 +100,8 @@ expert_field* expert_of(ExpertFields& ei, TreeExpert expert) {
       return &ei.duplicate;
     case TreeExpert::AddressConflict:
       return &ei.address_conflict;
+    case TreeExpert::Echo:
+      return &ei.echo;
     case TreeExpert::CountMismatch:
       return &ei.count_mismatch;
     case TreeExpert::RoleCorrected:

@@ -413,6 +413,16 @@ void add_count_mismatch(Builder& b, const FrameRecord& r) {
 }
 
 void add_matching(Builder& b, const FrameRecord& r) {
+  // An echo is the request again, not one of its own: it links to the request and no further.
+  if (r.echo) {
+    if (shown(r.echo_of)) b.generated_uint(TreeField::RequestIn, r.echo_of->packet);
+    b.expert_item(TreeExpert::Echo, FieldSpan{},
+                  shown(r.echo_of) ? b.text(printed("Echo of the request in frame %u: the tap's "
+                                                    "adapter repeating it, counted once",
+                                                    r.echo_of->packet))
+                                   : nullptr);
+    return;
+  }
   // Read as a request, it echoes the pending one: a note only where the function's normal
   // reply is no echo.
   if (r.role_corrected && !reply_is_echo(r.dialect, r.function)) {

@@ -60,6 +60,7 @@ enum class TreeExpert : std::uint8_t {
   LateReply,
   Duplicate,
   AddressConflict,  // a second reply with other contents: two devices at one address
+  Echo,             // a request repeated at once by the tap's adapter
   CountMismatch,
   RoleCorrected,
   StartUnknown,

@@ -162,6 +162,7 @@ const char* name_of(TreeExpert expert) {
                                            "LateReply",
                                            "Duplicate",
                                            "AddressConflict",
+                                           "Echo",
                                            "CountMismatch",
                                            "RoleCorrected",
                                            "StartUnknown",
