@@ -5,7 +5,9 @@ found within 3 %, each truth master's poll blocks in the plan of the master of t
 the finding in the text report, and requests sent while another's reply was due counted.
 Then a second device answering to one inverter's address: every second reply it gave is an
 address conflict of that station (and not a duplicate), whether the bytes come as exported
-PDUs or as a USER0 serial stream, with the finding in the text and HTML reports.
+PDUs or as a USER0 serial stream, with the finding in the text and HTML reports. Last, a tap
+whose adapter echoes every request: each echo counted once, as the truth's, by both roads,
+and the requests, replies and timeouts those of the truth, as if there were no echo.
 
 usage: check_shared_bus.py PVTAP PVTAP_SIM SCRATCH_DIR
 """
@@ -56,6 +58,7 @@ def main():
     if "FINDING: 2 masters on one bus" not in text:
         bad.append("the text report has no finding of two masters")
     check_address_conflict(pvtap, sim, scratch, bad)
+    check_echo(pvtap, sim, scratch, bad)
     for line in bad:
         print("shared bus:", line)
     return 1 if bad else 0
@@ -116,6 +119,46 @@ def check_address_conflict(pvtap, sim, scratch, bad):
     with open(page, encoding="utf-8") as f:
         if "Two devices answer to station 2" not in f.read():
             bad.append("the HTML report has no address-conflict finding")
+
+
+def check_echo(pvtap, sim, scratch, bad):
+    pdu = os.path.join(scratch, "echo.pdu.pcap")
+    user0 = os.path.join(scratch, "echo.user0.pcap")
+    truth_path = os.path.join(scratch, "echo.truth.json")
+    subprocess.run([sim, "--seed", "5", "--inverters", "3", "--period", "1", "--echo",
+                    "--faults", "missing=5,duplicate=3,corrupt=3", "--duration", "60",
+                    "--pdu", pdu, "--chunked", user0, "--truth", truth_path], check=True)
+    with open(truth_path, encoding="utf-8") as f:
+        truth = json.load(f)
+    echoed = sum(1 for e in truth["events"] if e.get("fault") == "echo")
+    if echoed != truth["echoes"] or echoed < 100 or truth["summary"]["timeouts"] == 0:
+        bad.append(f"the echo run's truth: {echoed} echo events, {truth['echoes']} echoes, "
+                   f"{truth['summary']['timeouts']} timeouts")
+    for capture in (pdu, user0):
+        run = subprocess.run([pvtap, "audit", "--summary-only", "--format", "jsonl", capture],
+                             capture_output=True, text=True, check=True)
+        summary = json.loads(run.stdout.splitlines()[-1])
+        name = os.path.basename(capture)
+        found = {key: summary.get(key) for key in ("echoes", "requests", "responses", "timeouts")}
+        want = {"echoes": truth["echoes"]}
+        want.update({key: truth["summary"][key] for key in ("requests", "responses", "timeouts")})
+        if found != want:
+            bad.append(f"{name}: {found}, truth {want}")
+        if summary["frames"] != truth["summary"]["frames"] + truth["echoes"]:
+            bad.append(f"{name}: {summary['frames']} frames on the line, truth "
+                       f"{truth['summary']['frames']} and {truth['echoes']} echoes")
+        if len(summary["buses"][0].get("masters", [])) != 1:
+            bad.append(f"{name}: the echoes made {summary['buses'][0].get('masters')} masters")
+    text = subprocess.run([pvtap, "audit", "--summary-only", pdu], capture_output=True,
+                          text=True, check=True).stdout
+    line = f"echoes: {truth['echoes']} of {truth['summary']['requests']} requests seen twice"
+    if line not in text:
+        bad.append(f"the text report lacks {line!r}")
+    listed = subprocess.run([pvtap, "audit", "--format", "jsonl", pdu], capture_output=True,
+                            text=True, check=True).stdout.splitlines()
+    echoes = [json.loads(l) for l in listed if '"echo":true' in l]
+    if len(echoes) != truth["echoes"] or any(e["role"] != "request" for e in echoes):
+        bad.append(f"{len(echoes)} frame records say echo, truth {truth['echoes']}")
 
 
 if __name__ == "__main__":
