@@ -30,6 +30,9 @@ PVTAP_PACKAGES=(
   libpcap-dev
   libcli11-dev
   python3
+  # pvtap --version's test hides plugin files with unshare and mount --bind (mount left
+  # Debian's essential set: a minimal root has unshare without it).
+  mount
   # Packaging (scripts/package and its tests): man pages from --help, CPack's dependency
   # computation (dpkg-shlibdeps needs file), the package check, man, the completion test.
   help2man

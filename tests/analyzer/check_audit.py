@@ -383,8 +383,8 @@ def mode_version(options, checks):
     if len(lines) == 2 and lines[1].startswith("Wireshark plugin: not built (Wireshark's"):
         print("SKIP: configured without Wireshark's development files, no plugin to name")
         return
-    if os.geteuid() != 0 or shutil.which("unshare") is None:
-        print("SKIP: hiding plugin files needs root and unshare")
+    if os.geteuid() != 0 or shutil.which("unshare") is None or shutil.which("mount") is None:
+        print("SKIP: hiding plugin files needs root, unshare and mount")
         return
     home = tempfile.mkdtemp(prefix="pvtap-version-")
     try:
@@ -393,7 +393,8 @@ def mode_version(options, checks):
             result = version_in(options.pvtap, hidden, home)
             line = result.stdout.splitlines()[1:2]
             match = PLUGIN_LINE.fullmatch(line[0]) if line else None
-            checks.true(f"the plugin line reads as one: {result.stdout!r}", match is not None)
+            checks.true(f"the plugin line reads as one: {result.stdout!r} {result.stderr!r}",
+                        match is not None)
             if match is None:
                 return
             if match.group(4):
