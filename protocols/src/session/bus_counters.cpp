@@ -19,7 +19,7 @@ constexpr bool holds_counters(std::size_t n) {
 static_assert(holds_counters<ReassemblerTotals>(6), "add the new counter up below");
 static_assert(holds_counters<RoleCounts>(2), "add the new counter up below");
 static_assert(holds_counters<GapTally>(3), "add the new counter up below");
-static_assert(holds_counters<BusCounters>(6 + 2 + kDialectCount * 2 + 1 + 1 + 2 + 4 + 14 + 3),
+static_assert(holds_counters<BusCounters>(6 + 2 + kDialectCount * 2 + 1 + 1 + 2 + 4 + 16 + 3),
               "add the new counter up below");
 
 RoleCounts& operator+=(RoleCounts& a, const RoleCounts& b) {
@@ -70,6 +70,8 @@ BusCounters& BusCounters::operator+=(const BusCounters& o) {
   duplicates += o.duplicates;
   address_conflicts += o.address_conflicts;
   echoes += o.echoes;
+  collisions += o.collisions;
+  lost_in_collision += o.lost_in_collision;
   count_mismatches += o.count_mismatches;
   role_corrections += o.role_corrections;
   dialect_changes += o.dialect_changes;

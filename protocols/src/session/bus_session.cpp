@@ -13,6 +13,7 @@
 #include "pvtap/session/station_rule.h"
 #include "pvtap/statistics/bus_timing.h"
 #include "session/bus_tally.h"
+#include "session/collision_tally.h"
 #include "session/reply_values.h"
 #include "session/session_times.h"
 #include "session/station_dialects.h"
@@ -27,6 +28,7 @@ struct BusSession::Impl {
     void on_noise(const NoiseEvent& e) override {
       const SessionNoise noise{e, direction};
       owner.tally.add_noise(noise);
+      if (owner.options.has_timestamps) owner.collisions.add_damage(e.start_time, e.end_time);
       owner.sink.on_noise(noise);
     }
 
@@ -42,6 +44,8 @@ struct BusSession::Impl {
         matcher(matcher_config(o)),
         times(options),
         replies(d, options),
+        collisions(BusTiming(o.reassembler.baud, o.reassembler.bits_per_char).t35,
+                   o.matcher.timeout),
         station_dialects(o.reassembler.dialects, d),
         decoder(d) {}
 
@@ -92,6 +96,7 @@ struct BusSession::Impl {
   // carrier took it away.
   void on_frame(Direction direction, const FrameEvent& e, std::span<const std::uint8_t> wire);
   void handle_parsed(SessionFrame& out, const FrameEvent& e, std::uint32_t content);
+  void note_for_collisions(const SessionFrame& out);
   // Timeouts come before the frame that made them due.
   void report(std::span<const Timeout> timeouts) {
     for (const Timeout& t : timeouts) report(t);
@@ -107,6 +112,7 @@ struct BusSession::Impl {
   detail::SessionTimes times;
   detail::ReplyValues replies;
   detail::BusTally tally;
+  detail::CollisionTally collisions;
   detail::StationDialects station_dialects;
   const RegisterDecoder& decoder;
   // Each dialect's map as the decoder gives it, looked up at its first frame: a per-frame
@@ -186,6 +192,7 @@ void BusSession::Impl::report(const Timeout& t) {
     out.kind = UnansweredKind::DamagedRequest;
   }
   tally.add_timeout(out);
+  if (options.has_timestamps) collisions.add_timeout(out);
   sink.on_timeout(out);
 }
 
@@ -225,7 +232,19 @@ void BusSession::Impl::on_frame(Direction direction, const FrameEvent& e,
         static_cast<std::uint8_t>(static_cast<unsigned>(out.dialect) + 1);
   }
   tally.add_frame(out);
+  note_for_collisions(out);
   sink.on_frame(out);
+}
+
+void BusSession::Impl::note_for_collisions(const SessionFrame& out) {
+  if (!options.has_timestamps || out.echo) return;
+  if (!out.check.ok) {
+    collisions.add_damage(out.start_time, out.end_time);
+  } else if (out.role == Role::Request) {
+    collisions.add_request(out);
+  } else {
+    collisions.add_other_frame(out);
+  }
 }
 
 void BusSession::Impl::handle_parsed(SessionFrame& out, const FrameEvent& e,
@@ -475,6 +494,13 @@ BusReport BusSession::report() const {
   // Without timestamps (or a cycle) no master is told apart: the requests are one master's.
   if (r.timing.masters.empty() && r.requests > 0)
     r.timing.masters.push_back(MasterPlan{0, {}, r.requests, 1.0, std::nullopt});
+  // The traces of a collision on a bus of one master are line damage (CollisionTally). A
+  // second master shows by its cycle, or, on a bus too busy for cycles to show, by requests
+  // sent while another's reply was due.
+  if (r.timing.masters.size() >= 2 || r.timing.requests_while_reply_due >= kSecondMasterRequests) {
+    r.collisions = m.collisions.candidates();
+    r.lost_in_collision = m.collisions.lost_requests();
+  }
   m.tally.fill_stations(r);
   const auto readings = m.replies.latest();
   const auto inferred = m.replies.inferred();

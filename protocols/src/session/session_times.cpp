@@ -33,21 +33,19 @@ void SessionTimes::add(const SessionFrame& out, const Frame& frame,
   if (out.echo) {
     FrameTiming echo;
     echo.end_time = out.end_time;
-    if (!untrusted_) timing_.add_echo(echo);
+    timing_.add_echo(echo);
     return;
   }
   // With timestamps declared too coarse the bus gaps are never judged (the report says why
-  // instead): requests alone give the poll periods, and no frame feeds the gap statistics.
+  // instead): no frame feeds the gap statistics, but the requests' poll periods and their
+  // order against replies (a frame's span is placed within a batch) are still kept.
+  const FrameTiming timing{out.id,         frame.dialect,  out.role,     frame.station,
+                           frame.function, out.start_time, out.end_time, max_inner_gap,
+                           frame.start,    frame.count,    out.check.ok};
   if (untrusted_) {
-    if (out.role == Role::Request) {
-      timing_.add_frame_without_gaps(FrameTiming{
-          out.id, frame.dialect, out.role, frame.station, frame.function, out.start_time,
-          out.end_time, max_inner_gap, frame.start, frame.count, out.check.ok});
-    }
+    timing_.add_frame_without_gaps(timing);
   } else {
-    timing_.add_frame(FrameTiming{out.id, frame.dialect, out.role, frame.station, frame.function,
-                                  out.start_time, out.end_time, max_inner_gap, frame.start,
-                                  frame.count, out.check.ok});
+    timing_.add_frame(timing);
   }
   if (out.latency) timing_.add_latency(station, *out.latency);
 }

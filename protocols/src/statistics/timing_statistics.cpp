@@ -30,6 +30,7 @@ void TimingStatistics::add_frame(const FrameTiming& frame) {
 
 void TimingStatistics::add_frame_without_gaps(const FrameTiming& frame) {
   if (frame.role == Role::Request && frame.check_ok) add_poll(frame, std::nullopt);
+  note_order(frame);
 }
 
 void TimingStatistics::add_echo(const FrameTiming& echo) {

@@ -171,6 +171,12 @@ struct GapTally {
   std::uint64_t gaps_of_unknown_size = 0;
 };
 
+// A bus whose poll cycles tell no second master still has one when this many requests went
+// out while another request's reply was due (TimingReport::requests_while_reply_due), which
+// one master never does: 0 on every bus of one master in the sample library and the real
+// recordings, tens a minute on a shared bus. Collisions are counted on such a bus too.
+inline constexpr std::uint64_t kSecondMasterRequests = 3;
+
 // BusCounters: every counter of one bus, added up in one way (operator+=, which fails to
 // compile when a counter is added here and not there).
 struct BusCounters {
@@ -194,6 +200,11 @@ struct BusCounters {
   std::uint64_t duplicates = 0;
   std::uint64_t address_conflicts = 0;  // second replies that differ (SessionFrame)
   std::uint64_t echoes = 0;             // requests the tap's adapter echoed (SessionFrame)
+  // On a bus of two or more masters (kSecondMasterRequests): stretches of garbage where two
+  // talked at once, and the requests whose reply was due while one happened (also among the
+  // timeouts).
+  std::uint64_t collisions = 0;
+  std::uint64_t lost_in_collision = 0;
   std::uint64_t count_mismatches = 0;
   std::uint64_t role_corrections = 0;
   std::uint64_t dialect_changes = 0;       // a station's frames said it changed dialect

@@ -93,7 +93,8 @@ class TimingStatistics {
 
   void add_frame(const FrameTiming& frame);
   // A frame of a bus whose silences are never judged (timestamps declared too coarse: a
-  // gateway's segments): only a request's poll period is kept, the gap statistics are spared.
+  // gateway's segments): a request's poll period and the order of requests and replies are
+  // kept, the gap statistics are spared.
   void add_frame_without_gaps(const FrameTiming& frame);
   // A request's echo (the tap's adapter repeating it): the line was busy until its end, but it
   // is neither a poll nor a gap of the bus's own.
