@@ -227,6 +227,10 @@ def compare_conflicts(summary, truth, bad):
              if s.get("address_conflicts") != 0}
     if found != want:
         bad.add(f"address conflicts by station: audit {found}, truth {want}")
+    collisions = len(truth.get("collisions", []))
+    if summary.get("collisions") != collisions or (collisions == 0 and
+                                                   summary.get("lost_in_collision") != 0):
+        bad.add(f"collisions: audit {summary.get('collisions')}, truth {collisions}")
 
 
 def compare_stations(summary, truth, bad):

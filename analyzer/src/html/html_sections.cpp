@@ -243,6 +243,13 @@ void bus_findings(std::string& o, const AuditReport& r, const BusFindings& bus, 
         "repeating what its master sent. Each is counted once, as one request.</p>\n",
         u(b.echoes), u(b.requests));
   }
+  if (b.collisions > 0) {
+    o += report_line(
+        "<p class=\"finding\">Collisions: %llu on a bus of more than one master (two "
+        "transmissions at once: bytes of no frame, or two requests overlapping); %llu requests "
+        "were lost in a collision, counted among the %llu timeouts.</p>\n",
+        u(b.collisions), u(b.lost_in_collision), u(b.timeouts));
+  }
   exception_list(o, b, first);
   o += report_line("<h4%s>Noise: %llu bytes in %llu runs</h4>\n",
                    id_attr(first, "findings-noise").c_str(), u(b.bytes.noise_bytes),

@@ -45,6 +45,12 @@ constexpr std::array kTerms = {
     GlossaryTerm{"echo", "echoes",
                  "a request seen twice, back to back and byte for byte: the tap's own adapter "
                  "repeating what its master sent; counted once, as one request"},
+    GlossaryTerm{"collision", "collisions",
+                 "two transmissions at once on a bus of more than one master: bytes that belong "
+                 "to no frame, or two requests overlapping"},
+    GlossaryTerm{"lost in a collision", "lost_in_collision",
+                 "a request whose reply was due while a collision happened (counted among the "
+                 "timeouts)"},
     GlossaryTerm{"byte count mismatch", "byte_count_mismatches",
                  "a frame whose byte count disagrees with its request or with the quantity it "
                  "carries"},

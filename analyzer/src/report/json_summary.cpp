@@ -260,6 +260,8 @@ void buses(std::string& o, const AuditReport& report) {
     append_json_key(o, "masters");
     masters(o, bus.report);
     append_json_count(o, "requests_while_reply_due", bus.report.timing.requests_while_reply_due);
+    append_json_count(o, "collisions", bus.report.collisions);
+    append_json_count(o, "lost_in_collision", bus.report.lost_in_collision);
     o += '}';
   }
   o += ']';
@@ -325,6 +327,8 @@ void details(std::string& o, const AuditReport& report, const BusReport& t) {
   append_json_count(o, "duplicates", t.duplicates);
   append_json_count(o, "address_conflicts", t.address_conflicts);
   append_json_count(o, "echoes", t.echoes);
+  append_json_count(o, "collisions", t.collisions);
+  append_json_count(o, "lost_in_collision", t.lost_in_collision);
   append_json_count(o, "byte_count_mismatches", t.count_mismatches);
   // Findings of plain Modbus traffic: only where there are some, so that a report of
   // inverters alone keeps its shape.

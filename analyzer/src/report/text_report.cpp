@@ -302,6 +302,13 @@ void findings(const AuditReport& r, const BusFindings& bus, std::string& o) {
         "what its master sent; each counted once, as one request)",
         u(b.echoes), u(b.requests));
   }
+  if (b.collisions > 0) {
+    o += report_line(
+        "FINDING: %llu collisions on a bus of more than one master (two transmissions at once: "
+        "bytes of no frame, or two requests overlapping); %llu requests lost in a collision, "
+        "counted among the %llu timeouts",
+        u(b.collisions), u(b.lost_in_collision), u(b.timeouts));
+  }
   if (b.quantity_problems > 0) {
     o += report_line("requests asking a quantity out of the specification's range: %llu",
                      u(b.quantity_problems));
@@ -384,6 +391,11 @@ void masters(const AuditReport& r, const BusReport& b, std::string& o) {
         "FINDING: %zu masters on one bus: %zu independent poll cycles (%s); %llu "
         "requests sent while another request's reply was due",
         list.size(), list.size(), cycles.c_str(), u(b.timing.requests_while_reply_due));
+  } else if (b.timing.requests_while_reply_due >= kSecondMasterRequests) {
+    o += report_line(
+        "FINDING: more than one master on this bus: %llu requests sent while another "
+        "request's reply was due (the bus is too busy for their poll cycles to show)",
+        u(b.timing.requests_while_reply_due));
   }
   o += report_line("masters: %zu (told apart by their poll cycles)", list.size());
   for (std::size_t i = 0; i < list.size(); ++i) {
