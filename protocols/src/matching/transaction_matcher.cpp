@@ -22,6 +22,15 @@ bool is_unanswered_broadcast(const FrameSummary& f, bool check_ok) {
   return may_broadcast(f.function) || broadcast_not_allowed(f, check_ok);
 }
 
+// A good reply whose length is what the request asked for (or whose function has no such
+// rule). Where two masters poll one station, a reply of the wrong length answers the other's
+// request: two such replies are not two devices.
+bool fits(const FrameSummary& request, const ObservedFrame& reply) {
+  if (!reply.check_ok) return false;
+  const auto counts = compare_reply_count(request, reply.frame);
+  return !counts || counts->matches();
+}
+
 }  // namespace
 
 TransactionMatcher::TransactionMatcher(MatcherConfig config) : config_(config) {}
@@ -155,7 +164,7 @@ bool TransactionMatcher::try_answer(const ObservedFrame& in, FrameMatch& out) {
   if (own.state == SlotState::Pending && answers(own.request.frame, in.frame)) {
     complete(own, in, out);
     slots_.settle(own, SlotState::Answered);
-    own.answer = in.check_ok ? in.content : 0;
+    own.answer = fits(own.request.frame, in) ? in.content : 0;
     return true;
   }
   Slot& broadcast = slots_[RequestSlots::kBroadcast];
@@ -191,8 +200,8 @@ bool TransactionMatcher::try_duplicate(const ObservedFrame& in, FrameMatch& out)
   }
   if (original == nullptr) return false;
   // A broadcast's window keeps no reply's content: each station answers it once.
-  const bool other_content = original == &own && in.check_ok && in.content != 0 &&
-                             own.answer != 0 && in.content != own.answer;
+  const bool other_content = original == &own && in.content != 0 && own.answer != 0 &&
+                             in.content != own.answer && fits(own.request.frame, in);
   out.duplicate = DuplicateReply{in.id,
                                  original->request.id,
                                  in.frame.dialect,

@@ -469,6 +469,27 @@ TEST(TransactionMatcherEcho, AWritesEchoComesAtOnceItsEarlyReplyLater) {
   EXPECT_TRUE(sink.timeouts.empty());
 }
 
+// Two masters poll one station: the second request gives up the first, and the station answers
+// both in turn. The first reply has the length of the first request, not of the one it is
+// paired with, so the second reply is no second device.
+TEST_F(TransactionMatcherTest, RepliesToTwoMastersAreNoAddressConflict) {
+  const auto reply = [](std::uint64_t id, double start, std::uint8_t n, std::uint32_t content) {
+    ObservedFrame o =
+        observed(id, rtu_reply(Dialect::Modbus, 2, fc::kGslReadHolding, n), start, start + 0.009);
+    o.content = content;
+    return o;
+  };
+  matcher.on_frame(
+      observed(1, test::read_request(Dialect::Modbus, 2, fc::kGslReadHolding, 0, 2), 0.0, 0.008));
+  matcher.on_frame(
+      observed(2, test::read_request(Dialect::Modbus, 2, fc::kGslReadHolding, 10, 4), 0.01, 0.018));
+  matcher.on_frame(reply(3, 0.05, 4, 0xABCD0009));
+  matcher.on_frame(reply(4, 0.08, 8, 0x1234000D));
+  ASSERT_EQ(sink.mismatches.size(), 1u);
+  ASSERT_EQ(sink.duplicates.size(), 1u);
+  EXPECT_FALSE(sink.duplicates[0].other_content);
+}
+
 TEST_F(TransactionMatcherTest, HybridByteCountMismatch) {
   // The seed's own example: a 0x17 read of 0x49 registers answered with n = 0x5E.
   matcher.on_frame(

@@ -69,8 +69,9 @@ struct UnsolicitedReply {
 };
 
 // DuplicateReply: a station answered the same request again with no new request in between.
-// When both replies had good checks and their bytes differ, two devices answer to one
-// address (an address conflict): a device repeating itself sends the same bytes again.
+// When both replies had good checks and the length the request asked for, and their bytes
+// differ, two devices answer to one address (an address conflict): a device repeating itself
+// sends the same bytes again, and a reply of another length answers another master's request.
 struct DuplicateReply {
   std::uint64_t response_id = 0;
   std::uint64_t original_request_id = 0;

@@ -29,7 +29,8 @@ class RequestSlots {
   struct Slot {
     State state = State::Idle;
     RequestRecord request;
-    // Answered: the content of the reply with a good check that answered it (0: none had).
+    // Answered: the content of the reply that answered it with a good check and the length it
+    // asked for (0: none did).
     std::uint32_t answer = 0;
   };
   static constexpr std::size_t kBroadcast = 256;  // after the 256 stations
