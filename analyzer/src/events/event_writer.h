@@ -15,6 +15,9 @@ struct EventContext {
   bool has_timestamps = true;
   // Times count from a logic recording's start: there is no wall clock to read them by.
   bool from_recording_start = false;
+  // The bus's session, for a writer that publishes what only it can say as it goes (MQTT
+  // health: masters, collisions); null where the events come from no session.
+  const BusSession* session = nullptr;
 };
 
 // DriverGlitchEvent: a byte an RS485 driver put on the line as it switched on (right before a

@@ -6,7 +6,7 @@
 
 namespace pvtap::analyzer {
 
-const HealthField kHealthFields[18] = {
+const HealthField kHealthFields[22] = {
     {"frames", "frames", "", true},
     {"damaged_frames", "bad checks", "", true},
     {"timeouts", "timeouts", "", true},
@@ -14,6 +14,10 @@ const HealthField kHealthFields[18] = {
     {"exceptions", "exceptions", "", true},
     {"unsolicited", "unsolicited replies", "", true},
     {"address_conflicts", "address conflicts", "", true},
+    {"masters", "masters", "", false},
+    {"collisions", "collisions", "", true},
+    {"lost_in_collision", "requests lost in a collision", "", true},
+    {"echoes", "echoed requests", "", true},
     {"noise_bytes", "noise bytes", "", true},
     {"gaps", "gaps", "", true},
     {"latency_p50_ms", "latency p50", "ms", false},
@@ -83,6 +87,10 @@ void append_health_json(std::string& out, const BusHealth& h, const HealthContex
   append_json_count(out, "exceptions", e.exceptions);
   append_json_count(out, "unsolicited", e.unsolicited);
   append_json_count(out, "address_conflicts", e.address_conflicts);
+  append_json_count(out, "masters", c.sharing.masters);
+  append_json_count(out, "collisions", c.sharing.collisions);
+  append_json_count(out, "lost_in_collision", c.sharing.lost_in_collision);
+  append_json_count(out, "echoes", c.sharing.echoes);
   append_json_count(out, "noise_bytes", e.noise_bytes);
   append_json_count(out, "gaps", e.gaps.gaps);
   append_latency(out, "latency", h.latency_interval);

@@ -39,6 +39,7 @@ struct HealthContext {
   std::size_t poll_blocks_missing = 0;  // not seen for three of their periods
   std::uint64_t events_queued = 0;      // waiting for the broker
   std::uint64_t events_dropped = 0;     // the queue was full
+  BusSharing sharing;                   // masters, collisions and echoes, as the report has them
 };
 
 // The names of the health counters, in the order of the JSON (Home Assistant's diagnostic
@@ -49,7 +50,7 @@ struct HealthField {
   std::string_view unit;  // empty for counts
   bool counter;           // only grows (total_increasing)
 };
-extern const HealthField kHealthFields[18];
+extern const HealthField kHealthFields[22];
 
 // {"ts":...,"interval_s":10,"frames":...,"latency_p50_ms":...,...,"line_errors":{...},
 // "bus":"..."}; latency fields are null while no reply was timed, line_errors where the

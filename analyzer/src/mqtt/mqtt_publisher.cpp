@@ -32,13 +32,19 @@ MqttPublisher::~MqttPublisher() {
   }
 }
 
+MqttBus& MqttPublisher::bus_of(const EventContext& c) {
+  MqttBus& bus = retained_.bus(c.bus);
+  if (c.session) bus.session = c.session;
+  return bus;
+}
+
 void MqttPublisher::publish_event(const MqttBus& bus, std::string line) {
   schedule_.pace(*client_);
   client_->publish_event(topics_.events(bus.level), std::move(line));
 }
 
 void MqttPublisher::frame(const EventContext& c, const SessionFrame& f) {
-  MqttBus& bus = retained_.bus(c.bus);
+  MqttBus& bus = bus_of(c);
   bus.health.count(f);
   bus.stations.record(f);
   if (is_event(f)) publish_event(bus, lines_.frame(c, f));
@@ -46,18 +52,18 @@ void MqttPublisher::frame(const EventContext& c, const SessionFrame& f) {
 }
 
 void MqttPublisher::timeout(const EventContext& c, const SessionTimeout& t) {
-  MqttBus& bus = retained_.bus(c.bus);
+  MqttBus& bus = bus_of(c);
   bus.health.count(t);
   if (t.kind != UnansweredKind::Timeout) return;
   publish_event(bus, lines_.timeout(c, t));
 }
 
 void MqttPublisher::noise(const EventContext& c, const SessionNoise& n) {
-  retained_.bus(c.bus).health.count(n);
+  bus_of(c).health.count(n);
 }
 
 void MqttPublisher::gap(const EventContext& c, const SessionGap& g) {
-  MqttBus& bus = retained_.bus(c.bus);
+  MqttBus& bus = bus_of(c);
   bus.health.count(g);
   publish_event(bus, lines_.gap(c, g));
 }

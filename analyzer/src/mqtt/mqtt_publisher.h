@@ -52,6 +52,7 @@ class MqttPublisher : public EventWriter {
                 bool live);
 
   void publish_event(const MqttBus& bus, std::string line);
+  MqttBus& bus_of(const EventContext& c);
 
   std::unique_ptr<MqttClient> client_;
   MqttTopics topics_;

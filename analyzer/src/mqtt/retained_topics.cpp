@@ -124,6 +124,7 @@ void RetainedTopics::publish_health(MqttBus& bus, double now) {
   c.poll_blocks_missing = bus.stations.blocks_missing(now);
   c.events_queued = client_.events_queued();
   c.events_dropped = client_.events_dropped();
+  if (bus.session) c.sharing = bus.session->sharing();
   scratch_.clear();
   append_health_json(scratch_, bus.health, c);
   client_.publish_retained(topics_.health(bus.level), scratch_, 0);

@@ -23,6 +23,9 @@ struct MqttBus {
   StationTable stations;
   BusHealth health;
   bool health_discovered = false;
+  // Its session, which alone says how many masters share it and where they collided; null
+  // until an event from a session came.
+  const BusSession* session = nullptr;
 };
 
 // Each station's availability, values and state, the discovery configs of registers seen for

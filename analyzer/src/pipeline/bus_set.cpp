@@ -19,6 +19,7 @@ class BusOutput : public BusSessionSink {
   void on_noise(const SessionNoise& n) override { events_.noise(context_, n); }
   void on_gap(const SessionGap& g) override { events_.gap(context_, g); }
   const std::string& name() const { return name_; }
+  void attach(const BusSession& session) { context_.session = &session; }
 
  private:
   std::string name_;
@@ -32,7 +33,9 @@ struct BusSet::Bus {
   Bus(const std::string& name, const BusSessionOptions& options, const RegisterDecoder& decoder,
       bool from_recording_start, EventWriter& events)
       : output(name, options.has_timestamps, from_recording_start, events),
-        session(options, decoder, output) {}
+        session(options, decoder, output) {
+    output.attach(session);
+  }
   BusOutput output;
   BusSession session;
 };

@@ -104,6 +104,7 @@ struct BusSession::Impl {
   void report(const Timeout& t);
   TimestampQuality timestamp_quality() const;
   ReassemblerTotals totals() const;
+  BusSharing sharing(const TimingReport& timing) const;
 
   BusSessionOptions options;
   BusSessionSink& sink;
@@ -482,6 +483,25 @@ ReassemblerTotals BusSession::totals() const {
   return impl_->totals();
 }
 
+BusSharing BusSession::Impl::sharing(const TimingReport& timing) const {
+  BusSharing s;
+  const BusCounters& c = tally.counters();
+  s.masters = !timing.masters.empty() ? timing.masters.size() : c.requests > 0 ? 1 : 0;
+  s.echoes = c.echoes;
+  // The traces of a collision on a bus of one master are line damage (CollisionTally). A
+  // second master shows by its cycle, or, on a bus too busy for cycles to show, by requests
+  // sent while another's reply was due.
+  if (s.masters >= 2 || timing.requests_while_reply_due >= kSecondMasterRequests) {
+    s.collisions = collisions.candidates();
+    s.lost_in_collision = collisions.lost_requests();
+  }
+  return s;
+}
+
+BusSharing BusSession::sharing() const {
+  return impl_->sharing(impl_->times.report(impl_->timestamp_quality()));
+}
+
 BusReport BusSession::report() const {
   const Impl& m = *impl_;
   BusReport r;
@@ -491,16 +511,12 @@ BusReport BusSession::report() const {
   r.first_time = m.times.first();
   r.last_time = m.times.last();
   r.timing = m.times.report(m.timestamp_quality());
+  const BusSharing shared = m.sharing(r.timing);
   // Without timestamps (or a cycle) no master is told apart: the requests are one master's.
-  if (r.timing.masters.empty() && r.requests > 0)
+  if (r.timing.masters.empty() && shared.masters == 1)
     r.timing.masters.push_back(MasterPlan{0, {}, r.requests, 1.0, std::nullopt});
-  // The traces of a collision on a bus of one master are line damage (CollisionTally). A
-  // second master shows by its cycle, or, on a bus too busy for cycles to show, by requests
-  // sent while another's reply was due.
-  if (r.timing.masters.size() >= 2 || r.timing.requests_while_reply_due >= kSecondMasterRequests) {
-    r.collisions = m.collisions.candidates();
-    r.lost_in_collision = m.collisions.lost_requests();
-  }
+  r.collisions = shared.collisions;
+  r.lost_in_collision = shared.lost_in_collision;
   m.tally.fill_stations(r);
   const auto readings = m.replies.latest();
   const auto inferred = m.replies.inferred();

@@ -25,6 +25,8 @@ class BusTally {
   void add_noise(const SessionNoise& n) { events_.add(n); }
   void add_transaction(const Transaction& t);
   const EventTally& events() const { return events_; }
+  // What EventTally does not count (requests, echoes, ...), as fill() writes them.
+  const BusCounters& counters() const { return counts_; }
 
   // Writes the counters and examples into `r` (byte totals, timing and values come from
   // elsewhere: its bytes are zero here).

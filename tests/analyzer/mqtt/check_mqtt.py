@@ -5,7 +5,7 @@ with --format jsonl and --mqtt at once, and what reached the broker is judged ag
 jsonl lines of the same run.
 
 usage: check_mqtt.py --pvtap PVTAP --sim PVTAP_SIM --scratch DIR CHECK
-checks: values availability outage bad_login tls unreachable replay
+checks: values availability outage bad_login tls unreachable replay raw shared_bus
 """
 import argparse
 import json
@@ -139,6 +139,15 @@ def check_values_and_events(sub, prefix, lines, bad, discovery=True):
                           ("address_conflicts", "address_conflicts")):
             bad.check(health.get(key) == summary[skey],
                       f"health {key} {health.get(key)}, summary {skey} {summary[skey]}")
+        check_sharing(health, summary, bad)
+
+
+def check_sharing(health, summary, bad):
+    """The health's masters, collisions and echoes are the summary's."""
+    want = {key: summary[key] for key in ("collisions", "lost_in_collision", "echoes")}
+    want["masters"] = len(summary["buses"][0]["masters"])
+    got = {key: health.get(key) for key in want}
+    bad.check(got == want, f"health {got}, summary {want}")
 
 
 def sniff_run(args, broker, prefix, name, *extra, pcap=None):
@@ -383,6 +392,40 @@ def check_replay(args):
     return bad.exit_status("replay")
 
 
+def check_shared_bus(args):
+    """On a bus of two masters that collide, and on one whose tap echoes its master, the
+    health's masters, collisions and echoes are the audit's summary's, by the same rules."""
+    bad = Failures()
+    runs = {"masters": ["--seed", "37", "--inverters", "2", "--timeout", "0.3", "--masters", "2"],
+            "echo": ["--seed", "5", "--inverters", "3", "--echo"]}
+    for name, sim_args in runs.items():
+        capture = os.path.join(args.scratch, f"shared-{name}.pdu.pcap")
+        subprocess.run([args.sim, *sim_args, "--period", "1", "--duration", "60",
+                        "--pdu", capture], check=True, timeout=GUARD_S)
+        broker = Broker(args.scratch, "shared-" + name)
+        sub = Subscriber(broker)
+        prefix = "test/shared"
+        run = subprocess.run([args.pvtap, "audit", "--summary-only", "--format", "jsonl", capture,
+                              *mqtt_args(broker, prefix)],
+                             capture_output=True, text=True, timeout=GUARD_S)
+        bad.check(run.returncode == 0, f"{name}: audit exit {run.returncode}: {run.stderr}")
+        summary = json.loads(run.stdout.splitlines()[-1])
+        topic = f"{prefix}/bus/health"
+        sub.wait_for(lambda m: json.loads(dict((t, p) for t, p, _ in m).get(topic, "{}"))
+                     .get("frames") == summary["frames"])
+        health = json.loads(sub.latest(prefix).get(topic, "{}"))
+        check_sharing(health, summary, bad)
+        if name == "masters":
+            bad.check(health.get("masters") == 2 and health.get("collisions", 0) > 0,
+                      f"two masters that collide: health {health}")
+        else:
+            bad.check(health.get("masters") == 1 and health.get("echoes", 0) > 0,
+                      f"an echoing tap: health {health}")
+        sub.close()
+        broker.stop()
+    return bad.exit_status("shared_bus")
+
+
 def check_raw(args):
     """MQTT publishes mapped values only; --mqtt-raw adds the words no map names (a meter's
     floats, an IO module's registers), keyed by table and address, as the summary has them."""
@@ -418,7 +461,8 @@ def check_raw(args):
 
 
 CHECKS = {"raw": check_raw, "values": check_values, "availability": check_availability, "outage": check_outage, "bad_login": check_bad_login,
-          "tls": check_tls, "unreachable": check_unreachable, "replay": check_replay}
+          "tls": check_tls, "unreachable": check_unreachable, "replay": check_replay,
+          "shared_bus": check_shared_bus}
 
 
 def main():

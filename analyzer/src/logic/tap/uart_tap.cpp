@@ -127,14 +127,14 @@ void UartTap::report_line_error(const Slot& s, const UartCharacter& c) {
                     : c.framing_error                   ? Kind::framing
                                                         : Kind::parity;
   const double rate = sample_rate_;
-  events_.line_error(EventContext{s.tapped.channel.name, true, true},
+  events_.line_error(EventContext{s.tapped.channel.name, true, true, nullptr},
                      LineErrorEvent{static_cast<double>(c.start) / rate,
                                     static_cast<double>(c.end - c.start) / rate,
                                     static_cast<std::uint8_t>(c.value), kind});
 }
 
 void UartTap::feed_bus(Slot& s, bool first) {
-  const EventContext context{s.tapped.channel.name, true, true};
+  const EventContext context{s.tapped.channel.name, true, true, nullptr};
   for (const DriverGlitch& g : glitches_) {
     ++s.report.driver_glitches;
     const UartCharacter& c = g.character;

@@ -218,6 +218,15 @@ struct BusCounters {
   BusCounters& operator+=(const BusCounters& o);
 };
 
+// BusSharing: what the report says of how a bus is shared, for an output that publishes it
+// as it goes (MQTT health) without building the whole report. The same rules as BusReport's.
+struct BusSharing {
+  std::size_t masters = 0;  // 1 for requests of no cycle told apart, 0 before any request
+  std::uint64_t collisions = 0;
+  std::uint64_t lost_in_collision = 0;
+  std::uint64_t echoes = 0;
+};
+
 // BusReport: the findings of one bus. Counters cover the whole input; examples are the
 // first few of each kind.
 struct BusReport : BusCounters {

@@ -198,6 +198,8 @@ class BusSession {
   void finish();
 
   BusReport report() const;
+  // The report's masters, collisions and echoes alone (their timing is the costly part).
+  BusSharing sharing() const;
   ReassemblerTotals totals() const;  // of all directions so far
   // The counts of this bus's events so far, by the rules of the report; brought up to date
   // before an event reaches the sink.

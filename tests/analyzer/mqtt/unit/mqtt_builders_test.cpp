@@ -86,5 +86,15 @@ TEST(BusHealth, JsonHasEveryFieldDiscoveryNames) {
   EXPECT_NE(json.find("\"line_errors\":null"), std::string::npos);
 }
 
+TEST(BusHealth, SharingIsTheSessions) {
+  HealthContext c;
+  c.sharing = BusSharing{2, 5, 4, 0};
+  std::string json;
+  append_health_json(json, BusHealth{}, c);
+  EXPECT_NE(json.find("\"masters\":2,\"collisions\":5,\"lost_in_collision\":4,\"echoes\":0"),
+            std::string::npos)
+      << json;
+}
+
 }  // namespace
 }  // namespace pvtap::analyzer
