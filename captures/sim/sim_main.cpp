@@ -72,6 +72,20 @@ int main(int argc, char** argv) {
   const ChunkedReads reads{cmd->config.seed, out.read_delay_ms};
   ok = produce(out.chunked, [&] { return write_chunked_capture(timeline, out.chunked, reads); }) &&
        ok;
+  if (out.duplex.size() == 2) {
+    ok = produce(out.duplex[0],
+                 [&] {
+                   return write_chunked_capture(timeline, out.duplex[0], reads,
+                                                pvtap::Role::Request);
+                 }) &&
+         ok;
+    ok = produce(out.duplex[1],
+                 [&] {
+                   return write_chunked_capture(timeline, out.duplex[1], reads,
+                                                pvtap::Role::Response);
+                 }) &&
+         ok;
+  }
   ok = produce(
            out.truth,
            [&] { return write_ground_truth(timeline, cmd->config, out.truth, carrier_truth); }) &&
@@ -79,5 +93,11 @@ int main(int argc, char** argv) {
   ok = produce(out.device,
                [&] { return pace_onto_device(timeline, out.device, cmd->config.baud); }) &&
        ok;
+  if (out.duplex_devices.size() == 2) {
+    ok =
+        produce(out.duplex_devices[0],
+                [&] { return pace_onto_duplex(timeline, out.duplex_devices, cmd->config.baud); }) &&
+        ok;
+  }
   return ok ? 0 : 1;
 }

@@ -124,8 +124,18 @@ std::optional<SimCommand> parse_sim_command(int argc, char** argv, int& exit_cod
   app.add_option("--read-delay", cmd.outputs.read_delay_ms,
                  "--chunked: the sniffer reads each USB transfer up to this many ms late")
       ->check(CLI::Range(0, 100));
+  app.add_option("--duplex", cmd.outputs.duplex,
+                 "a 4-wire (RS422) tap: write the requests' pair and the replies' pair as two "
+                 "USER0 captures, each cut by its own USB adapter as --chunked is")
+      ->expected(2)
+      ->type_name("REQ REP");
   app.add_option("--truth", cmd.outputs.truth, "write the ground truth as JSON");
   app.add_option("--device", cmd.outputs.device, "play the bus onto a serial device or pty");
+  app.add_option("--duplex-device", cmd.outputs.duplex_devices,
+                 "a 4-wire bus played in real time: requests onto the first device, replies "
+                 "(and noise) onto the second")
+      ->expected(2)
+      ->type_name("REQ REP");
   add_lan_options(app, cmd.outputs.lan);
   add_logic_options(app, cmd.outputs.logic);
   try {
@@ -154,7 +164,8 @@ std::optional<SimCommand> parse_sim_command(int argc, char** argv, int& exit_cod
   error = station_problem(c, first_station);
   const SimOutputs& o = cmd.outputs;
   const bool bus_outputs = !o.pdu.empty() || !o.gateway.empty() || !o.chunked.empty() ||
-                           !o.device.empty() || !o.logic.path.empty();
+                           !o.device.empty() || !o.logic.path.empty() || !o.duplex.empty() ||
+                           !o.duplex_devices.empty();
   if (error.empty()) error = finish_lan_options(cmd.outputs.lan, c, bus_outputs);
   if (error.empty()) error = finish_logic_options(cmd.outputs.logic, c.baud);
   if (!error.empty()) {

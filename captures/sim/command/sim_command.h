@@ -3,6 +3,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "command/lan_options.h"
 #include "command/sim_config.h"
@@ -14,6 +15,9 @@ namespace pvtap::sim {
 struct SimOutputs {
   std::string pdu, gateway, chunked, truth, device;
   unsigned read_delay_ms = 0;  // --chunked: how late the sniffer may read a USB transfer
+  // A 4-wire bus: the requests' pair and the replies' pair, each through an adapter of its own
+  // (two USER0 captures), or played onto two devices. Empty, or two paths.
+  std::vector<std::string> duplex, duplex_devices;
   LanOutputs lan;
   LogicOptions logic;  // --sr: the bus as a logic analyzer samples it
 };

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "bus/bus_event.h"
@@ -19,9 +20,12 @@ struct ChunkedReads {
 };
 
 // USER0 (147): the bus bytes in chunks cut by a USB adapter's latency timer, as a serial
-// sniffer records them; no direction.
+// sniffer records them; no direction. `pair`: only the bytes that side drove (one pair of a
+// 4-wire bus: the master's requests, or the slaves' replies and the noise), through an adapter
+// of its own.
 std::string write_chunked_capture(const BusTimeline& timeline, const std::string& path,
-                                  const ChunkedReads& reads);
+                                  const ChunkedReads& reads,
+                                  std::optional<Role> pair = std::nullopt);
 
 // Ethernet/IPv4/TCP: the master's connection to a serial-to-TCP gateway, the gateway's
 // stream cut into segments at random points.

@@ -19,11 +19,12 @@ struct UsbTransfer {
   std::vector<std::uint8_t> bytes;
 };
 
-std::vector<UsbTransfer> usb_transfers(const BusTimeline& timeline) {
+std::vector<UsbTransfer> usb_transfers(const BusTimeline& timeline, std::optional<Role> pair) {
   std::vector<UsbTransfer> out;
   UsbTransfer pending;
   Micros deadline = 0;
   for (const TimedByte& b : bus_bytes(timeline)) {
+    if (pair && b.side != *pair) continue;
     if (!pending.bytes.empty() && b.time > deadline) {
       pending.time = deadline;
       out.push_back(std::move(pending));
@@ -64,12 +65,14 @@ std::vector<UsbTransfer> late_reads(std::vector<UsbTransfer> transfers, Micros m
 }  // namespace
 
 std::string write_chunked_capture(const BusTimeline& timeline, const std::string& path,
-                                  const ChunkedReads& reads) {
+                                  const ChunkedReads& reads, std::optional<Role> pair) {
   PcapWriter file;
   if (!file.open(path, DLT_USER0)) return file.error();
-  std::vector<UsbTransfer> records = usb_transfers(timeline);
+  std::vector<UsbTransfer> records = usb_transfers(timeline, pair);
   if (reads.max_delay_ms > 0) {
-    SimRandom random(reads.seed ^ 0x5E1A7EDull);
+    // Each pair's adapter is read late by chance of its own.
+    const std::uint64_t stream = pair ? static_cast<std::uint64_t>(*pair) + 1 : 0;
+    SimRandom random((reads.seed ^ 0x5E1A7EDull) + stream);
     records = late_reads(std::move(records), Micros{reads.max_delay_ms} * 1000, random);
   }
   for (const UsbTransfer& r : records) file.write(r.time, r.bytes);

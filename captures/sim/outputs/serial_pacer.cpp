@@ -62,31 +62,71 @@ void sleep_until(const timespec& t) {
   }
 }
 
-}  // namespace
-
-std::string pace_onto_device(const BusTimeline& timeline, const std::string& device,
-                             unsigned baud) {
-  if (speed_of(baud) == B0) return "unsupported baud " + std::to_string(baud);
+// Opened and configured, or -1 with `error` set.
+int open_device(const std::string& device, unsigned baud, std::string& error) {
   const int fd = open(device.c_str(), O_WRONLY | O_NOCTTY);
-  if (fd < 0) return device + ": " + std::strerror(errno);
-  if (!configure(fd, baud)) {
-    const std::string error = device + ": " + std::strerror(errno);
-    close(fd);
-    return error;
+  if (fd < 0) {
+    error = device + ": " + std::strerror(errno);
+    return -1;
   }
+  if (!configure(fd, baud)) {
+    error = device + ": " + std::strerror(errno);
+    close(fd);
+    return -1;
+  }
+  return fd;
+}
+
+// Each event onto the device its side drives (`fds[0]` for requests, `fds[1]` for the rest).
+std::string pace(const BusTimeline& timeline, const int (&fds)[2],
+                 const std::vector<std::string>& devices, unsigned baud) {
   timespec origin{};
   clock_gettime(CLOCK_MONOTONIC, &origin);
   const Micros first = timeline.events.empty() ? 0 : timeline.events.front().start;
   const Micros char_us = static_cast<Micros>(10'000'000 / baud);
   std::string error;
   for (const BusEvent& e : timeline.events) {
+    const std::size_t side = e.role == Role::Request ? 0 : 1;
     for (std::size_t i = 0; i < e.bytes.size() && error.empty(); ++i) {
       sleep_until(plus_micros(origin, e.start - first + static_cast<Micros>(i) * char_us));
-      if (write(fd, &e.bytes[i], 1) != 1) error = device + ": " + std::strerror(errno);
+      if (write(fds[side], &e.bytes[i], 1) != 1) {
+        error = devices[side] + ": " + std::strerror(errno);
+      }
     }
   }
-  tcdrain(fd);
+  for (const int fd : fds) tcdrain(fd);
+  return error;
+}
+
+}  // namespace
+
+std::string pace_onto_device(const BusTimeline& timeline, const std::string& device,
+                             unsigned baud) {
+  if (speed_of(baud) == B0) return "unsupported baud " + std::to_string(baud);
+  std::string error;
+  const int fd = open_device(device, baud, error);
+  if (fd < 0) return error;
+  const int fds[2] = {fd, fd};
+  error = pace(timeline, fds, {device, device}, baud);
   close(fd);
+  return error;
+}
+
+std::string pace_onto_duplex(const BusTimeline& timeline, const std::vector<std::string>& devices,
+                             unsigned baud) {
+  if (speed_of(baud) == B0) return "unsupported baud " + std::to_string(baud);
+  std::string error;
+  const int requests = open_device(devices.at(0), baud, error);
+  if (requests < 0) return error;
+  const int replies = open_device(devices.at(1), baud, error);
+  if (replies < 0) {
+    close(requests);
+    return error;
+  }
+  const int fds[2] = {requests, replies};
+  error = pace(timeline, fds, devices, baud);
+  close(requests);
+  close(replies);
   return error;
 }
 
