@@ -54,7 +54,24 @@ def main():
         result = run(pvtap, ["audit", "--summary-only", "--baud", rate, capture])
         checks.equal(f"audit --baud {rate}: exit status", result.returncode, 0)
     refused(checks, pvtap, ["audit", "--timeout", "-1", capture], ["--timeout"])
+    check_duplex(checks, pvtap, capture)
     return checks.finish()
+
+
+def check_duplex(checks, pvtap, capture):
+    """--duplex: two serial captures, one per pair; a pair that cannot be read is named and
+    the other is read all the same."""
+    refused(checks, pvtap, ["audit", "--duplex", capture], ["--duplex", "two"])
+    pdu = os.path.join(os.path.dirname(capture), "demo.pdu.pcap")
+    refused(checks, pvtap, ["audit", "--duplex", capture, pdu], ["--duplex", "serial", pdu])
+    refused(checks, pvtap, ["audit", "--duplex", "--raw", capture], ["--duplex"])
+    missing = capture + ".missing"
+    result = run(pvtap, ["audit", "--summary-only", "--duplex", capture, missing])
+    checks.equal("audit --duplex with a pair missing: exit status", result.returncode, 2)
+    checks.true(f"audit --duplex with a pair missing names it ({result.stderr!r})",
+                missing in result.stderr and "not read" in result.stderr)
+    checks.true("audit --duplex with a pair missing reports the other pair",
+                "frames" in result.stdout)
 
 
 if __name__ == "__main__":

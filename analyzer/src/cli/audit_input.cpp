@@ -8,6 +8,7 @@
 #include <string>
 
 #include "cli/sample_rate_argument.h"
+#include "pvtap/capture/link_types.h"
 
 namespace pvtap::analyzer {
 namespace {
@@ -67,6 +68,10 @@ void add_reading_options(CLI::App& command, AuditOptions& o) {
                   "logic recordings: samples per second (4000000, 4M, 500k), for a file that "
                   "does not give it (a CSV export) or in place of the one it gives")
       ->type_name("RATE");
+  command.add_flag("--duplex", o.duplex,
+                   "a 4-wire (RS422) tap: the two serial capture FILEs are one bus, the first "
+                   "holding the requests' pair and the second the replies' pair, merged by their "
+                   "timestamps");
   command
       .add_option("--threads", o.threads,
                   "1: read and analyse on one thread; 2: read capture files ahead on a second "
@@ -84,6 +89,8 @@ bool AuditInput::logic_inputs_fit() const {
   const char* why = nullptr;
   if (logic_ && (options_.captures.size() != 1 || !options_.raw_dumps.empty())) {
     why = "a logic recording is audited alone (one FILE, no --raw)";
+  } else if (logic_ && options_.duplex) {
+    why = "--duplex reads two serial captures; a logic recording names its pairs with --channels";
   } else if (!logic_ && (!options_.logic_channels.empty() || !options_.logic_drivers.empty() ||
                          !options_.logic_sample_rate.empty())) {
     why = "--channels, --de and --samplerate describe a logic recording (.sr, .vcd, .csv)";
@@ -119,8 +126,30 @@ bool AuditInput::plan() {
     std::fprintf(stderr, "pvtap: %s\n", error->c_str());
     return false;
   }
-  capture_plan_ = plan_captures(options_.captures);
-  return captures_fit(options_, capture_plan_);
+  capture_plan_ = plan_captures(options_.captures, options_.duplex);
+  return captures_fit(options_, capture_plan_) && duplex_fits();
+}
+
+// --duplex: two captures of serial records, one per pair. One that cannot be read is named at
+// the end and the other is read all the same, as for any input.
+bool AuditInput::duplex_fits() const {
+  if (!options_.duplex) return true;
+  const char* why = nullptr;
+  if (options_.captures.size() != 2 || !options_.raw_dumps.empty()) {
+    why = "--duplex reads two serial capture FILEs: the requests' pair, then the replies' pair";
+  }
+  for (const PlannedCapture& planned : capture_plan_.readable) {
+    const auto kind = input_kind_of(planned.link_type);
+    if (why == nullptr && kind != InputKind::Serial && kind != InputKind::RtacSerial) {
+      std::fprintf(stderr,
+                   "pvtap: --duplex reads serial captures (USER0-USER15, RTAC serial); %s has "
+                   "records of another link type\n",
+                   planned.path.c_str());
+      return false;
+    }
+  }
+  if (why != nullptr) std::fprintf(stderr, "pvtap: %s\n", why);
+  return why == nullptr;
 }
 
 PipelineSettings AuditInput::pipeline_settings(PipelineSettings settings) const {

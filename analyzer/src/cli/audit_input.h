@@ -53,6 +53,7 @@ class AuditInput {
 
  private:
   bool logic_inputs_fit() const;
+  bool duplex_fits() const;
 
   const AuditOptions& options_;
   bool logic_ = false;

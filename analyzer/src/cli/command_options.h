@@ -68,6 +68,8 @@ struct AuditOptions : CommonOptions {
   // --threads: 2 reads capture files ahead on a second thread, 1 reads and analyses on one;
   // 0 (the default) picks 2 when this process may run on more than one CPU.
   unsigned threads = 0;
+  // --duplex: the two FILEs are the two pairs of a 4-wire bus, the requests' first.
+  bool duplex = false;
 };
 
 // SniffOptions: `pvtap sniff` (and the extcap capture): live sources.

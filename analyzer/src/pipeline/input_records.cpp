@@ -8,9 +8,9 @@
 namespace pvtap::analyzer {
 namespace {
 
-SerialBytes serial_record(const CapturedPacket& packet) {
+SerialBytes serial_record(const CapturedPacket& packet, Direction direction) {
   SerialBytes serial;
-  serial.chunk = BusChunk{packet.bytes, packet.time, Direction::Unknown};
+  serial.chunk = BusChunk{packet.bytes, packet.time, direction};
   if (packet.length_on_wire > packet.bytes.size()) {
     serial.lost_after = packet.length_on_wire - packet.bytes.size();
   }
@@ -19,8 +19,10 @@ SerialBytes serial_record(const CapturedPacket& packet) {
 
 }  // namespace
 
-void InputRecords::begin(int link_type, bool batched_serial, bool serial_timing_open) {
+void InputRecords::begin(int link_type, bool batched_serial, bool serial_timing_open,
+                         Direction direction) {
   link_type_ = link_type;
+  serial_direction_ = direction;
   kind_ = input_kind_of(link_type).value_or(InputKind::Serial);
   if (kind_ == InputKind::Serial && serial_timing_open) batched_serial_ = batched_serial;
   network_ = network_ || kind_ == InputKind::Network;
@@ -48,7 +50,7 @@ std::optional<SerialBytes> InputRecords::serial_bytes(const CapturedPacket& pack
     case InputKind::ExportedPdu:
       return exported_pdu(packet);
     case InputKind::Serial:
-      return serial_record(packet);
+      return serial_record(packet, serial_direction_);
     case InputKind::RtacSerial:
       return rtac_record(packet);
   }
@@ -64,7 +66,7 @@ std::optional<SerialBytes> InputRecords::rtac_record(const CapturedPacket& packe
   SerialBytes serial;
   serial.kind = InputKind::RtacSerial;
   serial.lost_before = record->data_lost_before;
-  serial.chunk = BusChunk{record->bytes, packet.time, Direction::Unknown};
+  serial.chunk = BusChunk{record->bytes, packet.time, serial_direction_};
   return serial;
 }
 

@@ -33,7 +33,9 @@ class InputRecords {
   // Records of the next input have this link type; `batched_serial`: its serial records are
   // read chunks (timestamps batched), not one character each. Only the input that makes the
   // serial bus decides how it reads its timestamps (`serial_timing_open`).
-  void begin(int link_type, bool batched_serial, bool serial_timing_open);
+  // `direction`: who sent the bytes of its serial records (Unknown on a 2-wire tap).
+  void begin(int link_type, bool batched_serial, bool serial_timing_open,
+             Direction direction = Direction::Unknown);
   // Records of IP packets: a segment of a TCP/UDP flow is read into `segment` (spans point
   // into the record); false when the record was skipped, and counted. The segment is the
   // caller's, so that the audit's hot path copies none.
@@ -55,6 +57,7 @@ class InputRecords {
   int link_type_ = -1;
   InputKind kind_ = InputKind::Serial;
   bool batched_serial_ = false;
+  Direction serial_direction_ = Direction::Unknown;
   bool network_ = false;
   SkippedRecords skipped_;
 };

@@ -9,9 +9,10 @@ namespace {
 
 void feed(BusSession& bus, const SerialBytes& serial) {
   const double time = serial.chunk.time;
-  if (serial.lost_before) bus.data_lost(Direction::Unknown, time, std::nullopt);
+  const Direction direction = serial.chunk.direction;
+  if (serial.lost_before) bus.data_lost(direction, time, std::nullopt);
   bus.feed(serial.chunk);
-  if (serial.lost_after > 0) bus.data_lost(Direction::Unknown, time, serial.lost_after);
+  if (serial.lost_after > 0) bus.data_lost(direction, time, serial.lost_after);
 }
 
 }  // namespace
@@ -22,8 +23,8 @@ Pipeline::Pipeline(const PipelineSettings& settings, const RegisterDecoder& deco
       buses_(decoder, events, settings.from_recording_start),
       gateway_(GatewayOptions{settings.ports, settings.dialects, 2.0, settings.timeout}, *this) {}
 
-void Pipeline::begin_input(int link_type, bool batched_serial) {
-  input_.begin(link_type, batched_serial, serial_timing_open());
+void Pipeline::begin_input(int link_type, bool batched_serial, Direction direction) {
+  input_.begin(link_type, batched_serial, serial_timing_open(), direction);
 }
 
 void Pipeline::record(const CapturedPacket& packet) {

@@ -47,8 +47,9 @@ class Pipeline : private BusProvider {
   Pipeline(const PipelineSettings& settings, const RegisterDecoder& decoder, EventWriter& events);
 
   // Records of the next input have this link type; `batched_serial`: its serial records are
-  // read chunks (timestamps batched), not one character each.
-  void begin_input(int link_type, bool batched_serial);
+  // read chunks (timestamps batched), not one character each; `direction`: who sent the bytes
+  // of its serial records (one pair of a 4-wire bus), Unknown on a 2-wire bus.
+  void begin_input(int link_type, bool batched_serial, Direction direction = Direction::Unknown);
   // True until the one serial bus exists: only the first serial input decides its timing, so
   // later inputs need not be probed for it.
   bool serial_timing_open() const { return buses_.find("") == nullptr; }

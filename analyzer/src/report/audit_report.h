@@ -25,6 +25,9 @@ struct InputReport {
   bool truncated = false;        // the file ended inside a record: what came before is read
   bool unreadable = false;       // not read at all (missing, not a capture): `error` says why
   std::string error;             // why reading stopped early, or never began
+  // --duplex: which pair of the 4-wire bus the file holds, "requests" or "replies"; empty
+  // on a 2-wire bus.
+  std::string pair;
   // The first and the last record's time, as read (after the steps back below).
   std::optional<double> first_time;
   double last_time = 0;

@@ -381,6 +381,10 @@ void inputs(std::string& o, const AuditReport& report) {
     append_json_key(o, "link_type");
     append_json_string(o, in.link_type);
     append_json_count(o, "records", in.records);
+    if (!in.pair.empty()) {
+      append_json_key(o, "pair");
+      append_json_string(o, in.pair);
+    }
     append_json_count(o, "file_bytes", in.file_bytes);
     append_json_count(o, "read_bytes", in.read_bytes);
     if (in.first_time) {

@@ -53,8 +53,9 @@ void inputs(const AuditReport& r, std::string& o) {
       o += report_line("input: %s NOT READ: %s", in.path.c_str(), in.error.c_str());
       continue;
     }
-    o += report_line("input: %s (%s, %llu records)%s", in.path.c_str(), in.link_type.c_str(),
-                     u(in.records), in.truncated ? " DAMAGED" : "");
+    const std::string pair = in.pair.empty() ? "" : ", the " + in.pair + "' pair";
+    o += report_line("input: %s (%s, %llu records%s)%s", in.path.c_str(), in.link_type.c_str(),
+                     u(in.records), pair.c_str(), in.truncated ? " DAMAGED" : "");
     if (in.truncated) {
       o += report_line("  reading stopped at byte %llu of %llu: %s", u(in.read_bytes),
                        u(in.file_bytes), in.error.c_str());

@@ -59,10 +59,13 @@ std::string repeated_records_text(const std::string& a, const std::string& b, do
          " UTC): give each record once";
 }
 
-CapturePlan plan_captures(const std::vector<std::string>& paths) {
+CapturePlan plan_captures(const std::vector<std::string>& paths, bool duplex) {
   CapturePlan plan;
   for (const std::string& path : paths) {
     PlannedCapture planned = probe(path);
+    if (duplex) {
+      planned.direction = &path == &paths.front() ? Direction::ToSlave : Direction::FromSlave;
+    }
     (planned.error.empty() ? plan.readable : plan.unreadable).push_back(std::move(planned));
   }
   // Stable: files whose first records share a time keep the order given.

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "pvtap/framing/bus_chunk.h"
+
 namespace pvtap::analyzer {
 
 // PlannedCapture: one capture file as its first record shows it.
@@ -17,6 +19,8 @@ struct PlannedCapture {
   std::optional<double> first_time;        // nullopt: the file holds no whole record
   std::vector<std::uint8_t> first_record;  // its bytes, to recognise a repeated file
   std::string error;                       // why it cannot be read at all
+  // Who sent its bytes: one pair of a 4-wire bus (--duplex), or Unknown (a 2-wire tap).
+  Direction direction = Direction::Unknown;
 };
 
 // CapturePlan: the files to read, each once, in time order.
@@ -31,7 +35,8 @@ struct CapturePlan {
   std::optional<std::string> refusal;
 };
 
-CapturePlan plan_captures(const std::vector<std::string>& paths);
+// `duplex`: the first path holds the requests' pair of a 4-wire bus, the second the replies'.
+CapturePlan plan_captures(const std::vector<std::string>& paths, bool duplex = false);
 
 // The one-line refusal for two files that hold the same record at `time`.
 std::string repeated_records_text(const std::string& a, const std::string& b, double time);

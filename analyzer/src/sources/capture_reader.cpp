@@ -38,6 +38,19 @@ unsigned long long u(std::uint64_t v) {
   return static_cast<unsigned long long>(v);
 }
 
+// The input line's word for a pair of a 4-wire bus (--duplex).
+std::string pair_of(Direction direction) {
+  switch (direction) {
+    case Direction::ToSlave:
+      return "requests";
+    case Direction::FromSlave:
+      return "replies";
+    case Direction::Unknown:
+      break;
+  }
+  return {};
+}
+
 }  // namespace
 
 // Source: one file being read, holding its next record until that record's turn comes.
@@ -47,7 +60,8 @@ struct CaptureReader::Source {
   CapturedPacket packet;  // the next record; its time moved on by `offset`
   std::size_t slot = 0;   // its InputReport in inputs_
   bool batched = false;   // serial records that are read chunks (see Pipeline::begin_input)
-  double offset = 0;      // what the file's clock stepped back by, so far
+  Direction direction = Direction::Unknown;  // of its serial records (PlannedCapture)
+  double offset = 0;                         // what the file's clock stepped back by, so far
   double last_time = -std::numeric_limits<double>::infinity();  // of `packet`
 };
 
@@ -76,6 +90,7 @@ bool CaptureReader::read(const CapturePlan& plan, const std::vector<std::string>
   for (const PlannedCapture& planned : plan.unreadable) {
     InputReport in;
     in.path = planned.path;
+    in.pair = pair_of(planned.direction);
     in.unreadable = true;
     in.error = planned.error;
     inputs_.push_back(in);
@@ -120,7 +135,7 @@ bool CaptureReader::read_captures(const CapturePlan& plan) {
       if (repeat_) break;
     }
     if (source.slot != fed_slot) {
-      pipeline_.begin_input(source.file.link_type(), source.batched);
+      pipeline_.begin_input(source.file.link_type(), source.batched, source.direction);
       fed_slot = source.slot;
     }
     // A file alone is fed up to the next file's first record without looking again.
@@ -189,6 +204,7 @@ void CaptureReader::open(const PlannedCapture& planned,
   auto source = std::make_unique<Source>(read_ahead_);
   InputReport in;
   in.path = planned.path;
+  in.pair = pair_of(planned.direction);
   if (!source->file.open(planned.path)) {
     in.unreadable = true;
     in.error = source->file.error();
@@ -201,6 +217,7 @@ void CaptureReader::open(const PlannedCapture& planned,
   const bool probe = input_kind_of(source->file.link_type()) == InputKind::Serial &&
                      pipeline_.serial_timing_open();
   source->batched = probe && largest_early_record(planned.path, kTimingProbeRecords) > 1;
+  source->direction = planned.direction;
   source->slot = inputs_.size();
   inputs_.push_back(in);
   if (advance(*source)) {

@@ -11,7 +11,8 @@ max):
   write    written with `pvtap audit --write` and audited again (event times too);
   forms    the USER0 and gateway forms of a bus held against its link type 252 form, which
            keeps the bus timing (the other forms re-time the bytes: latencies and offsets
-           are left out there).
+           are left out there), and its 4-wire form: the requests' and the replies' pairs
+           in two USER0 files, audited with --duplex.
 The plugin's roads (one pass and two, on the same samples) are plugin.test_sample_library.
 
 Usage: check_roads.py --pvtap PVTAP --sim PVTAP_SIM --samples DIR --work DIR [--only NAME]
@@ -37,7 +38,7 @@ RUN_GUARD_S = 300  # a guard against a hung run, not a timing check
 SKIP = 77
 FAULT_CLASSES = ("corrupt", "missing", "slow", "noise", "error_reply", "count_mismatch",
                  "duplicate", "corrupt_request", "corrupt_data")
-FORMS = ("pdu", "user0", "gateway")
+FORMS = ("pdu", "user0", "gateway", "duplex")
 STRICT = Options(times=True)
 RETIMED = Options(ignore=frozenset({"latency", "offset", "bus"}))
 
@@ -119,14 +120,16 @@ def simulated_buses(options):
         folder = os.path.join(options.work, stem)
         os.makedirs(folder, exist_ok=True)
         paths = {form: os.path.join(folder, f"{stem}.{form}.pcap") for form in FORMS}
+        pairs = [os.path.join(folder, f"{stem}.{pair}.user0.pcap") for pair in ("req", "rep")]
         faults = "all" if fault == "all" else f"{fault}=15"
         subprocess.run([options.sim, "--seed", str(350 + i), "--dialect", "gsl,hybrid,ascii",
                         "--inverters", "3", "--meter", "20", "--io-module", "21",
                         "--duration", "90", "--faults", faults,
                         "--pdu", paths["pdu"], "--gateway", paths["gateway"],
-                        "--chunked", paths["user0"]],
+                        "--chunked", paths["user0"], "--duplex", *pairs],
                        check=True, capture_output=True, timeout=RUN_GUARD_S)
         buses[stem] = paths
+        buses[stem]["duplex"] = pairs
     return buses
 
 
@@ -158,7 +161,9 @@ def main():
         if options.only and options.only not in stem:
             continue
         audited = {form: check_capture(options, report, path, rng)
-                   for form, path in sorted(forms.items())}
+                   for form, path in sorted(forms.items()) if form != "duplex"}
+        if "duplex" in forms:
+            audited["duplex"] = audit(options.pvtap, forms["duplex"], "--duplex")
         check_forms(options, report, stem, audited)
     for failure in report.failures:
         print("FAIL:", failure)
