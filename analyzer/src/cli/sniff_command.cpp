@@ -58,6 +58,8 @@ const char* const kFooter =
     "  pvtap sniff --device /dev/serial/by-id/usb-FTDI_FT232R_USB_UART_A10K1234-if00-port0\n"
     "  pvtap sniff --device /dev/ttyUSB0 --baud 19200 --parity even --format jsonl | jq .\n"
     "  pvtap sniff --device /dev/ttyUSB0 --device /dev/ttyUSB1 --write site.pcap\n"
+    "  pvtap sniff --duplex --device /dev/ttyUSB0 --device /dev/ttyUSB1   (4-wire: requests'\n"
+    "      pair on ttyUSB0, replies' pair on ttyUSB1)\n"
     "  pvtap sniff --device /dev/ttyUSB0 --baud auto\n"
     "  pvtap sniff --interface eth0 --port 4001 --duration 600 --summary-only\n"
     "  pvtap sniff --device /dev/ttyUSB0 --duration 3600 --html hour.html --values hour.csv\n"
@@ -74,6 +76,9 @@ void add_source_options(CLI::App& sniff, SniffCommandLine& c) {
                   "serial device of an RS485 tap, opened read-only; repeat for several buses")
       ->type_name("PATH")
       ->allow_extra_args(false);
+  sniff.add_flag("--duplex", live.duplex,
+                 "a 4-wire (RS422) bus: the two --device taps are its two pairs, the first the "
+                 "requests' (master to slaves), the second the replies'; one bus, both read-only");
   c.parity_option =
       sniff.add_option("--parity", c.parity, "parity of the bus's characters: none, even or odd")
           ->check(CLI::IsMember({"none", "even", "odd"}).description(""))
@@ -180,6 +185,12 @@ std::string source_problem(const SniffOptions& o) {
   if (live.search_line && live.devices.empty()) {
     return "--baud auto searches a serial tap's settings; it goes with --device";
   }
+  if (live.duplex && live.devices.size() != 2) {
+    return "--duplex reads two --device taps: the requests' pair, then the replies' pair";
+  }
+  if (live.duplex && live.search_line) {
+    return "--duplex reads both pairs at one rate: give it with --baud";
+  }
   return {};
 }
 
@@ -203,6 +214,7 @@ bool capture_from(Source& source, const SniffOptions& o, Pipeline& pipeline, Run
 int capture(const SniffOptions& o, const RegisterDecoder& decoder, OutputStream& out) {
   OutputSettings output_choice = output_settings(o);
   if (o.live.devices.size() == 1) output_choice.mqtt.lone_serial_bus = o.live.devices.front();
+  if (o.live.duplex) output_choice.mqtt.lone_serial_bus = duplex_bus_name(o.live);
   // Each record reaches the --write file at once, so that an abrupt end loses nothing.
   output_choice.flush_each_record = true;
   output_choice.live = true;

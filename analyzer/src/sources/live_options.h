@@ -11,6 +11,8 @@ namespace pvtap::analyzer {
 
 struct LiveOptions {
   std::vector<std::string> devices;  // serial devices (RS485 taps), each its own bus
+  // --duplex: the two devices are the two pairs of one 4-wire bus, the requests' first.
+  bool duplex = false;
   SerialLine line;
   bool search_line = false;  // --baud auto: each tap's rate and format are searched, not given
   // --logic: a logic analyzer's binary samples ("-": standard input), their rate, and the

@@ -17,6 +17,8 @@ struct SerialTaps::Tap {
   DeviceTap device;
   // A searched tap's bus is added once its search settles, with the rate it found.
   BusSession* bus = nullptr;
+  // Who sends what this tap hears: one pair of a 4-wire bus, or Unknown (a 2-wire tap).
+  Direction direction = Direction::Unknown;
   AutoBaud::BusBytes for_bus;  // what a searched tap's read gives the bus
   // The bus is known silent up to this moment: when the last read that found nothing began.
   // Not "now": bytes may have arrived since, unread while pvtap was scheduled out.
@@ -57,6 +59,7 @@ bool SerialTaps::open() {
       std::fprintf(stderr, "pvtap: cannot open %s: %s\n", path.c_str(), tap.device.error().c_str());
       return false;
     }
+    if (live_.duplex) tap.direction = taps_.size() == 1 ? Direction::ToSlave : Direction::FromSlave;
     if (!tap.device.search()) bus_of(tap);
     const LatencyTimerState& timer = tap.device.latency_timer();
     // Only a timer left coarse is worth a line on stderr (Wireshark shows an extcap's stderr
@@ -70,12 +73,23 @@ bool SerialTaps::open() {
 }
 
 BusSession& SerialTaps::bus_of(Tap& tap) {
-  if (!tap.bus) {
-    // Named by its device also when it is the only one: the reader of a report or of jsonl
-    // sees which tap heard it, and a --write file carries the name to a later audit.
-    tap.bus = &pipeline_.add_bus(tap.device.path(), session_options(tap));
+  if (tap.bus) return *tap.bus;
+  // Both pairs of a 4-wire bus are one bus, named by both devices, requests' first.
+  if (live_.duplex && &tap != taps_.front().get()) {
+    tap.bus = taps_.front()->bus;
+    return *tap.bus;
   }
+  // Named by its device also when it is the only one: the reader of a report or of jsonl
+  // sees which tap heard it, and a --write file carries the name to a later audit.
+  const std::string name = live_.duplex ? duplex_bus_name(live_) : tap.device.path();
+  tap.bus = &pipeline_.add_bus(name, session_options(tap));
   return *tap.bus;
+}
+
+std::string duplex_bus_name(const LiveOptions& live) {
+  std::string name;
+  for (const std::string& device : live.devices) name += (name.empty() ? "" : "+") + device;
+  return name;
 }
 
 void SerialTaps::add_found_lines(AuditReport& report) {
@@ -113,9 +127,31 @@ void SerialTaps::run(LiveLoop& loop, LiveSources& live) {
 }
 
 void SerialTaps::report_line_errors(double now) {
+  if (live_.duplex) {
+    report_duplex_line_errors(now);
+    return;
+  }
   for (auto& tap : taps_) {
     loop_->output().line_errors(tap->device.path(), tap->device.report(now).line_errors);
   }
+}
+
+// Both pairs' UARTs count for the one bus; not counted when either driver does not count.
+void SerialTaps::report_duplex_line_errors(double now) {
+  std::optional<LineErrorCounts> sum = LineErrorCounts{};
+  for (auto& tap : taps_) {
+    const std::optional<LineErrorCounts> e = tap->device.report(now).line_errors;
+    if (!e || !sum) {
+      sum.reset();
+      continue;
+    }
+    sum->framing += e->framing;
+    sum->overrun += e->overrun;
+    sum->parity += e->parity;
+    sum->breaks += e->breaks;
+    sum->buffer_overrun += e->buffer_overrun;
+  }
+  loop_->output().line_errors(duplex_bus_name(live_), sum);
 }
 
 double SerialTaps::next_wake(double now) const {
@@ -158,7 +194,7 @@ void SerialTaps::read(Tap& tap, std::span<std::uint8_t> buffer) {
     if (tap.device.search()) {
       searched_read(tap, buffer.first(got), time);
     } else {
-      tap.bus->feed(BusChunk{buffer.first(got), time, Direction::Unknown});
+      tap.bus->feed(BusChunk{buffer.first(got), time, tap.direction});
     }
     // A read that did not fill the buffer emptied the driver's queue: no need for another
     // read (a system call per wake-up) to learn that nothing else was waiting.
@@ -171,7 +207,7 @@ void SerialTaps::searched_read(Tap& tap, std::span<const std::uint8_t> bytes, do
   std::size_t from = 0;
   for (const auto& [end, read_time] : tap.for_bus.reads) {
     const auto piece = std::span<const std::uint8_t>(tap.for_bus.bytes).subspan(from, end - from);
-    bus_of(tap).feed(BusChunk{piece, read_time, Direction::Unknown});
+    bus_of(tap).feed(BusChunk{piece, read_time, tap.direction});
     from = end;
   }
   after_search(tap, outcome, time);
@@ -181,7 +217,7 @@ void SerialTaps::after_search(Tap& tap, const AutoBaud::Outcome& outcome, double
   if (!outcome.change && !outcome.settled) return;
   const AutoBaud& search = *tap.device.search();
   const char* path = tap.device.path().c_str();
-  if (outcome.lost && tap.bus) tap.bus->data_lost(Direction::Unknown, now, std::nullopt);
+  if (outcome.lost && tap.bus) tap.bus->data_lost(tap.direction, now, std::nullopt);
   if (!live_.quiet && (outcome.settled || outcome.lost)) loop_->make_room_on_stderr();
   if (!live_.quiet && outcome.settled) {
     std::fprintf(stderr, "pvtap: %s: %s found from the traffic\n", path,
@@ -212,7 +248,7 @@ void SerialTaps::show_searches() {
 
 void SerialTaps::lose(Tap& tap, double now) {
   tap.device.went_away(now);
-  if (tap.bus) tap.bus->data_lost(Direction::Unknown, now, std::nullopt);
+  if (tap.bus) tap.bus->data_lost(tap.direction, now, std::nullopt);
   loop_->make_room_on_stderr();
   std::fprintf(stderr, "pvtap: %s: device gone (%s); reopening it as it comes back\n",
                tap.device.path().c_str(), tap.device.error().c_str());
@@ -234,8 +270,18 @@ void SerialTaps::after_wake(double now) {
   revive(now);
   for (auto& tap : taps_) {
     if (AutoBaud* search = tap->device.search()) after_search(*tap, search->tick(now), now);
-    // A tap that is gone has nothing unread: its timeouts run on the clock.
-    if (tap->bus) tap->bus->idle(tap->device.port().fd() >= 0 ? tap->quiet_until : now);
+  }
+  // A bus is known silent up to where the last of its taps is; a tap that is gone has nothing
+  // unread, so that its bus's timeouts run on the clock.
+  for (std::size_t i = 0; i < taps_.size(); ++i) {
+    BusSession* bus = taps_[i]->bus;
+    if (!bus || (live_.duplex && i > 0)) continue;
+    double quiet = now;
+    for (const auto& tap : taps_) {
+      if (tap->bus == bus && tap->device.port().fd() >= 0)
+        quiet = std::min(quiet, tap->quiet_until);
+    }
+    bus->idle(quiet);
   }
   loop_->after_wake(now);
 }

@@ -1,10 +1,12 @@
 // SerialTaps: pvtap sniff --device: RS485 taps opened read-only, each its own bus of the
-// pipeline. A poll loop stamps each read with the capture clock, tells the buses when they
-// have been silent, and survives adapters that go away and come back.
+// pipeline, or with --duplex two taps on the two pairs of one 4-wire bus. A poll loop stamps each
+// read with the capture clock, tells the buses when they have been silent, and survives adapters
+// that go away and come back.
 #pragma once
 
 #include <memory>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "pipeline/pipeline.h"
@@ -14,6 +16,9 @@
 #include "sources/live_options.h"
 
 namespace pvtap::analyzer {
+
+// The one bus of a --duplex pair: "REQ+REP", as the devices were given.
+std::string duplex_bus_name(const LiveOptions& live);
 
 class SerialTaps {
  public:
@@ -42,6 +47,7 @@ class SerialTaps {
   double next_wake(double now) const;
   void after_wake(double now);
   void report_line_errors(double now);
+  void report_duplex_line_errors(double now);
 
   const LiveOptions& live_;
   std::uint32_t baud_;

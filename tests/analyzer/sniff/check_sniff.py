@@ -531,6 +531,57 @@ def check_bad_devices(args):
     return bad.exit_status("bad_devices")
 
 
+def check_duplex(args):
+    """--duplex: two taps on the two pairs of a 4-wire bus, requests on the first, replies and
+    noise on the second, are one bus: the truth's frames in order, its noise, timeouts and
+    totals; both devices opened read-only and never written (strace); the options refused
+    without two devices or with --baud auto."""
+    import check_baud_auto  # noqa: E402 (it imports this module)
+    bad = Failures()
+    truth = simulate(args, "duplex", "--dialect", "gsl,hybrid", "--inverters", "3",
+                     "--duration", "6", "--seed", "3", "--faults", "all", "--meter", "10")
+    ptys = [pty_bus.Pty(), pty_bus.Pty()]
+    trace = os.path.join(args.scratch, "duplex.strace")
+    out_path = os.path.join(args.scratch, "duplex.out")
+    with open(out_path, "w") as out, open(os.path.join(args.scratch, "duplex.err"), "w") as err:
+        proc = subprocess.Popen(["strace", "-f", "-qq", "-o", trace, "-e",
+                                 "trace=openat,write,writev,pwrite64,pwritev,pwritev2",
+                                 args.pvtap, "sniff", "--duplex", "--device", ptys[0].path,
+                                 "--device", ptys[1].path, "--format", "jsonl",
+                                 "--timeout", str(truth["timeout_s"])], stdout=out, stderr=err)
+        for pty in ptys:
+            check_baud_auto.wait_for_open(trace, pty.path, proc)
+        start = time.monotonic()
+        pty_bus.play_duplex([p.master for p in ptys], truth["events"], BAUD, start)
+        time.sleep(max(0.0, start + stop_offset(truth) - time.monotonic()))
+        os.kill(check_baud_auto.traced_pid(proc), signal.SIGTERM)
+        bad.check(proc.wait(GUARD_S) == 0, f"exit status {proc.returncode}")
+    with open(out_path, encoding="utf-8") as f:
+        events = [json.loads(line) for line in f if line.strip()]
+    check_events(events, truth, bad, "duplex")
+    summary = events[-1]
+    name = ptys[0].path + "+" + ptys[1].path
+    if bad.check(summary.get("type") == "summary", "the last line is not the summary"):
+        check_summary(summary, truth, bad)
+        bad.check([b["bus"] for b in summary["buses"]] == [name], f"buses {summary['buses']}")
+        bad.check(len(summary["devices"]) == 2, f"devices {summary['devices']}")
+    for pty in ptys:
+        opened, writes = check_baud_auto.device_writes(trace, pty.path)
+        bad.check(opened and all("O_RDONLY" in line for line in opened),
+                  f"{pty.path} opened as {opened}")
+        bad.check(not writes, f"writes to {pty.path}: {writes[:3]}")
+        bad.check(pty.drain_master() == b"", f"{pty.path}: bytes came out of pvtap's side")
+        pty.close()
+    for extra, words in ((["--device", "/dev/null"], "two --device"),
+                         (["--device", "/dev/null", "--device", "/dev/zero", "--baud", "auto"],
+                          "--baud")):
+        run = subprocess.run([args.pvtap, "sniff", "--duplex", *extra], capture_output=True,
+                             text=True, check=False, timeout=GUARD_S)
+        bad.check(run.returncode == 2 and words in run.stderr,
+                  f"--duplex {extra}: exit {run.returncode}, stderr {run.stderr!r}")
+    return bad.exit_status("duplex")
+
+
 CHECKS = {
     "truth": check_truth,
     "passive": check_passive,
@@ -542,6 +593,7 @@ CHECKS = {
     "status_line": check_status_line,
     "bad_devices": check_bad_devices,
     "files": check_files,
+    "duplex": check_duplex,
 }
 
 

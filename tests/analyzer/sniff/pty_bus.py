@@ -145,3 +145,29 @@ def play(master, schedule, start, writes=None):
         if writes is not None:
             writes.append((i, time.monotonic()))
     return worst
+
+
+def play_duplex(masters, events, baud, start):
+    """A 4-wire bus: the requests' bytes onto masters[0], the replies' and the noise onto
+    masters[1], each burst when its last byte would have been sent, on one clock."""
+    keep_time()
+    first = events[0]["ts"]
+    merged = []
+    for side, master in enumerate(masters):
+        mine = [e for e in events if (e.get("role") == "request") == (side == 0)]
+        if not mine:
+            continue
+        offset = mine[0]["ts"] - first
+        merged += [(due + offset, side, b) for due, b in byte_schedule(mine, baud)]
+    merged.sort(key=lambda item: item[0])
+    i = 0
+    while i < len(merged):
+        due, side, _ = merged[i]
+        wait = start + due - time.monotonic()
+        if wait > 0:
+            time.sleep(wait)
+        j = i
+        while j < len(merged) and merged[j][1] == side and merged[j][0] == due:
+            j += 1
+        write_all(masters[side], bytes(b for _, _, b in merged[i:j]))
+        i = j
