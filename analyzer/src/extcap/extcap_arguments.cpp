@@ -13,7 +13,7 @@ constexpr std::array<std::string_view, 6> kExtcapMarkers = {
     "--capture",           "--extcap-interface", "--extcap-capture-filter"};
 
 // Options of the contract (and of pvtap's settings) that take a value.
-constexpr std::array<std::string_view, 13> kValueOptions = {"--extcap-interface",
+constexpr std::array<std::string_view, 14> kValueOptions = {"--extcap-interface",
                                                             "--fifo",
                                                             "--extcap-capture-filter",
                                                             "--extcap-version",
@@ -24,6 +24,7 @@ constexpr std::array<std::string_view, 13> kValueOptions = {"--extcap-interface"
                                                             "--parity",
                                                             "--stop-bits",
                                                             "--dialect",
+                                                            "--duplex-replies",
                                                             "--log-level",
                                                             "--log-file"};
 
@@ -62,6 +63,7 @@ void set_value(ExtcapCall& call, std::string_view name, const std::string& value
   if (name == "--parity") call.settings.parity = value;
   if (name == "--stop-bits") call.settings.stop_bits = value;
   if (name == "--dialect") call.settings.dialect = value;
+  if (name == "--duplex-replies") call.settings.duplex_replies = value;
 }
 
 }  // namespace

@@ -23,6 +23,9 @@ struct ExtcapSettings {
   std::string parity = "none";   // none, even or odd
   std::string stop_bits = "1";   // 1 or 2
   std::string dialect = "auto";  // auto, ascii, hybrid or gsl
+  // A 4-wire bus: the interface of the tap on the replies' pair (the capture's own interface
+  // is then the requests' pair), or "none" for a 2-wire bus.
+  std::string duplex_replies = "none";
 };
 
 struct ExtcapCall {

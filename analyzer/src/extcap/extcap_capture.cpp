@@ -14,6 +14,7 @@
 #include "cli/exit_status.h"
 #include "cli/sniff_command.h"
 #include "extcap/extcap_options.h"
+#include "extcap/extcap_sentences.h"
 #include "sources/stop_signal.h"
 
 namespace pvtap::analyzer {
@@ -38,6 +39,27 @@ void stop_on_broken_fifo() {
   sigaction(SIGPIPE, &action, nullptr);
 }
 
+// The tap on the replies' pair the call names; null for a 2-wire bus or a port not found.
+const DiscoveredPort* replies_port(const ExtcapCall& call,
+                                   const std::vector<DiscoveredPort>& ports) {
+  const auto named = std::find_if(ports.begin(), ports.end(), [&call](const DiscoveredPort& port) {
+    return port.interface == call.settings.duplex_replies;
+  });
+  return named == ports.end() ? nullptr : &*named;
+}
+
+// Why a 4-wire capture cannot start; empty when it can (or the bus has 2 wires).
+std::string duplex_problem(const ExtcapCall& call, const std::vector<DiscoveredPort>& ports) {
+  const std::string& replies = call.settings.duplex_replies;
+  if (replies == kNoDuplex) return {};
+  if (replies == call.interface) return "--duplex-replies names the requests' own tap";
+  if (replies_port(call, ports) == nullptr) {
+    return "no serial port for the replies' pair " + replies + " (unplugged?)";
+  }
+  if (call.settings.baud == "auto") return "a 4-wire bus is read at one rate: choose the baud rate";
+  return {};
+}
+
 // Why the call cannot start a capture; empty when it can.
 std::string call_problem(const ExtcapCall& call, const DiscoveredPort* port) {
   if (call.interface.empty()) return "--capture needs --extcap-interface";
@@ -53,6 +75,12 @@ std::string call_problem(const ExtcapCall& call, const DiscoveredPort* port) {
   }
   const std::vector<std::string> problems = settings_problems(call.settings);
   return problems.empty() ? std::string() : problems.front();
+}
+
+std::string call_problem(const ExtcapCall& call, const DiscoveredPort* port,
+                         const std::vector<DiscoveredPort>& ports) {
+  std::string problem = call_problem(call, port);
+  return problem.empty() ? duplex_problem(call, ports) : problem;
 }
 
 // A refused call still opens and closes Wireshark's fifo: dumpcap may be blocked opening
@@ -97,13 +125,17 @@ int run_extcap_capture(const ExtcapCall& call, const std::vector<DiscoveredPort>
     return port.interface == call.interface;
   });
   const DiscoveredPort* port = named == ports.end() ? nullptr : &*named;
-  if (const std::string problem = call_problem(call, port); !problem.empty()) {
+  if (const std::string problem = call_problem(call, port, ports); !problem.empty()) {
     std::fprintf(stderr, "pvtap: %s\n", problem.c_str());
     std::fflush(stderr);
     release_fifo(call.fifo);
     return kExitBadInput;
   }
   SniffOptions options = capture_options(*port, call.settings, call.fifo);
+  if (const DiscoveredPort* replies = replies_port(call, ports)) {
+    options.live.devices.push_back(replies->path);
+    options.live.duplex = true;
+  }
   stop_on_broken_fifo();
   const int status = run_live_capture(options);
   // Nobody reads the fifo any more, so the records it lost are no failure of the capture.

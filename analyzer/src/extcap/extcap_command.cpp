@@ -47,7 +47,7 @@ int run_extcap(int argc, char** argv) {
     case ExtcapAction::ListDlts:
       return answer(dlts_answer());
     case ExtcapAction::ListConfig:
-      return answer(config_answer());
+      return answer(config_answer(discover_serial_ports(system_port_places()), call.interface));
     case ExtcapAction::CheckFilter:
       return check_filter(call);
     case ExtcapAction::Capture:

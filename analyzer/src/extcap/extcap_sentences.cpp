@@ -38,7 +38,34 @@ std::string dlts_answer() {
          field("display", "Exported PDUs (RS485 frames for the pvtap dissector)") + "\n";
 }
 
-std::string config_answer() {
+namespace {
+
+// The replies' pair of a 4-wire bus: any other port's tap. Its choices depend on the ports
+// present, so it is not in the fixed table of extcap_options.h.
+std::string duplex_answer(int number, const std::vector<DiscoveredPort>& ports,
+                          const std::string& interface) {
+  const std::string arg = std::to_string(number);
+  std::string out = "arg " + field("number", arg) + field("call", "--duplex-replies") +
+                    field("display", "4-wire: replies' pair") + field("type", "selector") +
+                    field("default", kNoDuplex) +
+                    field("tooltip",
+                          "RS422 / 4-wire Modbus: the tap on the replies' pair; this interface is "
+                          "then the requests' pair, and both are read as one bus (read-only)") +
+                    field("group", "Serial line") + "\n";
+  out += "value " + field("arg", arg) + field("value", kNoDuplex) +
+         field("display", "None (2-wire: requests and replies on this pair)") +
+         field("default", "true") + "\n";
+  for (const DiscoveredPort& port : ports) {
+    if (port.interface == interface) continue;
+    out += "value " + field("arg", arg) + field("value", port.interface) +
+           field("display", "RS485 tap (" + port.name + ")") + "\n";
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string config_answer(const std::vector<DiscoveredPort>& ports, const std::string& interface) {
   std::string out;
   int number = 0;
   for (const ExtcapOption& option : extcap_options()) {
@@ -54,7 +81,7 @@ std::string config_answer() {
       out += "\n";
     }
   }
-  return out;
+  return out + duplex_answer(number, ports, interface);
 }
 
 }  // namespace pvtap::analyzer

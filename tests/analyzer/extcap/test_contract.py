@@ -79,13 +79,13 @@ class Answers(unittest.TestCase):
         self.assertEqual(len(result.stdout.splitlines()), 1)
         self.assertTrue(result.stdout.startswith("dlt {number=252}{name=pvtap}"), result.stdout)
 
-    def test_config_offers_four_selectors_with_defaults(self):
+    def test_config_offers_five_selectors_with_defaults(self):
         result = run_pvtap(["--extcap-config", "--extcap-interface", self.interface],
                            [self.pty.path])
         self.assertEqual(result.returncode, 0, result.stderr)
         args = [line for line in result.stdout.splitlines() if line.startswith("arg ")]
         expected = [("--baud", "9600"), ("--parity", "none"), ("--stop-bits", "1"),
-                    ("--dialect", "auto")]
+                    ("--dialect", "auto"), ("--duplex-replies", "none")]
         self.assertEqual(len(args), len(expected), result.stdout)
         for number, (line, (call, default)) in enumerate(zip(args, expected)):
             self.assertIn("{number=%d}{call=%s}" % (number, call), line)
@@ -118,6 +118,14 @@ class Answers(unittest.TestCase):
                             "/nonexistent/fifo", "--baud", "1234"], [self.pty.path])
         self.assertEqual(result.returncode, 2)
         self.assertIn("--baud 1234", result.stderr)
+
+    def test_a_replies_pair_that_is_missing_or_searched_is_refused(self):
+        base = ["--capture", "--extcap-interface", self.interface, "--fifo", "/nonexistent/fifo"]
+        for extra, words in ((["--duplex-replies", "pvtap-nothing"], "pvtap-nothing"),
+                             (["--duplex-replies", self.interface], "own tap")):
+            result = run_pvtap(base + extra, [self.pty.path])
+            self.assertEqual(result.returncode, 2, result.stderr)
+            self.assertIn(words, result.stderr)
 
     def test_no_question_is_a_usage_error(self):
         result = run_pvtap(["--extcap-interface", self.interface])
@@ -251,3 +259,63 @@ class AutoBaudCapture(Capture):
 
 if __name__ == "__main__":
     unittest.main()
+
+
+class DuplexCapture(unittest.TestCase):
+    """A 4-wire bus: the capture's interface on the requests' pair, --duplex-replies naming the
+    tap on the replies' pair; the request and its reply reach the fifo as one bus's records."""
+
+    def setUp(self):
+        self.requests, self.replies = ReadablePty(), ReadablePty()
+        self.folder = tempfile.mkdtemp(prefix="pvtap-extcap-")
+        self.fifo = os.path.join(self.folder, "fifo")
+        os.mkfifo(self.fifo)
+        env = dict(os.environ, PVTAP_SERIAL_PORTS=self.requests.path + ":" + self.replies.path)
+        self.proc = subprocess.Popen(
+            [pvtap_path(), "--capture", "--extcap-interface", interface_of(self.requests.path),
+             "--fifo", self.fifo, "--baud", "9600", "--dialect", "gsl",
+             "--duplex-replies", interface_of(self.replies.path)],
+            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
+        self.reader = os.open(self.fifo, os.O_RDONLY | os.O_NONBLOCK)
+
+    def tearDown(self):
+        if self.proc.poll() is None:
+            self.proc.kill()
+        self.proc.communicate()
+        os.close(self.reader)
+        self.requests.close()
+        self.replies.close()
+        os.unlink(self.fifo)
+        os.rmdir(self.folder)
+
+    def opened(self, path):
+        fds = "/proc/%d/fd" % self.proc.pid
+        return os.path.exists(fds) and any(
+            os.path.realpath(os.path.join(fds, fd)) == path for fd in os.listdir(fds))
+
+    def record_body(self):
+        record = read_exactly(self.reader, RECORD_HEADER)
+        self.assertEqual(len(record), RECORD_HEADER, "no record")
+        _, _, caplen, _ = struct.unpack("<IIII", record)
+        return read_exactly(self.reader, caplen)
+
+    def test_request_and_reply_from_two_taps_are_one_bus(self):
+        self.assertEqual(len(read_exactly(self.reader, PCAP_HEADER)), PCAP_HEADER)
+        for _ in range(GUARD_S * 100):
+            if self.opened(self.requests.path) and self.opened(self.replies.path):
+                break
+            if self.proc.poll() is not None:
+                self.fail("pvtap exited %d: %s" % (self.proc.returncode, self.proc.stderr.read()))
+            time.sleep(0.01)
+        os.write(self.requests.master, PAIR_REQUEST)
+        time.sleep(0.1)
+        os.write(self.replies.master, PAIR_REPLY)
+        first, second = self.record_body(), self.record_body()
+        self.assertTrue(first.endswith(PAIR_REQUEST), first.hex())
+        self.assertTrue(second.endswith(PAIR_REPLY), second.hex())
+        bus = (self.requests.path + "+" + self.replies.path).encode()
+        self.assertIn(bus, first + second, "the records do not name the one bus of both taps")
+        self.proc.send_signal(signal.SIGTERM)
+        self.assertEqual(self.proc.wait(GUARD_S), 0, self.proc.stderr.read())
+        self.assertEqual(self.requests.drain_master() + self.replies.drain_master(), b"",
+                         "pvtap wrote to a tap")

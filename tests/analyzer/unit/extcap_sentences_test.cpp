@@ -39,8 +39,12 @@ TEST(extcapSentences, DltsAnswerIsExportedPdus) {
             "{display=Exported PDUs (RS485 frames for the pvtap dissector)}\n");
 }
 
+// Two taps: the capture's own on ttyUSB0, and one that may hold the replies' pair.
+const std::vector<DiscoveredPort> kTwoPorts = {{"/dev/ttyUSB0", "ttyUSB0", "pvtap-ttyUSB0"},
+                                               {"/dev/ttyUSB1", "ttyUSB1", "pvtap-ttyUSB1"}};
+
 TEST(extcapSentences, ConfigAnswerOffersFourSelectorsWithTheirDefaults) {
-  const std::string config = config_answer();
+  const std::string config = config_answer(kTwoPorts, "pvtap-ttyUSB0");
   EXPECT_NE(config.find("arg {number=0}{call=--baud}{display=Baud rate}{type=selector}"
                         "{default=9600}"),
             std::string::npos);
@@ -63,14 +67,24 @@ TEST(extcapSentences, ConfigAnswerOffersFourSelectorsWithTheirDefaults) {
             std::string::npos);
 }
 
+TEST(extcapSentences, ConfigAnswerOffersTheOtherTapsAsTheRepliesPair) {
+  const std::string config = config_answer(kTwoPorts, "pvtap-ttyUSB0");
+  EXPECT_NE(config.find("arg {number=4}{call=--duplex-replies}"), std::string::npos) << config;
+  EXPECT_NE(config.find("value {arg=4}{value=none}"), std::string::npos);
+  EXPECT_NE(config.find("value {arg=4}{value=pvtap-ttyUSB1}{display=RS485 tap (ttyUSB1)}\n"),
+            std::string::npos);
+  // The capture's own tap cannot be its replies' pair.
+  EXPECT_EQ(config.find("value {arg=4}{value=pvtap-ttyUSB0}"), std::string::npos);
+}
+
 TEST(extcapSentences, ConfigAnswerMarksExactlyOneDefaultPerSelector) {
-  const std::string config = config_answer();
+  const std::string config = config_answer(kTwoPorts, "pvtap-ttyUSB0");
   std::size_t defaults = 0;
   for (std::size_t at = config.find("{default=true}"); at != std::string::npos;
        at = config.find("{default=true}", at + 1)) {
     ++defaults;
   }
-  EXPECT_EQ(defaults, 4u);
+  EXPECT_EQ(defaults, 5u);
   // Every line is one sentence: arg lines and value lines only.
   std::size_t start = 0;
   while (start < config.size()) {
