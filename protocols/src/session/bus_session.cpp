@@ -30,6 +30,7 @@ struct BusSession::Impl {
       owner.tally.add_noise(noise);
       if (owner.options.has_timestamps) owner.collisions.add_damage(e.start_time, e.end_time);
       owner.sink.on_noise(noise);
+      owner.name_collisions(false);
     }
 
     Impl& owner;
@@ -97,6 +98,8 @@ struct BusSession::Impl {
   void on_frame(Direction direction, const FrameEvent& e, std::span<const std::uint8_t> wire);
   void handle_parsed(SessionFrame& out, const FrameEvent& e, std::uint32_t content);
   void note_for_collisions(const SessionFrame& out);
+  // The collisions the bus has shown so far (`at_end`: over the whole input), to the sink.
+  void name_collisions(bool at_end);
   // Timeouts come before the frame that made them due.
   void report(std::span<const Timeout> timeouts) {
     for (const Timeout& t : timeouts) report(t);
@@ -235,6 +238,20 @@ void BusSession::Impl::on_frame(Direction direction, const FrameEvent& e,
   tally.add_frame(out);
   note_for_collisions(out);
   sink.on_frame(out);
+  name_collisions(false);
+}
+
+// Requests sent while another's reply was due show a second master as they come. Two poll
+// cycles show it only over the whole input (a part of it can show cycles that are not there:
+// a block skipped for a fault looks like another period), so they are looked at the end.
+void BusSession::Impl::name_collisions(bool at_end) {
+  if (!options.has_timestamps) return;
+  if (!collisions.has_second_master() &&
+      (times.requests_while_reply_due() >= kSecondMasterRequests ||
+       (at_end && collisions.waiting() && times.report(timestamp_quality()).masters.size() >= 2))) {
+    collisions.second_master();
+  }
+  collisions.take_named([this](const SessionCollision& c) { sink.on_collision(c); });
 }
 
 void BusSession::Impl::note_for_collisions(const SessionFrame& out) {
@@ -445,6 +462,7 @@ void BusSession::finish() {
   for (auto* s : order) s->reassembler.finish();
   if (m.options.has_timestamps && m.times.any()) m.report(m.matcher.advance(m.times.last()));
   m.report(m.matcher.finish());
+  m.name_collisions(true);
 }
 
 ReassemblerTotals BusSession::Impl::totals() const {
@@ -490,11 +508,9 @@ BusSharing BusSession::Impl::sharing(const TimingReport& timing) const {
   s.echoes = c.echoes;
   // The traces of a collision on a bus of one master are line damage (CollisionTally). A
   // second master shows by its cycle, or, on a bus too busy for cycles to show, by requests
-  // sent while another's reply was due.
-  if (s.masters >= 2 || timing.requests_while_reply_due >= kSecondMasterRequests) {
-    s.collisions = collisions.candidates();
-    s.lost_in_collision = collisions.lost_requests();
-  }
+  // sent while another's reply was due (name_collisions).
+  s.collisions = collisions.collisions();
+  s.lost_in_collision = collisions.lost_requests();
   return s;
 }
 

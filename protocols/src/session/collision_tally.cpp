@@ -13,10 +13,23 @@ void CollisionTally::begin_candidate(double start, double end) {
   start_ = start;
   end_ = end;
   ++candidates_;
+  if (second_master_) {
+    named_.push_back(SessionCollision{start, end, false});
+  } else if (waiting_.size() < kMaxWaiting) {
+    waiting_.push_back(SessionCollision{start, end, true});
+  }
   if (given_up_end_ && start >= *given_up_end_ && start - *given_up_end_ <= timeout_) {
     ++lost_;
     given_up_end_.reset();
   }
+}
+
+void CollisionTally::second_master() {
+  if (second_master_) return;
+  second_master_ = true;
+  named_.insert(named_.end(), waiting_.begin(), waiting_.end());
+  waiting_.clear();
+  waiting_.shrink_to_fit();
 }
 
 void CollisionTally::add_damage(double start, double end) {

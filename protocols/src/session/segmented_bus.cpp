@@ -25,6 +25,7 @@ struct SegmentedBus::Impl : BusSessionSink {
   }
   void on_timeout(const SessionTimeout& t) override { outer.on_timeout(t); }
   void on_gap(const SessionGap& g) override { outer.on_gap(g); }
+  void on_collision(const SessionCollision& c) override { outer.on_collision(c); }
 
   void record(Direction d, const BusPiece& p) {
     StreamPieces& s = streams[index_of(d)];

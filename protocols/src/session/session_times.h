@@ -31,6 +31,7 @@ class SessionTimes {
   void add(const SessionFrame& out, const Frame& frame, std::optional<std::uint8_t> station,
            double max_inner_gap);
   TimingReport report(const TimestampQuality& quality) const { return timing_.report(quality); }
+  std::uint64_t requests_while_reply_due() const { return timing_.requests_while_reply_due(); }
 
  private:
   bool has_timestamps_;

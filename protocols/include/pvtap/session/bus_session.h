@@ -120,6 +120,15 @@ struct SessionTimeout {
   double time = 0;  // when it was given up: request_end + timeout.waited
 };
 
+// SessionCollision: two transmissions at once on a bus of more than one master
+// (session/collision_tally.h). Named once the bus has shown its second master: at its first
+// trace, or, for the collisions that came before that evidence, when it came.
+struct SessionCollision {
+  double start_time = 0;  // its first trace's first byte
+  double end_time = 0;    // its first trace's last byte (more traces may follow)
+  bool late = false;      // named after the fact, when the second master showed
+};
+
 // SessionGap: capture data lost in one direction (the bytes around it are not joined).
 struct SessionGap {
   Direction direction = Direction::Unknown;
@@ -141,6 +150,7 @@ class BusSessionSink {
   virtual void on_timeout(const SessionTimeout&) {}
   virtual void on_noise(const SessionNoise&) {}
   virtual void on_gap(const SessionGap&) {}
+  virtual void on_collision(const SessionCollision&) {}
 };
 
 // BusSession: the core's whole pipeline for one half-duplex bus, with no I/O of its own.

@@ -102,6 +102,8 @@ class TimingStatistics {
   // A latency of no station (both frames of its transaction damaged) is in the bus's alone.
   void add_latency(std::optional<std::uint8_t> station, double seconds);
   TimingReport report(const TimestampQuality& quality) const;
+  // So far (TimingReport::requests_while_reply_due), for a session watching for a second master.
+  std::uint64_t requests_while_reply_due() const { return requests_while_reply_due_; }
 
  private:
   struct PollTrack {
