@@ -63,6 +63,11 @@ def main():
     collisions = summary.get("collisions", 0)
     if not 0.9 * len(truth["collisions"]) <= collisions <= len(truth["collisions"]):
         bad.append(f"collisions: audit {collisions}, truth {len(truth['collisions'])}")
+    listed = subprocess.run([pvtap, "audit", "--format", "jsonl", capture], capture_output=True,
+                            text=True, check=True).stdout.splitlines()
+    named = [json.loads(l) for l in listed if '"type":"collision"' in l]
+    if len(named) != collisions or not all(c["end"] >= c["ts"] for c in named):
+        bad.append(f"{len(named)} collision lines, the summary counts {collisions}")
     check_collisions(pvtap, sim, scratch, bad)
     check_address_conflict(pvtap, sim, scratch, bad)
     check_echo(pvtap, sim, scratch, bad)

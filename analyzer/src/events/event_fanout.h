@@ -28,6 +28,9 @@ class EventFanout : public EventWriter {
   void gap(const EventContext& c, const SessionGap& g) override {
     for (EventWriter* w : consumers_) w->gap(c, g);
   }
+  void collision(const EventContext& c, const SessionCollision& k) override {
+    for (EventWriter* w : consumers_) w->collision(c, k);
+  }
   void driver_glitch(const EventContext& c, const DriverGlitchEvent& g) override {
     for (EventWriter* w : consumers_) w->driver_glitch(c, g);
   }

@@ -63,6 +63,8 @@ class EventWriter {
   virtual void timeout(const EventContext& c, const SessionTimeout& t) = 0;
   virtual void noise(const EventContext& c, const SessionNoise& n) = 0;
   virtual void gap(const EventContext& c, const SessionGap& g) = 0;
+  // Only buses with a second master have them; formats that list events show them.
+  virtual void collision(const EventContext&, const SessionCollision&) {}
   // Only logic recordings see the line itself: other formats need not show these.
   virtual void driver_glitch(const EventContext&, const DriverGlitchEvent&) {}
   virtual void line_error(const EventContext&, const LineErrorEvent&) {}

@@ -21,7 +21,7 @@ namespace {
 
 constexpr std::array<std::string_view, kMarkKinds> kMarkNames = {
     "damaged", "timeout", "unanswered_damaged", "exception", "unsolicited", "duplicate",
-    "noise",   "gap"};
+    "noise",   "gap",     "collision"};
 
 void optional_number(std::string& o, const std::optional<std::uint16_t>& v) {
   if (v) {

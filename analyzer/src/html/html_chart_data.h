@@ -3,9 +3,9 @@
 
 #include <string>
 
-#include "report/audit_report.h"
 #include "html/html_report.h"
 #include "html/timeline.h"
+#include "report/audit_report.h"
 
 namespace pvtap::analyzer {
 

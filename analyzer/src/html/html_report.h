@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
-#include "report/audit_report.h"
 #include "formatting/output_stream.h"
 #include "html/timeline.h"
+#include "report/audit_report.h"
 
 namespace pvtap::analyzer {
 

@@ -25,10 +25,11 @@ enum class MarkKind : std::uint8_t {
   Exception,          // a GSL exception or a Hybrid error reply
   Unsolicited,
   Duplicate,
-  Noise,  // on the bus lane
-  Gap,    // capture data lost; on the bus lane
+  Noise,      // on the bus lane
+  Gap,        // capture data lost; on the bus lane
+  Collision,  // two transmissions at once; on the bus lane
 };
-inline constexpr std::size_t kMarkKinds = 8;
+inline constexpr std::size_t kMarkKinds = 9;
 
 // Mark: one finding with what its tooltip names.
 struct Mark {

@@ -247,6 +247,14 @@ void TimelineCollector::gap(const EventContext& c, const SessionGap& g) {
   add_mark(m);
 }
 
+void TimelineCollector::collision(const EventContext& c, const SessionCollision& k) {
+  Mark m;
+  m.time = k.start_time;
+  m.lane = bus_of(c).bus_lane;
+  m.kind = MarkKind::Collision;
+  add_mark(m);
+}
+
 Timeline TimelineCollector::finish() {
   timeline_.start = grid_.start();
   timeline_.bucket_width = grid_.width();

@@ -20,6 +20,7 @@ class TimelineCollector : public EventWriter {
   void timeout(const EventContext& c, const SessionTimeout& t) override;
   void noise(const EventContext& c, const SessionNoise& n) override;
   void gap(const EventContext& c, const SessionGap& g) override;
+  void collision(const EventContext& c, const SessionCollision& k) override;
 
   // The timeline so far, moved out (call once, at the end).
   Timeline finish();

@@ -18,6 +18,7 @@ class BusOutput : public BusSessionSink {
   void on_timeout(const SessionTimeout& t) override { events_.timeout(context_, t); }
   void on_noise(const SessionNoise& n) override { events_.noise(context_, n); }
   void on_gap(const SessionGap& g) override { events_.gap(context_, g); }
+  void on_collision(const SessionCollision& k) override { events_.collision(context_, k); }
   const std::string& name() const { return name_; }
   void attach(const BusSession& session) { context_.session = &session; }
 

@@ -87,6 +87,15 @@ class CsvEventWriter : public EventWriter {
     out_.done();
   }
 
+  void collision(const EventContext& c, const SessionCollision& k) override {
+    std::string& o = out_.buffer();
+    begin_row(o, "collision", c, k.start_time);
+    o += ",,,,,,,,,,";
+    o += "two transmissions at once (more than one master)";
+    o += '\n';
+    out_.done();
+  }
+
   void gap(const EventContext& c, const SessionGap& g) override {
     std::string& o = out_.buffer();
     begin_row(o, "gap", c, g.time);

@@ -160,6 +160,17 @@ class JsonlEventWriter : public EventWriter {
     end_line(o, c);
   }
 
+  // {"type":"collision","ts":...,"end":...,"late":false}: `late` when it was named after the
+  // fact, once the second master showed.
+  void collision(const EventContext& c, const SessionCollision& k) override {
+    std::string& o = out_.buffer();
+    begin_line(o, "collision", c, k.start_time);
+    o += ",\"end\":";
+    append_time(o, c, k.end_time);
+    o += k.late ? ",\"late\":true" : ",\"late\":false";
+    end_line(o, c);
+  }
+
  private:
   static void append_time(std::string& o, const EventContext& c, double time) {
     if (c.has_timestamps) {

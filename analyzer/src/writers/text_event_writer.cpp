@@ -130,6 +130,17 @@ class TextEventWriter : public EventWriter {
     out_.done();
   }
 
+  void collision(const EventContext& c, const SessionCollision& k) override {
+    std::string& o = out_.buffer();
+    const std::size_t start = begin_line(o, c, k.start_time, 0);
+    o += "COLL";
+    pad_to(o, start, 8);
+    o += "collision: two transmissions at once garbled the bus (more than one master)";
+    if (k.late) o += "; named once the second master showed";
+    o += '\n';
+    out_.done();
+  }
+
  private:
   // Time of day (seconds from a logic recording's start, which has no wall clock; the stream
   // offset for inputs without time), then the bus; returns where the event's own columns

@@ -141,7 +141,8 @@ TILE_FIELDS = ["frames", "bad_checks", "timeouts", "unanswered_damaged_requests"
 MARK_FIELDS = {"damaged": "bad_checks", "timeout": "timeouts",
                "unanswered_damaged": "unanswered_damaged_requests", "exception": "exceptions",
                "unsolicited": "unsolicited", "duplicate": "duplicates", "noise": "noise_runs",
-               "gap": "gaps", "requests": "requests", "replies": "responses"}
+               "gap": "gaps", "collision": "collisions", "requests": "requests",
+               "replies": "responses"}
 
 
 def latest_values(text_report):

@@ -13,18 +13,20 @@
   const KIND_COLORS = {
     requests: '#8aa4c8', replies: '#7fbf8f', damaged: '#d62728', timeout: '#ff7f0e',
     unanswered_damaged: '#9467bd', exception: '#e377c2', unsolicited: '#8c564b',
-    duplicate: '#17becf', noise: '#7f7f7f', gap: '#000000'
+    duplicate: '#17becf', noise: '#7f7f7f', gap: '#000000', collision: '#bcbd22'
   };
   const KIND_TEXT = {
     requests: 'requests', replies: 'replies', damaged: 'damaged frame (bad check)',
     timeout: 'timeout', unanswered_damaged: 'damaged request, rightly unanswered',
     exception: 'exception / error reply', unsolicited: 'unsolicited reply',
-    duplicate: 'duplicate reply', noise: 'noise', gap: 'data-loss gap'
+    duplicate: 'duplicate reply', noise: 'noise', gap: 'data-loss gap',
+    collision: 'collision (two transmissions at once)'
   };
   // Where a kind sits within its lane, so that kinds at one moment do not hide each other.
   const KIND_OFFSET = {
     requests: 0.3, replies: 0.18, damaged: 0.0, timeout: -0.06, unanswered_damaged: -0.12,
-    exception: -0.18, unsolicited: -0.24, duplicate: -0.3, noise: 0.06, gap: -0.06
+    exception: -0.18, unsolicited: -0.24, duplicate: -0.3, noise: 0.06, gap: -0.06,
+    collision: 0.12
   };
 
   // A chart of a few lines shows each bucket's min..max as a band around its line; with more
