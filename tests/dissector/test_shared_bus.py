@@ -4,7 +4,9 @@ many as pvtap audit counts and the simulator's truth holds, in both passes; a re
 identical reply stays a duplicate, and no other station gets one. A tap whose adapter echoes
 every request (pvtap-sim --echo): each echo an echo expert info linked to its request, '(echo)'
 in Info, as many as pvtap audit counts and the truth holds, and the replies paired with the
-requests, so that no request of the truth's is left unanswered.
+requests, so that no request of the truth's is left unanswered. Two masters that collide
+(pvtap-sim --masters 2): a collision expert info for each collision pvtap audit names, in one
+pass and in two.
 """
 import json
 import os
@@ -123,6 +125,43 @@ class Echo(PluginTestCase, unittest.TestCase):
                                   options=["-2"])
         self.assertEqual(len(rows), self.truth["summary"]["timeouts"])
         self.assertEqual(self.summary["timeouts"], self.truth["summary"]["timeouts"])
+
+
+class Collision(PluginTestCase, unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        super().setUpClass()
+        cls.work = tempfile.TemporaryDirectory(prefix="pvtap-collision-")
+        capture = os.path.join(cls.work.name, "shared.pdu.pcap")
+        subprocess.run([binary("PVTAP_SIM"), "--seed", "37", "--inverters", "2", "--period", "1",
+                        "--timeout", "0.3", "--masters", "2", "--duration", "60", "--pdu",
+                        capture], check=True, timeout=120)
+        cls.capture = cls.tshark.write_text("shared.pdu.pcap", "")
+        with open(capture, "rb") as src, open(cls.capture, "wb") as dst:
+            dst.write(src.read())
+        cls.tshark._hand_over()
+        summary = subprocess.run([binary("PVTAP_BINARY"), "audit", "--summary-only", "--format",
+                                  "jsonl", capture], capture_output=True, text=True,
+                                 check=True, timeout=120).stdout.splitlines()[-1]
+        cls.summary = json.loads(summary)
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.work.cleanup()
+        super().tearDownClass()
+
+    def collisions(self, passes):
+        args = ["-r", self.capture, "-T", "fields",
+                "-E", "occurrence=a", "-E", "aggregator=|", "-e", "_ws.expert.message",
+                "-Y", "invrtu.collision"]
+        out = self.tshark.run((["-2"] if passes == 2 else []) + args).stdout
+        return sum(1 for line in out.splitlines() for message in line.split("|")
+                   if message.startswith("Collision"))
+
+    def test_each_collision_audit_names_is_one_expert_info(self):
+        self.assertGreater(self.summary["collisions"], 20)
+        for passes in (1, 2):
+            self.assertEqual(self.collisions(passes), self.summary["collisions"], passes)
 
 
 if __name__ == "__main__":

@@ -72,6 +72,8 @@ constexpr ExpertSpec kExperts[] = {
      "Address conflict: a second reply with other contents"},
     {&ExpertFields::echo, "echo", PI_SEQUENCE, PI_NOTE,
      "Echo of a request: the tap's adapter repeating it"},
+    {&ExpertFields::collision, "collision", PI_SEQUENCE, PI_WARN,
+     "Collision: two transmissions at once on a bus of more than one master"},
     {&ExpertFields::count_mismatch, "count_mismatch", PI_PROTOCOL, PI_WARN,
      "Byte count disagrees with the request"},
     {&ExpertFields::role_corrected, "role_corrected", PI_SEQUENCE, PI_NOTE,

@@ -60,6 +60,7 @@ struct ExpertFields {
   expert_field duplicate = EI_INIT;
   expert_field address_conflict = EI_INIT;
   expert_field echo = EI_INIT;
+  expert_field collision = EI_INIT;
   expert_field count_mismatch = EI_INIT;
   expert_field role_corrected = EI_INIT;
   expert_field start_unknown = EI_INIT;

@@ -39,6 +39,9 @@ class BusTrack final : public BusSessionSink {
   }
   // The requests whose timeout the session reported, for the packet that announces them.
   TimeoutQueue& timeouts() { return timeouts_; }
+  // The collisions the session named since the last packet took them; taken by the packet
+  // that announces them.
+  std::vector<SessionCollision>& collisions() { return collisions_; }
   // Stream position of a TCP sequence number of `d`; the first one seen is position 0.
   std::uint64_t stream_offset(Direction d, guint32 seq);
   // Stream position of the next datagram of `d`, which is `length` bytes long.
@@ -47,12 +50,14 @@ class BusTrack final : public BusSessionSink {
  private:
   void on_frame(const SessionFrame& f) override;
   void on_timeout(const SessionTimeout& t) override;
+  void on_collision(const SessionCollision& c) override { collisions_.push_back(c); }
   void link(FrameRecord& r, const SessionFrame& f) const;
   void note_findings(FrameRecord& r, const SessionFrame& f);
 
   SegmentedBus bus_;
   std::vector<FrameRecord*> records_;  // by frame id
   TimeoutQueue timeouts_;
+  std::vector<SessionCollision> collisions_;
   std::array<guint32, 3> first_seq_{};
   std::array<bool, 3> seq_known_{};
   std::array<std::uint64_t, 3> datagram_end_{};

@@ -19,6 +19,8 @@ struct CallView {
   bool extends_pdu = false;          // a call later passes do not make (it shows nothing)
   FrameRecord** timeouts = nullptr;  // the timeouts this call announces
   std::uint32_t timeout_count = 0;
+  SessionCollision* collisions = nullptr;  // the collisions this call announces
+  std::uint32_t collision_count = 0;
   std::uint64_t record_from = 0;          // serial records: stream position of the record's bytes
   const std::uint8_t* earlier = nullptr;  // serial records: the bytes in [from, record_from)
   // Serial records whose last byte waits for a later record: the protocol the waiting bytes
@@ -39,11 +41,11 @@ CallView& note_view(packet_info* pinfo, int proto, guint32 number);
 // announced_in set), as an array in file scope of `count` entries (null when none).
 FrameRecord** announce_timeouts(packet_info* pinfo, TimeoutQueue& queue, std::uint32_t& count);
 
-// First pass, once the call's pieces are shown: the timeouts it announces (none when a later
-// pass will not make the call).
+// First pass, once the call's pieces are shown: the timeouts and collisions it announces (none
+// when a later pass will not make the call).
 void note_timeouts(CallView& view, packet_info* pinfo, BusTrack& bus);
 
-// Shows the timeouts the view announces.
+// Shows the timeouts and collisions the view announces.
 void show_timeouts(const CallView& view, tvbuff_t* tvb, packet_info* pinfo, proto_tree* tree);
 
 }  // namespace pvtap::dissector

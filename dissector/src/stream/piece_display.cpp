@@ -139,6 +139,19 @@ void show_timeout(const FrameRecord& request, tvbuff_t* tvb, packet_info* pinfo,
   add_tree(TreeTarget{tvb, pinfo, tree, 0, 0, &p}, description);
 }
 
+void show_collision(const SessionCollision& collision, tvbuff_t* tvb, packet_info* pinfo,
+                    proto_tree* tree) {
+  InverterProtocol& p = protocol_of(Dialect::Gsl);
+  add_info(pinfo, p, "collision");
+  const double now = nstime_to_sec(&pinfo->abs_ts);
+  proto_tree_add_expert_format(
+      tree, pinfo, &p.ei.collision, tvb, 0, 0,
+      "Collision %.6f s before this packet: two transmissions at once garbled the bus for "
+      "%.1f ms or more (a bus of more than one master)%s",
+      now - collision.start_time, (collision.end_time - collision.start_time) * 1e3,
+      collision.late ? "; named now that the bus showed its second master" : "");
+}
+
 guint32 next_call_number(packet_info* pinfo, int proto) {
   return 1 + counters_of(pinfo, proto).calls++;
 }

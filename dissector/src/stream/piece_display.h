@@ -36,6 +36,11 @@ void show_noise(const TreeTarget& target, std::span<const std::uint8_t> bytes);
 // Shows the announcement that `request` got no reply, under the protocol of its dialect.
 void show_timeout(const FrameRecord& request, tvbuff_t* tvb, packet_info* pinfo, proto_tree* tree);
 
+// Announces a collision the bus's session named: an expert info of invrtu (collisions belong
+// to no dialect), "collision" in Info.
+void show_collision(const SessionCollision& collision, tvbuff_t* tvb, packet_info* pinfo,
+                    proto_tree* tree);
+
 // The number of this call of `proto` for the packet, from 1 (TCP may call more than once).
 guint32 next_call_number(packet_info* pinfo, int proto);
 
