@@ -201,7 +201,9 @@ bool TransactionMatcher::try_duplicate(const ObservedFrame& in, FrameMatch& out)
   if (original == nullptr) return false;
   // A broadcast's window keeps no reply's content: each station answers it once.
   const bool other_content = original == &own && in.content != 0 && own.answer != 0 &&
-                             in.content != own.answer && fits(own.request.frame, in);
+                             in.content != own.answer && fits(own.request.frame, in) &&
+                             config_.timed &&
+                             in.start_time - own.request.end_time <= config_.timeout;
   out.duplicate = DuplicateReply{in.id,
                                  original->request.id,
                                  in.frame.dialect,

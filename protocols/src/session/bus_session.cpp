@@ -56,6 +56,7 @@ struct BusSession::Impl {
   // are placed back to back, and an echo comes in its request's batch.
   static MatcherConfig matcher_config(const BusSessionOptions& o) {
     MatcherConfig config = o.matcher;
+    config.timed = o.has_timestamps;
     if (!config.echo_within && o.has_timestamps) {
       const BusTiming timing(o.reassembler.baud, o.reassembler.bits_per_char);
       config.echo_within = timing.t35;

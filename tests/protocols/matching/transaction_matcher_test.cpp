@@ -390,6 +390,34 @@ TEST_F(TransactionMatcherTest, SecondReplyWithOtherContentsIsAnAddressConflict) 
   EXPECT_FALSE(sink.duplicates[3].other_content);
 }
 
+// A second reply of other contents answers the same request only within the timeout: later,
+// or in an input without timestamps, it may answer a request the capture lost, and is a
+// duplicate (a raw dump of a real bus whose sniffer skipped bytes has such replies).
+TEST(TransactionMatcherConflict, OnlyTimeTellsASecondDevice) {
+  const auto reply = [](std::uint64_t id, double start, std::uint32_t content) {
+    ObservedFrame o =
+        observed(id, rtu_reply(Dialect::Modbus, 2, fc::kGslReadHolding, 4), start, start + 0.009);
+    o.content = content;
+    return o;
+  };
+  const auto request =
+      observed(1, test::read_request(Dialect::Modbus, 2, fc::kGslReadHolding, 0, 2), 0.0, 0.008);
+  for (const bool timed : {true, false}) {
+    RecordingSink sink;
+    MatcherConfig config;
+    config.timeout = 1.0;
+    config.timed = timed;
+    RecordingMatcher matcher(sink, config);
+    matcher.on_frame(request);
+    matcher.on_frame(reply(2, 0.02, 0xABCD0009));
+    matcher.on_frame(reply(3, 0.5, 0x12340009));
+    matcher.on_frame(reply(4, 1.5, 0x55550009));
+    ASSERT_EQ(sink.duplicates.size(), 2u) << timed;
+    EXPECT_EQ(sink.duplicates[0].other_content, timed);
+    EXPECT_FALSE(sink.duplicates[1].other_content) << "beyond the timeout";
+  }
+}
+
 // A request repeated byte for byte within the echo window is the tap's adapter: one request,
 // which waits for its reply from the echo's end. Later, or with other bytes, or with no window
 // (no timestamps), it is the master's own next request.

@@ -27,6 +27,10 @@ struct MatcherConfig {
   // echo comes back at once, while a slave that answers too early still leaves a character or
   // two: one character time at the bus's baud.
   double echoing_reply_within = 0;
+  // A second reply with other contents is an address conflict only where time shows it
+  // answered the same request: within `timeout` of the request's end. Without timestamps it
+  // may as well answer a request the capture lost, and stays a duplicate.
+  bool timed = true;
 };
 
 // ObservedFrame: one frame as the reassembler saw it on the bus.
