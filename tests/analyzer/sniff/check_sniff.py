@@ -582,6 +582,49 @@ def check_duplex(args):
     return bad.exit_status("duplex")
 
 
+def check_duplex_unplug(args):
+    """--duplex: the replies' adapter goes away and comes back as another pty while the
+    requests' adapter stays: one gap, of the replies' direction; every frame of the truth before
+    and after, the requests' ones read on throughout."""
+    bad = Failures()
+    before = simulate(args, "dx-before", "--dialect", "gsl", "--inverters", "2", "--duration",
+                      "2", "--seed", "5")
+    after = simulate(args, "dx-after", "--dialect", "gsl", "--inverters", "2", "--duration", "2",
+                     "--seed", "6")
+    link = os.path.join(args.scratch, "usb-FTDI_replies-if00-port0")
+    requests, replies = pty_bus.Pty(), pty_bus.Pty()
+    replace_link(link, replies.path)
+    sniffer = Sniffer(args.pvtap, args.scratch, "duplex-unplug",
+                      ["--duplex", "--device", requests.path, "--device", link, "--format",
+                       "jsonl"])
+    sniffer.wait_open(link)
+    for truth in (before, after):
+        start = time.monotonic()
+        pty_bus.play_duplex([requests.master, replies.master], truth["events"], BAUD, start)
+        time.sleep(max(0.0, start + stop_offset(truth) - time.monotonic()))
+        if truth is before:
+            replies.unplug()
+            time.sleep(0.5)
+            replies = pty_bus.Pty()
+            replace_link(link, replies.path)
+            sniffer.wait_open(link)
+    bad.check(sniffer.stop() == 0, f"exit status {sniffer.proc.returncode}")
+    requests.close()
+    replies.close()
+    events = sniffer.events()
+    truth_frames = [e for t in (before, after) for e in t["events"] if e["type"] == "frame"]
+    compare_frames(frames_of(events), truth_frames, "duplex unplug", bad)
+    gaps = [e for e in events if e["type"] == "gap"]
+    bad.check([g["direction"] for g in gaps] == ["from_slave"],
+              f"gaps {gaps}, expected one of the replies' direction")
+    devices = {d["path"]: d for d in events[-1]["devices"]}
+    bad.check(devices[link]["outages"] == 1 and devices[requests.path]["outages"] == 0,
+              f"outages {[(p, d['outages']) for p, d in devices.items()]}")
+    text = sniffer.stderr()
+    bad.check("gone" in text and "back after" in text, f"stderr does not tell: {text!r}")
+    return bad.exit_status("duplex_unplug")
+
+
 CHECKS = {
     "truth": check_truth,
     "passive": check_passive,
@@ -594,6 +637,7 @@ CHECKS = {
     "bad_devices": check_bad_devices,
     "files": check_files,
     "duplex": check_duplex,
+    "duplex_unplug": check_duplex_unplug,
 }
 
 
