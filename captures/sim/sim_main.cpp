@@ -72,18 +72,11 @@ int main(int argc, char** argv) {
   const ChunkedReads reads{cmd->config.seed, out.read_delay_ms};
   ok = produce(out.chunked, [&] { return write_chunked_capture(timeline, out.chunked, reads); }) &&
        ok;
-  if (out.duplex.size() == 2) {
-    ok = produce(out.duplex[0],
-                 [&] {
-                   return write_chunked_capture(timeline, out.duplex[0], reads,
-                                                pvtap::Role::Request);
-                 }) &&
-         ok;
-    ok = produce(out.duplex[1],
-                 [&] {
-                   return write_chunked_capture(timeline, out.duplex[1], reads,
-                                                pvtap::Role::Response);
-                 }) &&
+  // --duplex REQ REP: one capture per pair, the requests' first.
+  for (std::size_t i = 0; i < out.duplex.size(); ++i) {
+    const pvtap::Role pair = i == 0 ? pvtap::Role::Request : pvtap::Role::Response;
+    ok = produce(out.duplex[i],
+                 [&] { return write_chunked_capture(timeline, out.duplex[i], reads, pair); }) &&
          ok;
   }
   ok = produce(

@@ -24,19 +24,24 @@ def binary(variable):
     return path
 
 
-class AddressConflict(PluginTestCase, unittest.TestCase):
+class SimulatedBus(PluginTestCase):
+    """A bus pvtap-sim writes as link type 252 with SIM_ARGS, handed to tshark's user as
+    `capture`, with pvtap audit's summary of it and the simulator's truth."""
+
+    NAME = ""
+    SIM_ARGS = []
+
     @classmethod
     def setUpClass(cls):
         super().setUpClass()
-        cls.work = tempfile.TemporaryDirectory(prefix="pvtap-conflict-")
-        capture = os.path.join(cls.work.name, "conflict.pdu.pcap")
-        truth = os.path.join(cls.work.name, "conflict.truth.json")
-        subprocess.run([binary("PVTAP_SIM"), "--seed", "11", "--inverters", "3", "--period", "1",
-                        "--address-conflict", "2", "--duration", "40", "--pdu", capture,
-                        "--truth", truth], check=True, timeout=120)
+        cls.work = tempfile.TemporaryDirectory(prefix="pvtap-%s-" % cls.NAME)
+        capture = os.path.join(cls.work.name, cls.NAME + ".pdu.pcap")
+        truth = os.path.join(cls.work.name, cls.NAME + ".truth.json")
+        subprocess.run([binary("PVTAP_SIM"), *cls.SIM_ARGS, "--pdu", capture, "--truth", truth],
+                       check=True, timeout=120)
         with open(truth) as f:
             cls.truth = json.load(f)
-        cls.capture = cls.tshark.write_text("conflict.pdu.pcap", "")
+        cls.capture = cls.tshark.write_text(cls.NAME + ".pdu.pcap", "")
         with open(capture, "rb") as src, open(cls.capture, "wb") as dst:
             dst.write(src.read())
         cls.tshark._hand_over()
@@ -49,6 +54,12 @@ class AddressConflict(PluginTestCase, unittest.TestCase):
     def tearDownClass(cls):
         cls.work.cleanup()
         super().tearDownClass()
+
+
+class AddressConflict(SimulatedBus, unittest.TestCase):
+    NAME = "conflict"
+    SIM_ARGS = ["--seed", "11", "--inverters", "3", "--period", "1", "--address-conflict", "2",
+                "--duration", "40"]
 
     def conflicts_by_station(self, passes):
         options = ["-2"] if passes == 2 else []
@@ -81,31 +92,10 @@ class AddressConflict(PluginTestCase, unittest.TestCase):
         self.assertEqual(self.conflicts_by_station(1), want)
 
 
-class Echo(PluginTestCase, unittest.TestCase):
-    @classmethod
-    def setUpClass(cls):
-        super().setUpClass()
-        cls.work = tempfile.TemporaryDirectory(prefix="pvtap-echo-")
-        capture = os.path.join(cls.work.name, "echo.pdu.pcap")
-        truth = os.path.join(cls.work.name, "echo.truth.json")
-        subprocess.run([binary("PVTAP_SIM"), "--seed", "5", "--inverters", "3", "--period", "1",
-                        "--echo", "--faults", "missing=5", "--duration", "30", "--pdu", capture,
-                        "--truth", truth], check=True, timeout=120)
-        with open(truth) as f:
-            cls.truth = json.load(f)
-        cls.capture = cls.tshark.write_text("echo.pdu.pcap", "")
-        with open(capture, "rb") as src, open(cls.capture, "wb") as dst:
-            dst.write(src.read())
-        cls.tshark._hand_over()
-        summary = subprocess.run([binary("PVTAP_BINARY"), "audit", "--summary-only", "--format",
-                                  "jsonl", capture], capture_output=True, text=True,
-                                 check=True, timeout=120).stdout.splitlines()[-1]
-        cls.summary = json.loads(summary)
-
-    @classmethod
-    def tearDownClass(cls):
-        cls.work.cleanup()
-        super().tearDownClass()
+class Echo(SimulatedBus, unittest.TestCase):
+    NAME = "echo"
+    SIM_ARGS = ["--seed", "5", "--inverters", "3", "--period", "1", "--echo", "--faults",
+                "missing=5", "--duration", "30"]
 
     def test_each_echo_is_one_expert_info_linked_to_its_request(self):
         self.assertGreater(self.truth["echoes"], 50)
@@ -127,28 +117,10 @@ class Echo(PluginTestCase, unittest.TestCase):
         self.assertEqual(self.summary["timeouts"], self.truth["summary"]["timeouts"])
 
 
-class Collision(PluginTestCase, unittest.TestCase):
-    @classmethod
-    def setUpClass(cls):
-        super().setUpClass()
-        cls.work = tempfile.TemporaryDirectory(prefix="pvtap-collision-")
-        capture = os.path.join(cls.work.name, "shared.pdu.pcap")
-        subprocess.run([binary("PVTAP_SIM"), "--seed", "37", "--inverters", "2", "--period", "1",
-                        "--timeout", "0.3", "--masters", "2", "--duration", "60", "--pdu",
-                        capture], check=True, timeout=120)
-        cls.capture = cls.tshark.write_text("shared.pdu.pcap", "")
-        with open(capture, "rb") as src, open(cls.capture, "wb") as dst:
-            dst.write(src.read())
-        cls.tshark._hand_over()
-        summary = subprocess.run([binary("PVTAP_BINARY"), "audit", "--summary-only", "--format",
-                                  "jsonl", capture], capture_output=True, text=True,
-                                 check=True, timeout=120).stdout.splitlines()[-1]
-        cls.summary = json.loads(summary)
-
-    @classmethod
-    def tearDownClass(cls):
-        cls.work.cleanup()
-        super().tearDownClass()
+class Collision(SimulatedBus, unittest.TestCase):
+    NAME = "shared"
+    SIM_ARGS = ["--seed", "37", "--inverters", "2", "--period", "1", "--timeout", "0.3",
+                "--masters", "2", "--duration", "60"]
 
     def collisions(self, passes):
         args = ["-r", self.capture, "-T", "fields",

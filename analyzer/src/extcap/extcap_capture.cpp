@@ -39,29 +39,29 @@ void stop_on_broken_fifo() {
   sigaction(SIGPIPE, &action, nullptr);
 }
 
-// The tap on the replies' pair the call names; null for a 2-wire bus or a port not found.
-const DiscoveredPort* replies_port(const ExtcapCall& call,
-                                   const std::vector<DiscoveredPort>& ports) {
-  const auto named = std::find_if(ports.begin(), ports.end(), [&call](const DiscoveredPort& port) {
-    return port.interface == call.settings.duplex_replies;
-  });
+// The port behind Wireshark's interface name; null when none is (unplugged, or "none").
+const DiscoveredPort* port_named(const std::vector<DiscoveredPort>& ports,
+                                 const std::string& interface) {
+  const auto named =
+      std::find_if(ports.begin(), ports.end(),
+                   [&interface](const DiscoveredPort& p) { return p.interface == interface; });
   return named == ports.end() ? nullptr : &*named;
 }
 
 // Why a 4-wire capture cannot start; empty when it can (or the bus has 2 wires).
-std::string duplex_problem(const ExtcapCall& call, const std::vector<DiscoveredPort>& ports) {
-  const std::string& replies = call.settings.duplex_replies;
-  if (replies == kNoDuplex) return {};
-  if (replies == call.interface) return "--duplex-replies names the requests' own tap";
-  if (replies_port(call, ports) == nullptr) {
-    return "no serial port for the replies' pair " + replies + " (unplugged?)";
-  }
+std::string duplex_problem(const ExtcapCall& call, const DiscoveredPort* replies) {
+  const std::string& named = call.settings.duplex_replies;
+  if (named == kNoDuplex) return {};
+  if (named == call.interface) return "--duplex-replies names the requests' own tap";
+  if (replies == nullptr) return "no serial port for the replies' pair " + named + " (unplugged?)";
   if (call.settings.baud == "auto") return "a 4-wire bus is read at one rate: choose the baud rate";
   return {};
 }
 
-// Why the call cannot start a capture; empty when it can.
-std::string call_problem(const ExtcapCall& call, const DiscoveredPort* port) {
+// Why the call cannot start a capture; empty when it can. `replies`: the port of the replies'
+// pair the call names, if any.
+std::string call_problem(const ExtcapCall& call, const DiscoveredPort* port,
+                         const DiscoveredPort* replies) {
   if (call.interface.empty()) return "--capture needs --extcap-interface";
   if (call.fifo.empty()) return "--capture needs --fifo";
   if (port == nullptr) {
@@ -74,13 +74,7 @@ std::string call_problem(const ExtcapCall& call, const DiscoveredPort* port) {
     return kNoCaptureFilter;
   }
   const std::vector<std::string> problems = settings_problems(call.settings);
-  return problems.empty() ? std::string() : problems.front();
-}
-
-std::string call_problem(const ExtcapCall& call, const DiscoveredPort* port,
-                         const std::vector<DiscoveredPort>& ports) {
-  std::string problem = call_problem(call, port);
-  return problem.empty() ? duplex_problem(call, ports) : problem;
+  return problems.empty() ? duplex_problem(call, replies) : problems.front();
 }
 
 // A refused call still opens and closes Wireshark's fifo: dumpcap may be blocked opening
@@ -121,18 +115,16 @@ SniffOptions capture_options(const DiscoveredPort& port, const ExtcapSettings& s
 }
 
 int run_extcap_capture(const ExtcapCall& call, const std::vector<DiscoveredPort>& ports) {
-  const auto named = std::find_if(ports.begin(), ports.end(), [&call](const DiscoveredPort& port) {
-    return port.interface == call.interface;
-  });
-  const DiscoveredPort* port = named == ports.end() ? nullptr : &*named;
-  if (const std::string problem = call_problem(call, port, ports); !problem.empty()) {
+  const DiscoveredPort* port = port_named(ports, call.interface);
+  const DiscoveredPort* replies = port_named(ports, call.settings.duplex_replies);
+  if (const std::string problem = call_problem(call, port, replies); !problem.empty()) {
     std::fprintf(stderr, "pvtap: %s\n", problem.c_str());
     std::fflush(stderr);
     release_fifo(call.fifo);
     return kExitBadInput;
   }
   SniffOptions options = capture_options(*port, call.settings, call.fifo);
-  if (const DiscoveredPort* replies = replies_port(call, ports)) {
+  if (replies != nullptr) {
     options.live.devices.push_back(replies->path);
     options.live.duplex = true;
   }

@@ -19,6 +19,16 @@ struct LineErrorCounts {
   std::uint64_t buffer_overrun = 0;  // the driver's buffer was full
 };
 
+// Counter by counter: the errors between two readings, and two taps' (or openings') sum.
+inline LineErrorCounts operator-(const LineErrorCounts& a, const LineErrorCounts& b) {
+  return {a.framing - b.framing, a.overrun - b.overrun, a.parity - b.parity, a.breaks - b.breaks,
+          a.buffer_overrun - b.buffer_overrun};
+}
+inline LineErrorCounts operator+(const LineErrorCounts& a, const LineErrorCounts& b) {
+  return {a.framing + b.framing, a.overrun + b.overrun, a.parity + b.parity, a.breaks + b.breaks,
+          a.buffer_overrun + b.buffer_overrun};
+}
+
 // DeviceReport: one serial tap over the whole capture.
 struct DeviceReport {
   std::string path;     // as given

@@ -2,19 +2,6 @@
 #include "serial/line_error_tally.h"
 
 namespace pvtap::analyzer {
-namespace {
-
-LineErrorCounts operator-(const LineErrorCounts& a, const LineErrorCounts& b) {
-  return {a.framing - b.framing, a.overrun - b.overrun, a.parity - b.parity, a.breaks - b.breaks,
-          a.buffer_overrun - b.buffer_overrun};
-}
-
-LineErrorCounts operator+(const LineErrorCounts& a, const LineErrorCounts& b) {
-  return {a.framing + b.framing, a.overrun + b.overrun, a.parity + b.parity, a.breaks + b.breaks,
-          a.buffer_overrun + b.buffer_overrun};
-}
-
-}  // namespace
 
 bool LineErrorTally::start(const std::optional<LineErrorCounts>& counts) {
   base_ = counts;

@@ -145,11 +145,7 @@ void SerialTaps::report_duplex_line_errors(double now) {
       sum.reset();
       continue;
     }
-    sum->framing += e->framing;
-    sum->overrun += e->overrun;
-    sum->parity += e->parity;
-    sum->breaks += e->breaks;
-    sum->buffer_overrun += e->buffer_overrun;
+    *sum = *sum + *e;
   }
   loop_->output().line_errors(duplex_bus_name(live_), sum);
 }
@@ -272,10 +268,11 @@ void SerialTaps::after_wake(double now) {
     if (AutoBaud* search = tap->device.search()) after_search(*tap, search->tick(now), now);
   }
   // A bus is known silent up to where the last of its taps is; a tap that is gone has nothing
-  // unread, so that its bus's timeouts run on the clock.
-  for (std::size_t i = 0; i < taps_.size(); ++i) {
-    BusSession* bus = taps_[i]->bus;
-    if (!bus || (live_.duplex && i > 0)) continue;
+  // unread, so that its bus's timeouts run on the clock. Each bus once, by its first tap.
+  for (auto it = taps_.begin(); it != taps_.end(); ++it) {
+    BusSession* bus = (*it)->bus;
+    const auto same_bus = [bus](const auto& tap) { return tap->bus == bus; };
+    if (!bus || std::any_of(taps_.begin(), it, same_bus)) continue;
     double quiet = now;
     for (const auto& tap : taps_) {
       if (tap->bus == bus && tap->device.port().fd() >= 0)
