@@ -88,6 +88,11 @@ void add_protocol_options(CLI::App& audit, CommonOptions& o, BaudRange baud_rang
       ->check(CLI::IsMember({"decimal", "hex"}).description(""))
       ->type_name("READING")
       ->default_str("decimal");
+  audit.add_flag(
+      "!--no-sunspec", o.sunspec,
+      "do not decode SunSpec devices by their models: a station whose replies show the \"SunS\" "
+      "marker at 40000, 50000 or 0 and the model headers after it is otherwise decoded with "
+      "the published models' points and scale factors, learned from what its master reads");
   audit
       .add_option("--map", o.maps,
                   "register map (TOML; the format and the built-in maps are in " PVTAP_MAPS_DIR

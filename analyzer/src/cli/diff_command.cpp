@@ -203,7 +203,8 @@ CLI::App* add_diff_command(CLI::App& app, DiffCommandLine& command) {
 int run_diff(DiffCommandLine& command) {
   apply_choices(command.reading);
   if (command.reading.threads == 0) command.reading.threads = default_threads();
-  RegisterDecoder decoder(DecoderOptions{command.reading.gsl_ids, PairRule::Binary});
+  RegisterDecoder decoder(
+      DecoderOptions{command.reading.gsl_ids, PairRule::Binary, command.reading.sunspec});
   if (!load_maps(command.reading, decoder)) return kExitBadInput;
   DiffSide before;
   DiffSide after;

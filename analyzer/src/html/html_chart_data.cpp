@@ -263,7 +263,11 @@ void value_series(std::string& o, const AuditReport& r, const Timeline& t, const
   const bool scaled = s.def != nullptr &&
                       (s.def->kind == RegisterKind::Number || s.def->kind == RegisterKind::Bcd ||
                        s.def->kind == RegisterKind::BcdPhaseCapacity);
-  ranges(o, s.points, 1.0, scaled ? s.def->decimals : 0, false);
+  // A value scaled by a scale factor register has the digits the factor gives, which the map
+  // does not know: up to 10^-3, as SunSpec devices send them.
+  const int digits =
+      s.def->has_scale_factor() ? std::max(3, int{s.def->decimals}) : s.def->decimals;
+  ranges(o, s.points, 1.0, scaled ? digits : 0, false);
   o += '}';
 }
 

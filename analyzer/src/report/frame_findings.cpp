@@ -1,5 +1,6 @@
 #include "report/frame_findings.h"
 
+#include <algorithm>
 #include <array>
 #include <iterator>
 
@@ -16,7 +17,7 @@ constexpr ValueWarning kAllWarnings[] = {
     ValueWarning::NotInMap,         ValueWarning::Incomplete,       ValueWarning::LowPartOver9999,
     ValueWarning::UnknownEnumValue, ValueWarning::UnnamedBitSet,    ValueWarning::InvalidBcd,
     ValueWarning::InvalidDate,      ValueWarning::NonPrintableText, ValueWarning::NoWrittenAddress,
-    ValueWarning::NotFinite,
+    ValueWarning::NotFinite,        ValueWarning::NoScaleFactor,
 };
 
 void add_count_mismatch(const ByteCountMismatch& m, std::vector<std::string>& out) {
@@ -210,7 +211,10 @@ void append_value_json_unit(std::string& out, const DecodedValue& v) {
 ReadingKind reading_kind(const DecodedValue& v) {
   if (v.def == nullptr) return ReadingKind::Number;  // the word itself
   // JSON has no NaN or infinity: null, and the warning says why.
-  if (!v.complete() || v.has(ValueWarning::NotFinite)) return ReadingKind::None;
+  if (!v.complete() || v.has(ValueWarning::NotFinite) || v.has(ValueWarning::NoValue) ||
+      v.has(ValueWarning::NoScaleFactor)) {
+    return ReadingKind::None;
+  }
   switch (v.def->kind) {
     case RegisterKind::Text:
     case RegisterKind::BcdYearMonth:
@@ -230,7 +234,7 @@ void append_value_number(std::string& out, const DecodedValue& v) {
     case RegisterKind::Number:
     case RegisterKind::Bcd:
     case RegisterKind::BcdPhaseCapacity:
-      append_fixed(out, v.value, v.def->decimals);
+      append_fixed(out, v.value, std::max<int>(v.def->decimals, v.scale_decimals));
       return;
     default:
       append_uint(out, v.raw);

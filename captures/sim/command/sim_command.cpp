@@ -36,8 +36,14 @@ std::string station_problem(const SimConfig& c, unsigned first_station) {
     return s && *s >= first_station && *s < first_station + c.inverters;
   };
   if (c.inverters == 0 && !c.meter_station && !c.io_module_station && !c.test_server_station &&
-      !c.battery_station)
-    return "--inverters 0 needs a --meter, an --io-module, a --battery or a --test-server";
+      !c.battery_station && !c.sunspec_station)
+    return "--inverters 0 needs a --meter, an --io-module, a --battery, a --sunspec or a "
+           "--test-server";
+  if (c.sunspec_station &&
+      (taken(c.sunspec_station) || c.sunspec_station == c.meter_station ||
+       c.sunspec_station == c.io_module_station || c.sunspec_station == c.battery_station ||
+       c.sunspec_station == c.test_server_station))
+    return "--sunspec needs a station of its own";
   if (taken(c.meter_station) || taken(c.io_module_station) || taken(c.test_server_station) ||
       taken(c.battery_station))
     return "--meter, --io-module, --battery and --test-server need stations no inverter has";
@@ -97,6 +103,10 @@ std::optional<SimCommand> parse_sim_command(int argc, char** argv, int& exit_cod
   app.add_option("--battery", c.battery_station,
                  "station of a plain Modbus home battery (signed, 32-bit, counter, flag and text "
                  "registers, no map) polled after the inverters")
+      ->check(CLI::Range(1, 247));
+  app.add_option("--sunspec", c.sunspec_station,
+                 "station of a string inverter answering the SunSpec models (common, 103, 160 "
+                 "with two MPPT modules) whose logger scans the model chain first")
       ->check(CLI::Range(1, 247));
   app.add_option("--io-module", c.io_module_station,
                  "station of a plain Modbus IO module (coils, discrete inputs, registers; "

@@ -26,6 +26,7 @@ struct SimConfig {
   std::optional<std::uint8_t> meter_station;
   bool meter_low_first = false;                 // the meter sends each float's low word first
   std::optional<std::uint8_t> battery_station;  // a home battery of plain Modbus registers
+  std::optional<std::uint8_t> sunspec_station;  // a string inverter answering SunSpec models
   std::optional<std::uint8_t> io_module_station;
   std::optional<std::uint8_t> test_server_station;  // a Modbus library's test suite server
   // A shared bus: a second master (a meter reader, a BMS, a second logger) with a poll plan and

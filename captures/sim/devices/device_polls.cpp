@@ -8,6 +8,7 @@
 #include "devices/energy_meter.h"
 #include "devices/io_module.h"
 #include "devices/modbus_frames.h"
+#include "devices/sunspec_inverter.h"
 #include "devices/test_suite_server.h"
 #include "pvtap/codec/function_codes.h"
 
@@ -69,6 +70,9 @@ void BusMaster::add_devices() {
   if (config_.battery_station)
     devices_.push_back(
         std::make_unique<Battery>(*config_.battery_station, config_.seed, config_.start));
+  if (config_.sunspec_station)
+    devices_.push_back(
+        std::make_unique<SunSpecInverter>(*config_.sunspec_station, config_.seed, config_.start));
   if (config_.io_module_station)
     devices_.push_back(std::make_unique<IoModule>(*config_.io_module_station, config_.seed));
   if (config_.test_server_station)

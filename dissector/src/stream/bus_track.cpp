@@ -145,8 +145,11 @@ BusTrack* new_bus_track(const ProtocolSettings& settings, Carrier carrier) {
   return g_tracks.back().get();
 }
 
+// A new capture file's stations are not the last one's: what their traffic taught (SunSpec
+// chains) is forgotten with the tracks.
 void release_bus_tracks() {
   g_tracks.clear();
+  register_decoder().forget_learned();
 }
 
 }  // namespace pvtap::dissector

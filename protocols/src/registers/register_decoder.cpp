@@ -1,6 +1,7 @@
 #include "pvtap/registers/register_decoder.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "pvtap/codec/function_codes.h"
 #include "registers/register_entry_rules.h"
@@ -135,7 +136,8 @@ std::span<const std::uint16_t> first_word(const Frame& frame) {
 
 }  // namespace
 
-RegisterDecoder::RegisterDecoder(DecoderOptions options) : options_(options) {}
+RegisterDecoder::RegisterDecoder(DecoderOptions options)
+    : learned_(std::make_shared<SunSpecStations>()), options_(options) {}
 
 void RegisterDecoder::use_map(const RegisterMap& map) {
   own_maps_[static_cast<std::size_t>(map.dialect())] = map;
@@ -151,9 +153,44 @@ void RegisterDecoder::use_station_map(std::uint8_t station, const RegisterMap& m
   index = static_cast<std::uint8_t>(station_maps_.size());
 }
 
-const RegisterMap* RegisterDecoder::station_map(std::uint8_t station) const {
-  const std::uint8_t index = station_map_of_[station];
-  return index == 0 ? nullptr : &station_maps_[index - 1u];
+// SunSpec devices answer holding-register reads; a station given a map is not second-guessed.
+void RegisterDecoder::learn(const Frame& reply, const Frame* request) const {
+  if (!options_.sunspec || reply.role != Role::Response || station_map_of_[reply.station] != 0 ||
+      (reply.function != fc::kGslReadHolding && reply.function != fc::kReadWriteMultiple) ||
+      !is_request_for(request, reply) || !modbus_family(reply.dialect)) {
+    return;
+  }
+  learned_->learn(reply.station, *request->start, reply.words.span());
+}
+
+// A scale factor read in the same reply is the newest; one read before is remembered per
+// station (a master may read a model's scale factors once and its values often).
+void RegisterDecoder::apply_scale_factors(const RegisterMap& m, std::uint8_t station,
+                                          const DecodeReport& report,
+                                          std::vector<DecodedValue>& out) const {
+  if (!m.has_scale_factors() || report.status != DecodeStatus::Decoded) return;
+  const std::span<DecodedValue> placed(out.data() + report.first, report.count);
+  for (const DecodedValue& v : placed) {
+    if (v.def != nullptr && v.def->is_scale_factor && v.complete() &&
+        !v.has(ValueWarning::NoValue)) {
+      learned_->remember_scale_factor(station, v.address, static_cast<std::int16_t>(v.signed_raw));
+    }
+  }
+  for (DecodedValue& v : placed) {
+    if (v.def == nullptr || !v.def->has_scale_factor() || !v.complete() ||
+        v.has(ValueWarning::NoValue)) {
+      continue;
+    }
+    std::int16_t exponent = 0;
+    // SunSpec allows -10..10; anything else is a damaged or misread register.
+    if (!learned_->scale_factor(station, v.def->scale_factor_address, exponent) || exponent < -10 ||
+        exponent > 10) {
+      v.add(ValueWarning::NoScaleFactor);
+      continue;
+    }
+    v.value *= std::pow(10.0, exponent);
+    if (exponent < 0) v.scale_decimals = static_cast<std::uint8_t>(-exponent);
+  }
 }
 
 namespace {
@@ -259,6 +296,7 @@ DecodeReport RegisterDecoder::decode_hybrid(const Frame& frame, const Frame* req
 // GSL and plain Modbus: register reads and writes; other functions carry no register values.
 DecodeReport RegisterDecoder::decode_gsl(const Frame& frame, const Frame* request,
                                          std::vector<DecodedValue>& out) const {
+  learn(frame, request);
   const RegisterMap* own = station_map(frame.station);
   const RegisterMap& m = own != nullptr ? *own : map(frame.dialect);
   const Dialect d = own != nullptr ? own->dialect() : frame.dialect;
@@ -289,6 +327,7 @@ DecodeReport RegisterDecoder::decode_gsl(const Frame& frame, const Frame* reques
   DecodeReport report =
       place(m, d, *request->start, frame.words.span(), ValueOrigin::ReadReply, out);
   note_request_fit(report, frame, request);
+  apply_scale_factors(m, frame.station, report, out);
   return report;
 }
 

@@ -43,13 +43,18 @@ void RegisterEntryReader::read_field(const toml::key& key, const toml::node& nod
     pending.last_line = line_of(node.source());
     pending.last_column = column_of(node.source());
     if (const auto* i = nodes_.expect_integer(node, "last")) pending.last = i->get();
-  } else if (name == "key" || name == "name" || name == "unit") {
+  } else if (name == "key" || name == "name" || name == "unit" || name == "scale_factor") {
     if (const auto* s = nodes_.expect_string(node, name)) {
-      (name == "key" ? spec.key : name == "name" ? spec.name : spec.unit) = s->get();
+      (name == "key"    ? spec.key
+       : name == "name" ? spec.name
+       : name == "unit" ? spec.unit
+                        : spec.scale_factor) = s->get();
     }
   } else if (name == "kind") {
     pending.has_kind = true;
     read_kind(node, spec);
+  } else if (name == "no_value") {
+    if (const auto* i = nodes_.expect_integer(node, "no_value")) spec.no_value = i->get();
   } else if (name == "words" || name == "decimals") {
     if (const auto* i = nodes_.expect_integer(node, name)) {
       pending.has_words = pending.has_words || name == "words";
@@ -85,9 +90,11 @@ void RegisterEntryReader::read_option_field(const toml::key& key, const toml::no
     else
       nodes_.fail(node.source(), "bits must be a table: [register.bits] 0 = \"name\"");
   } else {
-    nodes_.fail(key.source(), "unknown register field '" + std::string(name) +
-                                  "' (expected address, last, key, name, kind, scale, unit, words, "
-                                  "combine, word_order, signed, decimals, values, bits)");
+    nodes_.fail(key.source(),
+                "unknown register field '" + std::string(name) +
+                    "' (expected address, last, key, name, kind, scale, unit, words, "
+                    "combine, word_order, signed, decimals, values, bits, scale_factor, "
+                    "no_value)");
   }
 }
 

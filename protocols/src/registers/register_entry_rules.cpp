@@ -167,6 +167,20 @@ void check_bits(const RegisterSpec& spec, const std::string& label, DiagnosticLi
   }
 }
 
+// A scale factor scales a number; a "no value" mark must be a raw value the entry can hold.
+void check_device_marks(const RegisterSpec& spec, const std::string& label, DiagnosticList& out) {
+  if (!spec.scale_factor.empty() && (spec.kind != RegisterKind::Number || spec.float32)) {
+    out.add(spec.line, spec.column, label + ": only integer number registers take a scale_factor");
+  }
+  if (!spec.no_value) return;
+  const std::int64_t largest = spec.words >= 2 ? 0xFFFFFFFFLL : 0xFFFFLL;
+  if (*spec.no_value < 0 || *spec.no_value > largest) {
+    out.add(spec.line, spec.column,
+            label + ": no_value must be a raw value of the register's " +
+                std::to_string(spec.words) + " word(s), 0 .. " + std::to_string(largest));
+  }
+}
+
 }  // namespace
 
 void check_key(std::string_view key, std::uint32_t line, std::uint32_t column,
@@ -204,6 +218,7 @@ void check_register_entry(const RegisterSpec& spec, Dialect dialect, DiagnosticL
   check_number_settings(spec, label, out);
   check_values(spec, label, out);
   check_bits(spec, label, out);
+  check_device_marks(spec, label, out);
 }
 
 std::string coil_label(const CoilSpec& spec, Dialect dialect) {

@@ -1,5 +1,6 @@
 #include "pvtap/registers/register_format.h"
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -45,12 +46,17 @@ void append_not_finite(std::string& out, const DecodedValue& v) {
   append_unit(out, v.def->unit);
 }
 
+// A value scaled by a scale factor register shows as many digits as that factor gives.
+unsigned decimals_of(const DecodedValue& v) {
+  return std::max<unsigned>(v.def->decimals, v.scale_decimals);
+}
+
 void append_number(std::string& out, const DecodedValue& v) {
   if (!std::isfinite(v.value)) {
     append_not_finite(out, v);
     return;
   }
-  append_fixed(out, v.value, v.def->decimals);
+  append_fixed(out, v.value, decimals_of(v));
   append_unit(out, v.def->unit);
 }
 
@@ -154,6 +160,10 @@ void append_value_text(std::string& out, const DecodedValue& v) {
   } else if (!v.complete()) {
     out += "incomplete (" + std::to_string(v.words_present) + " of " +
            std::to_string(v.def->words) + " words in the frame)";
+  } else if (v.has(ValueWarning::NoValue)) {
+    out += "no value (";
+    append_hex(out, v.raw, 4u * v.def->words);
+    out += ')';
   } else {
     append_complete_value(out, v);
   }
@@ -163,7 +173,7 @@ double value_as_shown(const DecodedValue& v) {
   if (v.def == nullptr || !std::isfinite(v.value)) return v.value;
   FixedChars buf{};
   double shown = v.value;
-  std::from_chars(buf.data(), write_fixed(buf, v.value, v.def->decimals), shown);
+  std::from_chars(buf.data(), write_fixed(buf, v.value, decimals_of(v)), shown);
   return shown;
 }
 
@@ -200,6 +210,10 @@ std::string_view describe(ValueWarning w) {
       return "wire address has no decimal ID reading";
     case ValueWarning::NotFinite:
       return "float32 value is not a number or infinite";
+    case ValueWarning::NoValue:
+      return "the device's mark for no value";
+    case ValueWarning::NoScaleFactor:
+      return "its scale factor register was not read: shown without it";
   }
   return "?";
 }

@@ -110,6 +110,10 @@ const RegisterDef* RegisterMap::find_kind(RegisterKind kind) const {
   return nullptr;
 }
 
+bool RegisterMap::has_scale_factors() const {
+  return data_ != nullptr && data_->has_scale_factors;
+}
+
 namespace {
 
 const CoilDef* find_point(std::span<const CoilDef> points, std::uint16_t address) {

@@ -50,6 +50,24 @@ void check_keys_unique(const std::vector<const RegisterSpec*>& specs,
   }
 }
 
+// A scale factor names a one-word signed number of the same map (SunSpec's "sunssf" points).
+void check_scale_factors(const std::vector<const RegisterSpec*>& specs, Dialect dialect,
+                         detail::DiagnosticList& out) {
+  std::map<std::string_view, const RegisterSpec*> by_key;
+  for (const RegisterSpec* spec : specs) by_key.emplace(spec->key, spec);
+  for (const RegisterSpec* spec : specs) {
+    if (spec->scale_factor.empty()) continue;
+    const auto it = by_key.find(spec->scale_factor);
+    const RegisterSpec* sf = it != by_key.end() ? it->second : nullptr;
+    if (sf == nullptr || sf->kind != RegisterKind::Number || sf->float32 || sf->words != 1 ||
+        sf->repeat != 1 || !sf->is_signed) {
+      out.add(spec->line, spec->column,
+              detail::entry_label(*spec, dialect) + ": scale_factor '" + spec->scale_factor +
+                  "' must be the key of a one-word signed number register of this map");
+    }
+  }
+}
+
 // Singles may not share an address with singles, nor ranges with ranges; a single inside a
 // range is how a documented register is carved out of an undocumented run.
 void check_coverage(const std::vector<const RegisterSpec*>& specs, Dialect dialect,
@@ -127,6 +145,7 @@ class MapLayout {
                        return a->repeat < b->repeat;
                      });
     for (const RegisterSpec* spec : specs_) add_def(*spec);
+    resolve_scale_factors();
     attach_tables();
     index_slots();
     add_coils();
@@ -159,6 +178,11 @@ class MapLayout {
     def.key = intern(spec.key);
     def.name = intern(spec.name);
     def.unit = intern(spec.unit);
+    def.scale_factor = intern(spec.scale_factor);
+    if (spec.no_value) {
+      def.no_value = static_cast<std::uint32_t>(*spec.no_value);
+      def.has_no_value = true;
+    }
     def.line = spec.line;
     data_->defs.push_back(def);
     tables_.push_back(TableSpan{data_->enum_texts.size(), spec.values.size(),
@@ -181,6 +205,18 @@ class MapLayout {
     std::sort(data_->bit_names.begin() + static_cast<std::ptrdiff_t>(bits_at),
               data_->bit_names.end(),
               [](const BitName& a, const BitName& b) { return a.index < b.index; });
+  }
+
+  void resolve_scale_factors() {
+    std::map<std::string_view, std::uint16_t> address_of;
+    for (const RegisterDef& def : data_->defs) address_of.emplace(def.key, def.address);
+    for (RegisterDef& def : data_->defs) {
+      const auto found = address_of.find(def.scale_factor);
+      if (!def.has_scale_factor() || found == address_of.end()) continue;
+      def.scale_factor_address = found->second;
+      data_->has_scale_factors = true;
+      for (RegisterDef& sf : data_->defs) sf.is_scale_factor |= sf.key == def.scale_factor;
+    }
   }
 
   // Only now are the tables complete, so their spans no longer move.
@@ -261,6 +297,7 @@ RegisterMapResult RegisterMapBuilder::build(std::vector<MapDiagnostic> earlier) 
   }
   check_keys_unique(valid, valid_coils, header_.dialect, problems);
   check_coverage(valid, header_.dialect, problems);
+  if (!defer_scale_factors_) check_scale_factors(valid, header_.dialect, problems);
   check_coil_addresses(valid_coils, header_.dialect, problems);
   if (!problems.empty()) {
     std::stable_sort(
@@ -290,6 +327,8 @@ RegisterSpec spec_of(const RegisterDef& def) {
   spec.key = std::string(def.key);
   spec.name = std::string(def.name);
   spec.unit = std::string(def.unit);
+  spec.scale_factor = std::string(def.scale_factor);
+  if (def.has_no_value) spec.no_value = def.no_value;
   for (const EnumText& v : def.values) spec.values.push_back({v.value, std::string(v.text), 0, 0});
   for (const BitName& b : def.bits) spec.bits.push_back({b.index, std::string(b.name), 0, 0});
   spec.line = def.line;

@@ -36,6 +36,8 @@ struct RegisterSpec {
   std::string unit;
   std::vector<SpecValue> values;
   std::vector<SpecValue> bits;
+  std::string scale_factor;              // key of the entry that scales this one by 10^value
+  std::optional<std::int64_t> no_value;  // the raw value that means "no value"
   std::uint32_t line = 0;
   std::uint32_t column = 0;
 };
@@ -80,6 +82,9 @@ class RegisterMapBuilder {
   explicit RegisterMapBuilder(detail::MapHeaderSpec header) : header_(std::move(header)) {}
   void add(detail::RegisterSpec spec) { specs_.push_back(std::move(spec)); }
   void add(detail::CoilSpec spec) { coil_specs_.push_back(std::move(spec)); }
+  // A file laid over a SunSpec chain's map may name the chain's scale factors: they are
+  // checked when the two are merged, not in the file alone.
+  void defer_scale_factors() { defer_scale_factors_ = true; }
   // `earlier` holds problems found while reading the file; they are reported together
   // with the builder's own, sorted by line.
   RegisterMapResult build(std::vector<MapDiagnostic> earlier = {}) &&;
@@ -88,6 +93,7 @@ class RegisterMapBuilder {
   detail::MapHeaderSpec header_;
   std::vector<detail::RegisterSpec> specs_;
   std::vector<detail::CoilSpec> coil_specs_;
+  bool defer_scale_factors_ = false;
 };
 
 }  // namespace pvtap

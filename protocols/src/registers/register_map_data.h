@@ -32,6 +32,7 @@ struct RegisterMap::Data {
   std::vector<RegisterSlotEntry> slots;  // sorted by address, one per covered address
   std::vector<CoilDef> coils;            // sorted by address
   std::vector<CoilDef> discrete_inputs;  // sorted by address
+  bool has_scale_factors = false;
   // slots' index by address, from slots.front().address on (kNoSlot where none covers it):
   // every register of every reply is looked up, so the lookup is one load, not a search.
   static constexpr std::uint32_t kNoSlot = 0xFFFFFFFF;

@@ -2,6 +2,7 @@
 #include <toml++/toml.h>
 
 #include "pvtap/registers/register_map.h"
+#include "pvtap/registers/sunspec.h"
 #include "registers/map_node_reader.h"
 #include "registers/register_entry_reader.h"
 #include "registers/register_map_builder.h"
@@ -33,7 +34,14 @@ class MapFileReader {
     read_registers(root.get("register"), builder);
     read_coils(root.get("coil"), detail::CoilTable::Coils, builder);
     read_coils(root.get("discrete_input"), detail::CoilTable::DiscreteInputs, builder);
-    return std::move(builder).build(nodes_.take_problems());
+    const std::optional<SunSpecChain> chain = read_sunspec(root.get("sunspec"));
+    if (chain) builder.defer_scale_factors();
+    RegisterMapResult own = std::move(builder).build(nodes_.take_problems());
+    if (!chain || !own) return own;
+    // The file's own entries are laid over the chain's, so that a user can rename a point.
+    RegisterMapResult of_chain = sunspec_register_map(*chain, nodes_.source());
+    if (!of_chain) return of_chain;
+    return merge_register_maps(of_chain.value(), own.value());
   }
 
  private:
@@ -63,7 +71,42 @@ class MapFileReader {
   }
 
   static bool is_table_name(std::string_view name) {
-    return name == "enums" || name == "register" || name == "coil" || name == "discrete_input";
+    return name == "enums" || name == "register" || name == "coil" || name == "discrete_input" ||
+           name == "sunspec";
+  }
+
+  // [sunspec] base = 40000, models = [[1, 66], [103, 50]], ended = true: a SunSpec device's
+  // chain as an earlier capture showed it, for a capture that starts after the master's scan.
+  std::optional<SunSpecChain> read_sunspec(const toml::node* node) {
+    if (node == nullptr) return std::nullopt;
+    const auto* t = node->as_table();
+    const toml::array* models = t != nullptr ? (*t)["models"].as_array() : nullptr;
+    const std::optional<std::int64_t> base =
+        t != nullptr ? (*t)["base"].value<std::int64_t>() : std::nullopt;
+    if (t == nullptr || models == nullptr || !base || *base < 0 || *base > 0xFFFD ||
+        dialect_ != Dialect::Modbus) {
+      nodes_.fail(node->source(),
+                  "[sunspec] belongs to a modbus map and holds base = 40000 and models = [[id, "
+                  "length], ...]");
+      return std::nullopt;
+    }
+    SunSpecChain chain;
+    chain.base = static_cast<std::uint16_t>(*base);
+    chain.ended = (*t)["ended"].value_or(false);
+    for (const toml::node& m : *models) {
+      const toml::array* pair = m.as_array();
+      const auto id = pair && pair->size() == 2 ? (*pair)[0].value<std::int64_t>() : std::nullopt;
+      const auto length =
+          pair && pair->size() == 2 ? (*pair)[1].value<std::int64_t>() : std::nullopt;
+      if (!id || !length || *id < 0 || *id >= 0xFFFF || *length < 0 || *length > 0xFFFF ||
+          !chain.append(static_cast<std::uint16_t>(*id), static_cast<std::uint16_t>(*length))) {
+        nodes_.fail(m.source(),
+                    "a [sunspec] model is [id, length] and the chain must end "
+                    "before address 65535");
+        return std::nullopt;
+      }
+    }
+    return chain;
   }
 
   void read_coils(const toml::node* node, detail::CoilTable table, RegisterMapBuilder& builder) {

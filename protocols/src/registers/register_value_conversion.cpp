@@ -136,6 +136,7 @@ void convert_words(const RegisterDef& def, std::span<const std::uint16_t> words,
     return;
   }
   combine(def, words, def.is_float() ? PairRule::Binary : option_rule, v);
+  if (def.has_no_value && v.raw == def.no_value) v.add(ValueWarning::NoValue);
   if (def.is_float()) {
     convert_float32(def, v);
     return;

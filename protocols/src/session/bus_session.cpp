@@ -544,6 +544,7 @@ BusReport BusSession::report() const {
     if (const auto blocks = inferred.find(s.station); blocks != inferred.end()) {
       s.inferred = blocks->second;
     }
+    if (const SunSpecChain* chain = m.decoder.sunspec_chain(s.station)) s.sunspec = *chain;
     const auto it = readings.find(s.station);
     if (it == readings.end()) continue;
     s.last_report_time = it->second.last_time;

@@ -78,11 +78,31 @@ std::string value_name(const InferredBlock& b, const InferredValue& v, std::uint
   return name + ')';
 }
 
+// The chain a SunSpec station showed, so that a capture that starts after the master's scan
+// decodes its models too.
+void sunspec_table(std::string& o, const SunSpecChain& chain) {
+  o += "\n";
+  comment(o, "The SunSpec model chain the station showed: with it, its models' points are named");
+  comment(o, "from the published models, even in a capture that starts after the master's scan.");
+  o += "[sunspec]\nbase = ";
+  o += std::to_string(chain.base);
+  o += "\nmodels = [";
+  for (std::size_t i = 0; i < chain.models.size(); ++i) {
+    o += i > 0 ? ", [" : "[";
+    o += std::to_string(chain.models[i].id);
+    o += ", ";
+    o += std::to_string(chain.models[i].length);
+    o += ']';
+  }
+  o += "]\n";
+  if (chain.ended) o += "ended = true\n";
+}
+
 }  // namespace
 
 std::string draft_register_map(const StationSummary& station, std::string_view source) {
-  if (station.inferred.empty()) return {};
-  const Dialect dialect = station.inferred.front().dialect;
+  if (station.inferred.empty() && !station.sunspec) return {};
+  const Dialect dialect = station.sunspec ? Dialect::Modbus : station.inferred.front().dialect;
   std::string o;
   comment(o, "Draft register map of station " + std::to_string(station.station) +
                  ", written by pvtap audit --draft-map from " + std::string(source) + ".");
@@ -102,6 +122,7 @@ std::string draft_register_map(const StationSummary& station, std::string_view s
   // An inverter's draft lies over its dialect's built-in map, whose registers stay named; a
   // plain Modbus device has no built-in map to lie over.
   o += dialect == Dialect::Modbus ? "\n" : "\nmode = \"extend\"\n";
+  if (station.sunspec) sunspec_table(o, *station.sunspec);
   // A map does not tell holding and input registers apart: an address is written once.
   std::vector<bool> taken(0x10000, false);
   for (const InferredBlock& b : station.inferred) {

@@ -13,6 +13,7 @@
 
 #include "pvtap/codec/frame.h"
 #include "pvtap/registers/register_map.h"
+#include "pvtap/registers/sunspec.h"
 
 namespace pvtap {
 
@@ -28,6 +29,9 @@ struct DecoderOptions {
   // Rule for 2-word entries whose map says combine = "option" (the GSL pairs).
   // FromOptions here means Binary.
   PairRule pair_rule = PairRule::Binary;
+  // Learn the SunSpec model chain of a station without a map from the replies decoded, and
+  // decode its registers by model.
+  bool sunspec = true;
 };
 
 // The wire address of a written register address, and back. Only GSL IDs read as hex
@@ -55,6 +59,9 @@ enum class ValueWarning : std::uint16_t {
   NonPrintableText = 1u << 7,  // text with characters outside printable ASCII (shown as '?')
   NoWrittenAddress = 1u << 8,  // GSL hex IDs: the wire address has a digit above 9
   NotFinite = 1u << 9,         // a float32 value that is NaN or infinite (value holds it)
+  NoValue = 1u << 10,          // the raw value is the map's no_value mark (SunSpec 0xFFFF, 0x8000)
+  NoScaleFactor = 1u << 11,    // its scale factor register was not read (or has no value):
+                               // value is raw * scale, without the factor
 };
 
 // BcdParts: the parts of a BCD value (phase+capacity: phases, capacity in raw units;
@@ -129,6 +136,8 @@ struct DecodedValue {
   DeviceNumber device;          // device number kind
   std::array<char, kTextCapacity> text_chars{};
   std::uint8_t text_length = 0;
+  // Digits after the point its scale factor gives (10^-3: 3), shown when the map's are fewer.
+  std::uint8_t scale_decimals = 0;
 
   bool complete() const { return !has(ValueWarning::Incomplete); }
   bool has(ValueWarning w) const { return (warnings & static_cast<std::uint16_t>(w)) != 0; }
@@ -184,8 +193,20 @@ class RegisterDecoder {
   // Decodes the GSL and plain Modbus frames of `station` with `map` (a meter's own map on a
   // bus of inverters), whatever the dialect; its values are addressed in map.dialect().
   void use_station_map(std::uint8_t station, const RegisterMap& map);
-  const RegisterMap* station_map(std::uint8_t station) const;
+  // A station's own map: the one given, or else the one its SunSpec chain made (learned).
+  const RegisterMap* station_map(std::uint8_t station) const {
+    if (const std::uint8_t i = station_map_of_[station]; i != 0) return &station_maps_[i - 1];
+    return learned_->map(station);
+  }
   const DecoderOptions& options() const { return options_; }
+
+  // Learns what a read reply shows of its station's SunSpec chain (decode() does it too). The
+  // learned state is shared by copies of this decoder; forget_learned() clears it, for a new
+  // capture. Single-threaded, as decoding is.
+  void learn(const Frame& reply, const Frame* request) const;
+  void forget_learned() const { learned_->clear(); }
+  // The SunSpec chain learned for a station; null when it showed none.
+  const SunSpecChain* sunspec_chain(std::uint8_t station) const { return learned_->chain(station); }
 
   // Appends the register values a frame carries. `request` is the matching request of a
   // reply, or null; Hybrid and GSL read replies need it for their start address.
@@ -213,7 +234,11 @@ class RegisterDecoder {
                      std::span<const std::uint16_t> words, ValueOrigin origin,
                      std::vector<DecodedValue>& out) const;
 
+  void apply_scale_factors(const RegisterMap& m, std::uint8_t station, const DecodeReport& report,
+                           std::vector<DecodedValue>& out) const;
+
   std::array<std::optional<RegisterMap>, kDialectCount> own_maps_;  // replacing the built-in
+  std::shared_ptr<SunSpecStations> learned_;  // what the traffic taught; not part of the value
   std::vector<RegisterMap> station_maps_;
   std::array<std::uint8_t, 256> station_map_of_{};  // index + 1 into station_maps_; 0: none
   DecoderOptions options_;

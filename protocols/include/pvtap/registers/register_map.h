@@ -85,10 +85,19 @@ struct RegisterDef {
   std::string_view unit;                              // of the scaled value; may be empty
   std::span<const EnumText> values;                   // sorted by value
   std::span<const BitName> bits;                      // sorted by index
-  std::uint32_t line = 0;                             // where the entry starts in its map file
+  // The key of a one-word signed register whose value e scales this one by 10^e (SunSpec's
+  // scale factors); empty when the scale is fixed. Its written address is scale_factor_address.
+  std::string_view scale_factor;
+  std::uint16_t scale_factor_address = 0;
+  // The raw value a device sends for "no value" (SunSpec: 0xFFFF, 0x8000), when it has one.
+  std::uint32_t no_value = 0;
+  bool has_no_value = false;
+  bool is_scale_factor = false;  // another entry names this one as its scale_factor
+  std::uint32_t line = 0;        // where the entry starts in its map file
 
   bool is_range() const { return repeat > 1; }
   bool is_float() const { return encoding == NumberEncoding::Float32; }
+  bool has_scale_factor() const { return !scale_factor.empty(); }
   std::string_view value_text(std::uint32_t value) const;  // empty when not listed
   std::string_view bit_name(unsigned index) const;         // empty when not listed
 };
@@ -143,6 +152,7 @@ class RegisterMap {
   // The entry covering a written address; a single entry wins over a range containing it.
   std::optional<RegisterSlot> locate(std::uint16_t address) const;
   const RegisterDef* find_kind(RegisterKind kind) const;  // the first entry of a kind
+  bool has_scale_factors() const;  // an entry takes its scale from another's value
 
   // Named coils and discrete inputs (Modbus-family maps), each sorted by address.
   std::span<const CoilDef> coils() const;

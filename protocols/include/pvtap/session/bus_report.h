@@ -4,6 +4,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -146,6 +147,8 @@ struct StationSummary {
   // The blocks with unmapped words, sorted by table and start (BusSessionOptions::
   // infer_registers).
   std::vector<InferredBlock> inferred;
+  // The SunSpec model chain its replies showed (RegisterDecoder learns it), when they did.
+  std::optional<SunSpecChain> sunspec;
 };
 
 // ClaimedStation: an address that damaged frames of no station claimed, and how many did.
