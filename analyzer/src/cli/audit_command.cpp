@@ -138,7 +138,7 @@ void write_draft_maps(const AuditOptions& options, const AuditReport& report) {
 
 int run_audit(AuditOptions& options) {
   apply_choices(options);
-  RegisterDecoder decoder(DecoderOptions{options.gsl_ids, PairRule::Binary, options.sunspec});
+  RegisterDecoder decoder(DecoderOptions{options.gsl_ids, PairRule::Binary, !options.no_sunspec});
   if (!load_maps(options, decoder)) return kExitBadInput;
   options.progress = ::isatty(STDERR_FILENO) == 1;
   if (options.threads == 0) options.threads = default_threads();

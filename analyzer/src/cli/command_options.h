@@ -34,7 +34,7 @@ struct CommonOptions {
   double gateway_gap_ms = 50;
   std::vector<std::uint16_t> ports;
   GslIdReading gsl_ids = GslIdReading::Decimal;
-  bool sunspec = true;  // --no-sunspec: SunSpec devices' words stay unmapped
+  bool no_sunspec = false;  // SunSpec devices' words stay unmapped
   std::vector<std::string> maps;
   OutputFormat format = OutputFormat::Text;
   bool summary_only = false;

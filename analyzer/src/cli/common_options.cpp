@@ -89,7 +89,7 @@ void add_protocol_options(CLI::App& audit, CommonOptions& o, BaudRange baud_rang
       ->type_name("READING")
       ->default_str("decimal");
   audit.add_flag(
-      "!--no-sunspec", o.sunspec,
+      "--no-sunspec", o.no_sunspec,
       "do not decode SunSpec devices by their models: a station whose replies show the \"SunS\" "
       "marker at 40000, 50000 or 0 and the model headers after it is otherwise decoded with "
       "the published models' points and scale factors, learned from what its master reads");

@@ -204,7 +204,7 @@ int run_diff(DiffCommandLine& command) {
   apply_choices(command.reading);
   if (command.reading.threads == 0) command.reading.threads = default_threads();
   RegisterDecoder decoder(
-      DecoderOptions{command.reading.gsl_ids, PairRule::Binary, command.reading.sunspec});
+      DecoderOptions{command.reading.gsl_ids, PairRule::Binary, !command.reading.no_sunspec});
   if (!load_maps(command.reading, decoder)) return kExitBadInput;
   DiffSide before;
   DiffSide after;

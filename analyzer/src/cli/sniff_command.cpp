@@ -289,7 +289,7 @@ int run_live_capture(SniffOptions& o) {
     std::fprintf(stderr, "pvtap: %s\n", problem.c_str());
     return kExitBadInput;
   }
-  RegisterDecoder decoder(DecoderOptions{o.gsl_ids, PairRule::Binary, o.sunspec});
+  RegisterDecoder decoder(DecoderOptions{o.gsl_ids, PairRule::Binary, !o.no_sunspec});
   if (!load_maps(o, decoder)) return kExitBadInput;
   install_stop_handlers();
   std::FILE* sink = o.live.quiet ? std::fopen("/dev/null", "w") : stdout;

@@ -265,9 +265,10 @@ void value_series(std::string& o, const AuditReport& r, const Timeline& t, const
                        s.def->kind == RegisterKind::BcdPhaseCapacity);
   // A value scaled by a scale factor register has the digits the factor gives, which the map
   // does not know: up to 10^-3, as SunSpec devices send them.
-  const int digits =
-      s.def->has_scale_factor() ? std::max(3, int{s.def->decimals}) : s.def->decimals;
-  ranges(o, s.points, 1.0, scaled ? digits : 0, false);
+  const int digits = !scaled                     ? 0
+                     : s.def->has_scale_factor() ? std::max(3, int{s.def->decimals})
+                                                 : s.def->decimals;
+  ranges(o, s.points, 1.0, digits, false);
   o += '}';
 }
 
