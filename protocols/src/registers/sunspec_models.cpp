@@ -279,7 +279,11 @@ void add_model(MapOfChain& out, const SunSpecModel& model, unsigned instance) {
   const std::uint32_t first = model.address + 2u;
   out.add_points(def->points, first, prefix, prefix, name, model.length);
   if (def->repeat_length == 0 || model.length <= def->length) return;
-  const unsigned groups = static_cast<unsigned>(model.length - def->length) / def->repeat_length;
+  // A damaged or hostile length must not make thousands of entries: real devices have a few
+  // MPPT modules, never more than kMaxRepeats.
+  constexpr unsigned kMaxRepeats = 64;
+  const unsigned groups =
+      std::min(kMaxRepeats, static_cast<unsigned>(model.length - def->length) / def->repeat_length);
   for (unsigned g = 0; g < groups; ++g) {
     const std::uint32_t at = first + def->length + g * def->repeat_length;
     out.add_points(def->repeat_points, at, prefix + "_" + std::to_string(g + 1), prefix,
