@@ -234,7 +234,7 @@ void append_value_number(std::string& out, const DecodedValue& v) {
     case RegisterKind::Number:
     case RegisterKind::Bcd:
     case RegisterKind::BcdPhaseCapacity:
-      append_fixed(out, v.value, std::max<int>(v.def->decimals, v.scale_decimals));
+      append_fixed(out, v.value, static_cast<int>(shown_decimals(v)));
       return;
     default:
       append_uint(out, v.raw);

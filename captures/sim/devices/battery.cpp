@@ -120,22 +120,14 @@ std::uint16_t Battery::word_at(std::uint16_t address) const {
   }
   if (address >= kName && address < kName + kNameCount) {
     const unsigned index = address - kName;
-    const std::string& text = index < 8 ? model_ : serial_;
-    const unsigned at = (index % 8) * 2;
-    const auto c = [&](unsigned i) -> unsigned {
-      return i < text.size() ? static_cast<unsigned char>(text[i]) : 0u;
-    };
-    return static_cast<std::uint16_t>(c(at) << 8 | c(at + 1));
+    return text_word(index < 8 ? model_ : serial_, index % 8);
   }
   return 0;
 }
 
 BusEvent Battery::reply(const Frame& request, Micros request_end) {
   advance(request_end);
-  WordList words;
-  const std::uint16_t start = request.start.value_or(0), count = request.count.value_or(0);
-  for (unsigned a = start; a < start + count; ++a)
-    words.push_back(word_at(static_cast<std::uint16_t>(a)));
+  const WordList words = register_words(request, [this](std::uint16_t a) { return word_at(a); });
   return frame_event(register_reply(request, words));
 }
 

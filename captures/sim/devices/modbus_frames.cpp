@@ -148,4 +148,20 @@ void push_float(WordList& words, float value, bool low_first) {
   words.push_back(low_first ? high : low);
 }
 
+std::uint16_t text_word(std::string_view text, unsigned index) {
+  const auto c = [&](unsigned i) -> unsigned {
+    return i < text.size() ? static_cast<unsigned char>(text[i]) : 0u;
+  };
+  return static_cast<std::uint16_t>(c(2 * index) << 8 | c(2 * index + 1));
+}
+
+WordList register_words(const Frame& request,
+                        const std::function<std::uint16_t(std::uint16_t)>& word_at) {
+  WordList words;
+  const std::uint16_t start = request.start.value_or(0), count = request.count.value_or(0);
+  for (unsigned a = start; a < start + count; ++a)
+    words.push_back(word_at(static_cast<std::uint16_t>(a)));
+  return words;
+}
+
 }  // namespace pvtap::sim

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string_view>
 #include <vector>
 
@@ -39,5 +40,10 @@ Frame server_id_reply(const Frame& request, std::uint8_t server_id, std::string_
 // The words of an IEEE-754 single, high word first (the usual meter order) unless `low_first`.
 void push_float(WordList& words, float value, bool low_first = false);
 std::uint32_t float_bits(float value);
+// Word `index` of `text` as registers hold it: two characters, high byte first, NUL-padded.
+std::uint16_t text_word(std::string_view text, unsigned index);
+// The words a device's register read asks for, each from `word_at`.
+WordList register_words(const Frame& request,
+                        const std::function<std::uint16_t(std::uint16_t)>& word_at);
 
 }  // namespace pvtap::sim

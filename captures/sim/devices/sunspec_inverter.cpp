@@ -80,12 +80,6 @@ std::uint16_t scaled(double value, int sf) {
 double as_sent(double value, int sf) {
   return static_cast<double>(static_cast<std::int16_t>(scaled(value, sf))) * std::pow(10.0, sf);
 }
-std::uint16_t text_word(const std::string& text, unsigned index) {
-  const auto c = [&](unsigned i) -> unsigned {
-    return i < text.size() ? static_cast<unsigned char>(text[i]) : 0u;
-  };
-  return static_cast<std::uint16_t>(c(2 * index) << 8 | c(2 * index + 1));
-}
 
 }  // namespace
 
@@ -160,7 +154,8 @@ std::vector<SunSpecInverter::Point> SunSpecInverter::points() const {
   return p;
 }
 
-std::uint16_t SunSpecInverter::word_at(std::uint16_t address) const {
+std::uint16_t SunSpecInverter::word_at(std::uint16_t address,
+                                       const std::vector<Point>& points) const {
   if (address == kBase) return 0x5375;
   if (address == kBase + 1) return 0x6E53;
   if (address == kCommon) return 1;
@@ -253,7 +248,7 @@ std::uint16_t SunSpecInverter::word_at(std::uint16_t address) const {
       if (k == kModDcwh + 1) return static_cast<std::uint16_t>(energy_wh_ / 2.0);
     }
   }
-  for (const Point& p : points()) {
+  for (const Point& p : points) {
     if (p.address == address) return scaled(p.value, p.sf);
   }
   return 0;
@@ -261,12 +256,12 @@ std::uint16_t SunSpecInverter::word_at(std::uint16_t address) const {
 
 BusEvent SunSpecInverter::reply(const Frame& request, Micros request_end) {
   advance(request_end);
-  WordList words;
-  const std::uint16_t start = request.start.value_or(0), count = request.count.value_or(0);
-  for (unsigned a = start; a < start + count; ++a)
-    words.push_back(word_at(static_cast<std::uint16_t>(a)));
+  // The points are worked out once a reply: every word of the read looks into them.
+  const std::vector<Point> now = points();
+  const WordList words = register_words(request, [&](std::uint16_t a) { return word_at(a, now); });
   BusEvent e = frame_event(register_reply(request, words));
-  for (const Point& p : points()) {
+  const std::uint16_t start = request.start.value_or(0), count = request.count.value_or(0);
+  for (const Point& p : now) {
     if (p.address < start || p.address >= start + count) continue;
     RegisterTruth t;
     char address[8];

@@ -37,7 +37,7 @@ class SunSpecInverter : public ModbusDevice {
     int sf;  // the value is sent as round(value / 10^sf)
   };
   void advance(Micros now);
-  std::uint16_t word_at(std::uint16_t address) const;
+  std::uint16_t word_at(std::uint16_t address, const std::vector<Point>& points) const;
   std::vector<Point> points() const;
 
   SimRandom random_;

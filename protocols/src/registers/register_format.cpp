@@ -46,17 +46,12 @@ void append_not_finite(std::string& out, const DecodedValue& v) {
   append_unit(out, v.def->unit);
 }
 
-// A value scaled by a scale factor register shows as many digits as that factor gives.
-unsigned decimals_of(const DecodedValue& v) {
-  return std::max<unsigned>(v.def->decimals, v.scale_decimals);
-}
-
 void append_number(std::string& out, const DecodedValue& v) {
   if (!std::isfinite(v.value)) {
     append_not_finite(out, v);
     return;
   }
-  append_fixed(out, v.value, decimals_of(v));
+  append_fixed(out, v.value, shown_decimals(v));
   append_unit(out, v.def->unit);
 }
 
@@ -169,11 +164,15 @@ void append_value_text(std::string& out, const DecodedValue& v) {
   }
 }
 
+unsigned shown_decimals(const DecodedValue& v) {
+  return std::max<unsigned>(v.def->decimals, v.scale_decimals);
+}
+
 double value_as_shown(const DecodedValue& v) {
   if (v.def == nullptr || !std::isfinite(v.value)) return v.value;
   FixedChars buf{};
   double shown = v.value;
-  std::from_chars(buf.data(), write_fixed(buf, v.value, decimals_of(v)), shown);
+  std::from_chars(buf.data(), write_fixed(buf, v.value, shown_decimals(v)), shown);
   return shown;
 }
 

@@ -6,6 +6,7 @@
 #include <charconv>
 #include <map>
 #include <optional>
+#include <set>
 
 #include "pvtap/registers/sunspec.h"
 #include "registers/register_entry_rules.h"
@@ -256,7 +257,7 @@ class MapOfChain {
     if (k.size() > 60) k.resize(60);
     std::string unique = k;
     for (unsigned n = 2; used_.count(unique) != 0; ++n) unique = k + "_" + std::to_string(n);
-    used_.emplace(unique, true);
+    used_.insert(unique);
     return unique;
   }
   static std::string key_of_sf(std::string k) {
@@ -264,7 +265,7 @@ class MapOfChain {
     return k;
   }
 
-  std::map<std::string, bool> used_;
+  std::set<std::string> used_;
 };
 
 void add_model(MapOfChain& out, const SunSpecModel& model, unsigned instance) {

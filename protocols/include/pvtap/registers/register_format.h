@@ -17,6 +17,9 @@ void append_value_text(std::string& out, const DecodedValue& v);
 // (2206 x 0.1 is 220.6, not 220.60000000000002), so that a number compared with what a person
 // reads matches it. The value itself where no map entry gives decimals.
 double value_as_shown(const DecodedValue& v);
+// Digits after the point a number value is shown with: its map entry's, or more when its scale
+// factor register gives more (10^-3: 3). `v.def` must be set.
+unsigned shown_decimals(const DecodedValue& v);
 
 // The value's address as the reference writes it ("0x1006", "0x0020", "1056"); a GSL wire
 // address with no decimal reading (hex IDs) is shown as hex.
