@@ -144,6 +144,7 @@ Micros BusMaster::poll_device(ModbusDevice& device, const Frame& request, Micros
   const std::optional<FaultKind> fault =
       placed(fitting(pick_fault(Dialect::Modbus), request, device));
   next_request_pins_ = false;
+  device.answered(request, !fault);
   if (fault == FaultKind::CorruptRequest) return send_damaged_requests(request, at);
   const Micros request_end = wire_.put(frame_event(request), at);
   if (fault)

@@ -26,6 +26,9 @@ class ModbusDevice {
   // The normal reply to `request`, which ended at `request_end`, with the values it carries.
   // A write takes effect here: a device changes only what it answers.
   virtual BusEvent reply(const Frame& request, Micros request_end) = 0;
+  // Told after each exchange whether the logger got `request`'s reply whole (no fault on it):
+  // a client that must read something whole (a SunSpec scan) asks again in the next round.
+  virtual void answered(const Frame& /*request*/, bool /*whole*/) {}
 
   // How a request is answered: normally (faults aside); for a station nobody has, by a reply
   // a peer puts on the line after the master gave the request up (a late reply); or, sent to

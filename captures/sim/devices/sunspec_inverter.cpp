@@ -93,10 +93,10 @@ DeviceLabel SunSpecInverter::label() const {
   return {"sunspec_inverter", {}, {}, {}, {}};
 }
 
-std::vector<Frame> SunSpecInverter::requests(unsigned round) const {
+std::vector<Frame> SunSpecInverter::requests(unsigned /*round*/) const {
   const std::uint8_t s = station();
   std::vector<Frame> out;
-  if (round == 0) {  // the client's scan: marker, then header by header
+  if (!scanned_) {  // the client's scan: marker, then header by header
     out = {modbus_read(s, kHolding, kBase, 2),    modbus_read(s, kHolding, kCommon, 2),
            modbus_read(s, kHolding, kCommon, 68), modbus_read(s, kHolding, kInverter, 2),
            modbus_read(s, kHolding, kMppt, 2),    modbus_read(s, kHolding, kEnd, 2)};
@@ -104,6 +104,18 @@ std::vector<Frame> SunSpecInverter::requests(unsigned round) const {
   out.push_back(modbus_read(s, kHolding, kInverter + 2, 50));
   out.push_back(modbus_read(s, kHolding, kMppt + 2, 48));
   return out;
+}
+
+void SunSpecInverter::answered(const Frame& request, bool whole) {
+  // The scan reads the marker and each header (two words) and the common model; the polls
+  // read 103 and 160 past their headers.
+  const bool scan = request.count == 2 || request.start == kCommon;
+  if (scanned_ || !scan) return;
+  scan_damaged_ = scan_damaged_ || !whole;
+  if (request.start == kEnd) {  // the scan's last read
+    scanned_ = !scan_damaged_;
+    scan_damaged_ = false;
+  }
 }
 
 void SunSpecInverter::advance(Micros now) {

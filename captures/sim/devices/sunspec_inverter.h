@@ -1,9 +1,9 @@
 // SunSpecInverter: a string inverter that answers the SunSpec models, the truth for pvtap's
 // passive SunSpec decoding: "SunS" at 40000, then common (1), three-phase inverter (103) and
-// multiple MPPT (160, two modules), then the end model. Its logger scans the chain once, as a
-// SunSpec client does (marker, each header, the common model), then reads 103 and 160 every
-// round. Scale factors differ per point and some points are not implemented (0x8000, 0xFFFF),
-// as on real devices.
+// multiple MPPT (160, two modules), then the end model. Its logger scans the chain as a SunSpec
+// client does (marker, each header, the common model), again each round until one scan came
+// back whole, and reads 103 and 160 every round. Scale factors differ per point and some points are
+// not implemented (0x8000, 0xFFFF), as on real devices.
 #pragma once
 
 #include <cstdint>
@@ -21,6 +21,7 @@ class SunSpecInverter : public ModbusDevice {
   DeviceLabel label() const override;
   std::vector<Frame> requests(unsigned round) const override;
   BusEvent reply(const Frame& request, Micros request_end) override;
+  void answered(const Frame& request, bool whole) override;
 
   static constexpr std::uint16_t kBase = 40000;
   static constexpr std::uint16_t kCommon = kBase + 2;       // model 1 header
@@ -48,6 +49,8 @@ class SunSpecInverter : public ModbusDevice {
   double hz_ = 50.0;
   double cabinet_c_ = 35.0;
   std::string serial_;
+  bool scanned_ = false;       // a scan came back whole: the client knows the chain
+  bool scan_damaged_ = false;  // a reply of the scan under way was damaged or missing
 };
 
 }  // namespace pvtap::sim

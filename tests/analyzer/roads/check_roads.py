@@ -13,6 +13,8 @@ max):
            keeps the bus timing (the other forms re-time the bytes: latencies and offsets
            are left out there), and its 4-wire form: the requests' and the replies' pairs
            in two USER0 files, audited with --duplex.
+Frames and stations are compared with their decoded values: a SunSpec inverter's bus is among
+the simulated ones, its model chain learned from a scan that a cut puts in one file only.
 The plugin's roads (one pass and two, on the same samples) are plugin.test_sample_library.
 
 Usage: check_roads.py --pvtap PVTAP --sim PVTAP_SIM --samples DIR --work DIR [--only NAME]
@@ -130,7 +132,25 @@ def simulated_buses(options):
                        check=True, capture_output=True, timeout=RUN_GUARD_S)
         buses[stem] = paths
         buses[stem]["duplex"] = pairs
+    buses["sim-sunspec"] = sunspec_bus(options)
     return buses
+
+
+def sunspec_bus(options):
+    """A SunSpec inverter beside a mapped one, on a line that damages some replies: its model
+    chain is learned from the logger's scan in the first file of a cut too, and its values named
+    and scaled alike on every road."""
+    folder = os.path.join(options.work, "sim-sunspec")
+    os.makedirs(folder, exist_ok=True)
+    paths = {form: os.path.join(folder, f"sim-sunspec.{form}.pcap") for form in FORMS}
+    pairs = [os.path.join(folder, f"sim-sunspec.{pair}.user0.pcap") for pair in ("req", "rep")]
+    subprocess.run([options.sim, "--seed", "361", "--inverters", "1", "--sunspec", "3",
+                    "--duration", "90", "--faults", "corrupt=10,missing=10",
+                    "--pdu", paths["pdu"], "--gateway", paths["gateway"],
+                    "--chunked", paths["user0"], "--duplex", *pairs],
+                   check=True, capture_output=True, timeout=RUN_GUARD_S)
+    paths["duplex"] = pairs
+    return paths
 
 
 def sample_buses(options):

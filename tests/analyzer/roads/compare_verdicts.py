@@ -6,10 +6,10 @@ usage: compare_verdicts.py [options] A.jsonl B.jsonl
 
 Exit status 0 when the verdicts are the same, 1 with one line per difference, 2 when a file
 cannot be read. Compared: every frame in order (dialect, role, station, function, check, bytes,
-latency to the microsecond, findings, bus), every timeout or unanswered request (station,
+latency to the microsecond, findings, decoded values, bus), every timeout or unanswered request (station,
 function, reason), every noise run (bytes, offset in the bus's stream), every gap, and the
 summary's counts (frames, bad checks, damaged replies, timeouts, noise runs and bytes,
-duplicates, ...), stations and latency p50/max. Times are compared (to the microsecond) only
+duplicates, ...), stations with their latest values and latency p50/max. Times are compared (to the microsecond) only
 with --times: a road may stamp its records otherwise and still give the same verdicts.
 
 As a module: `differences(a_lines, b_lines, Options())` returns the lines of differences.
@@ -32,7 +32,7 @@ STATION_COUNTS = ("requests", "responses", "bad_checks", "timeouts", "damaged_re
 LATENCY_FIGURES = ("count", "p50", "max")
 # What --ignore can leave out.
 IGNORABLE = ("bus", "latency", "issues", "offset", "gaps", "stations", "unknown_station",
-             "bytes", "frame_bytes", "lost_bytes", "exception_codes")
+             "bytes", "frame_bytes", "lost_bytes", "exception_codes", "values")
 
 
 @dataclasses.dataclass
@@ -62,9 +62,17 @@ def frame_key(e, o):
         key.append(latency)
     if "issues" not in o.ignore:
         key.append(tuple(e.get("issues", ())))
+    if "values" not in o.ignore:
+        key.append(values_key(e.get("values")))
     if o.times:
         key.append(micros(e.get("ts")))
     return tuple(key)
+
+
+def values_key(values):
+    """A frame's or a station's decoded values, as one comparable text: register, name, number
+    or text, unit and marks alike, or the roads decoded the bytes differently."""
+    return json.dumps(values or [], sort_keys=True)
 
 
 def timeout_key(e, o):
@@ -168,6 +176,10 @@ def station_differences(a, b, o):
                           latency_figures(b[name].get("latency_ms")))
         compare_value(out, f"station {name} device", (a[name].get("device") or {}).get("name"),
                       (b[name].get("device") or {}).get("name"))
+        if "values" not in o.ignore and values_key(a[name].get("values")) != \
+                values_key(b[name].get("values")):
+            out.append(f"station {name} values: A {len(a[name].get('values') or [])}, "
+                       f"B {len(b[name].get('values') or [])}, not the same")
     return out
 
 
