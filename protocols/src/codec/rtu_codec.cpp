@@ -9,13 +9,7 @@ namespace pvtap::detail {
 namespace {
 
 constexpr std::size_t kCrcLength = 2;
-constexpr std::size_t kFixedLength = 8;  // addr fc word word crc
 constexpr std::size_t kDeviceNumberLength = 4;
-
-bool is_hybrid_read(std::uint8_t f) {
-  return f == fc::kHybridDeviceInfo || f == fc::kHybridRunningData || f == fc::kHybridSettings ||
-         f == fc::kHybridManufacturer || f == fc::kHybridRestoreFactory;
-}
 
 // addr fc n data[n] crc, with n checked against the frame length.
 std::optional<std::span<const std::uint8_t>> counted_body(std::span<const std::uint8_t> b,
@@ -30,11 +24,11 @@ std::optional<std::span<const std::uint8_t>> counted_body(std::span<const std::u
 // The parsers below fill in the frame they are given: passing a Frame by value copies its
 // disengaged optionals, which g++ 14 reports as a read of uninitialized memory.
 ParseStatus parse_hybrid_request(std::span<const std::uint8_t> b, Frame& f) {
-  if (b.size() != kFixedLength) return fail("Hybrid request is not 8 bytes");
+  if (b.size() != kFixedRequestLength) return fail("Hybrid request is not 8 bytes");
   f.start = be16(b, 2);
   if (f.function == fc::kHybridWriteParameter) {
     f.words.push_back(be16(b, 4));
-  } else if (is_hybrid_read(f.function)) {
+  } else if (fc::is_hybrid_range_request(f.function)) {
     f.count = be16(b, 4);
   } else {
     return fail("not a Hybrid request function code");
@@ -73,7 +67,7 @@ ParseStatus parse_gsl_request(std::span<const std::uint8_t> b, Frame& f) {
       return fail("GSL 0x10 data is not whole registers");
     return kParsed;
   }
-  if (b.size() != kFixedLength) return fail("GSL request is not 8 bytes");
+  if (b.size() != kFixedRequestLength) return fail("GSL request is not 8 bytes");
   f.start = be16(b, 2);
   if (f.function == fc::kGslWriteSingle) {
     f.words.push_back(be16(b, 4));
@@ -97,7 +91,7 @@ ParseStatus parse_gsl_reply(std::span<const std::uint8_t> b, Frame& f) {
     if (!read_words(*body, f.words)) return fail("GSL reply data is not whole registers");
     return kParsed;
   }
-  if (b.size() != kFixedLength) return fail("GSL write reply is not 8 bytes");
+  if (b.size() != kFixedRequestLength) return fail("GSL write reply is not 8 bytes");
   f.start = be16(b, 2);
   if (f.function == fc::kGslWriteSingle) {
     f.words.push_back(be16(b, 4));

@@ -11,6 +11,9 @@
 
 namespace pvtap::detail {
 
+// The fixed-shape frames of Hybrid and GSL: address, function, two words, CRC.
+inline constexpr std::size_t kFixedRequestLength = 8;
+
 // ParseStatus: why bytes do not parse, empty when they do. The parsers fill a frame the caller
 // keeps, and return only this: a Result<Frame> would copy the frame's inline words once per
 // frame on the audit's hot path.

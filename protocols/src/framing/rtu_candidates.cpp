@@ -1,5 +1,6 @@
 #include "framing/rtu_candidates.h"
 
+#include "codec/wire_fields.h"
 #include "framing/candidate_reader.h"
 
 #include "pvtap/codec/function_codes.h"
@@ -7,23 +8,17 @@
 namespace pvtap::detail {
 namespace {
 
-constexpr std::size_t kFixedLength = 8;
 constexpr unsigned kMaxReadCount = 125;  // a reply must fit its data in one byte count
 
 using Reader = CandidateReader;
 
-bool is_hybrid_read(std::uint8_t f) {
-  return f == fc::kHybridDeviceInfo || f == fc::kHybridRunningData || f == fc::kHybridSettings ||
-         f == fc::kHybridManufacturer || f == fc::kHybridRestoreFactory;
-}
-
 void hybrid_request(Reader& r, std::uint8_t f) {
   if (f == fc::kHybridError) return;
-  if (r.strict && is_hybrid_read(f) && r.has(5)) {
+  if (r.strict && fc::is_hybrid_range_request(f) && r.has(5)) {
     const unsigned count = r.word(4);
     if (count == 0 || count > kMaxReadCount) return;
   }
-  r.add(kFixedLength, Role::Request);
+  r.add(kFixedRequestLength, Role::Request);
 }
 
 // Every reply carries the 4-byte device number and then whole registers; write echoes,
@@ -51,7 +46,7 @@ void gsl_request(Reader& r, std::uint8_t f) {
     const unsigned count = r.word(4);
     if (count == 0 || count > kMaxReadCount) return;
   }
-  r.add(kFixedLength, Role::Request);
+  r.add(kFixedRequestLength, Role::Request);
 }
 
 bool is_write(std::uint8_t f) {
@@ -75,9 +70,9 @@ void gsl_response(Reader& r, std::uint8_t f) {
       const unsigned count = r.word(4);
       if (count == 0 || count > 123) return;
     }
-    r.add(kFixedLength, Role::Response);
+    r.add(kFixedRequestLength, Role::Response);
   } else {
-    r.add(kFixedLength, Role::Response);
+    r.add(kFixedRequestLength, Role::Response);
   }
 }
 

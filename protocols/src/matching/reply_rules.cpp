@@ -5,16 +5,11 @@
 namespace pvtap {
 namespace {
 
-bool is_hybrid_read(std::uint8_t f) {
-  return f == fc::kHybridDeviceInfo || f == fc::kHybridRunningData || f == fc::kHybridSettings ||
-         f == fc::kHybridManufacturer;
-}
-
 std::optional<CountComparison> compare_hybrid(const FrameSummary& request,
                                               const FrameSummary& reply) {
   if (!reply.byte_count) return std::nullopt;
   const unsigned found = *reply.byte_count;
-  if (is_hybrid_read(request.function)) {
+  if (fc::is_hybrid_read(request.function)) {
     if (!request.count) return std::nullopt;
     return CountComparison{4u + 2u * unsigned{*request.count}, found, CountUnit::Bytes};
   }

@@ -49,6 +49,17 @@ inline constexpr std::uint8_t kHybridBroadcast = 0xFF;
 inline constexpr std::uint8_t kModbusBroadcast = 0x00;
 inline constexpr std::uint8_t kLastModbusStation = 247;
 
+// Hybrid reads: their replies carry the data of the count registers asked for.
+constexpr bool is_hybrid_read(std::uint8_t f) {
+  return f == kHybridDeviceInfo || f == kHybridRunningData || f == kHybridSettings ||
+         f == kHybridManufacturer;
+}
+
+// Hybrid requests that name a start and a count: the reads, and restore factory settings.
+constexpr bool is_hybrid_range_request(std::uint8_t f) {
+  return is_hybrid_read(f) || f == kHybridRestoreFactory;
+}
+
 // An exception reply of the Modbus family: fc|0x80 (Hybrid's 0xFF error reply is not one).
 constexpr bool is_gsl_exception(std::uint8_t f) {
   return (f & kExceptionFlag) != 0 && f != kHybridError;
