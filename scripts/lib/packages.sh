@@ -98,6 +98,27 @@ pvtap_release_tag() {
   echo "${PVTAP_RELEASE_TAG[$release]}"
 }
 
+# The CMake settings of a build the package can be made from (scripts/package): Debian's
+# hardening flags (dpkg-buildflags, with CPPFLAGS where CMake reads them, and without -g: CPack
+# strips the binaries), installed under /usr, tagged for the running release. Set as cache
+# values, not through the environment, so that an existing build folder takes them too.
+# Fills the array PVTAP_PACKAGE_CMAKE_ARGS.
+pvtap_package_cmake_args() {
+  local cppflags cflags cxxflags ldflags
+  no_debug() { sed -e 's/\(^\| \)-g\( \|$\)/ /g' <<<"$1"; }
+  cppflags="$(DEB_BUILD_MAINT_OPTIONS=hardening=+all dpkg-buildflags --get CPPFLAGS)"
+  cflags="$(DEB_BUILD_MAINT_OPTIONS=hardening=+all dpkg-buildflags --get CFLAGS)"
+  cxxflags="$(DEB_BUILD_MAINT_OPTIONS=hardening=+all dpkg-buildflags --get CXXFLAGS)"
+  ldflags="$(DEB_BUILD_MAINT_OPTIONS=hardening=+all dpkg-buildflags --get LDFLAGS)"
+  PVTAP_PACKAGE_CMAKE_ARGS=(
+    -DCMAKE_BUILD_TYPE=Release -DCMAKE_INSTALL_PREFIX=/usr
+    "-DPVTAP_PACKAGE_RELEASE_TAG=$(pvtap_release_tag)"
+    "-DCMAKE_C_FLAGS=$(no_debug "$cppflags $cflags")"
+    "-DCMAKE_CXX_FLAGS=$(no_debug "$cppflags $cxxflags")"
+    "-DCMAKE_EXE_LINKER_FLAGS=$ldflags" "-DCMAKE_SHARED_LINKER_FLAGS=$ldflags"
+    "-DCMAKE_MODULE_LINKER_FLAGS=$ldflags")
+}
+
 # The clang command of the running release (clang-14, clang-19, clang-21).
 pvtap_clang() {
   local release
