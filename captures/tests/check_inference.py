@@ -40,6 +40,14 @@ def matches(truth, got):
     return got["counter"] == truth.get("counter", False)
 
 
+def kind_name(t):
+    """The truth's kind of a value, as the scoring table lists it."""
+    name = t["type"]
+    if t["words"] == 2:
+        name += " " + t["word_order"].replace("_", " ")
+    return name + (" counter" if t.get("counter") else "")
+
+
 def check_draft_maps(pvtap, capture, work, got, failures):
     """--draft-map DIR writes station-N.toml, which --map loads back: every inferred value is
     then a named value of the summary, floats read as inferred. A folder that cannot be written
@@ -92,6 +100,7 @@ def main():
     sim, pvtap, work = sys.argv[1:4]
     os.makedirs(work, exist_ok=True)
     failures, scored, right = [], 0, 0
+    kinds = {}  # the truth's kind: [right, wrong, not inferred]
     for order in ("high_first", "low_first"):
         capture = os.path.join(work, "unmapped-%s.pcap" % order)
         truth_path = os.path.join(work, "unmapped-%s.truth.json" % order)
@@ -105,6 +114,8 @@ def main():
             for t in device.get("layout", []):
                 v = got.get((device["station"], t["function"], t["register"]))
                 scored += 1
+                tally = kinds.setdefault(kind_name(t), [0, 0, 0])
+                tally[0 if matches(t, v) else 2 if v is None else 1] += 1
                 if matches(t, v):
                     right += 1
                     continue
@@ -120,6 +131,9 @@ def main():
             check_draft_maps(pvtap, capture, work, got, failures)
     share = right / scored if scored else 0.0
     print("%d of %d registers inferred right (%.0f %%)" % (right, scored, 100 * share))
+    print("  %-22s %5s %5s %12s" % ("kind", "right", "wrong", "not inferred"))
+    for name, (r, w, n) in sorted(kinds.items()):
+        print("  %-22s %5d %5d %12d" % (name, r, w, n))
     for f in failures:
         print("  " + f)
     bad_order = [f for f in failures if "never allowed" in f]
