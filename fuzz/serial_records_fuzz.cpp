@@ -6,8 +6,8 @@
 #include <span>
 
 #include "fuzz_input.h"
-#include "pvtap/capture/exported_pdu_reader.h"
-#include "pvtap/capture/rtac_record.h"
+#include "pvtap/pcap/exported_pdu_reader.h"
+#include "pvtap/pcap/rtac_record.h"
 
 namespace {
 

@@ -2,7 +2,7 @@
 """The shape of the tree, read from its includes and folders: the core reads no files (sans-I/O:
 callers hand it text and bytes); the analyzer's folders are floors, each including only the
 floors below it (ANALYZER_FLOORS); and the tests mirror the products: tests/<product>/ for
-protocols, capture, analyzer, dissector and packaging (tests/package), the core's in
+protocols, pcap, analyzer, dissector and packaging (tests/package), the core's in
 tests/protocols/<family>/ for the families of protocols/src, beside only the shared
 tests/support, tests/corpus and tests/structure. How many files a folder holds is no rule.
 
@@ -60,7 +60,7 @@ def analyzer_breaches(repo):
 
 
 # Folders of tests/: one per product (package: packaging/), and what they all share.
-TEST_FOLDERS = {"protocols", "capture", "analyzer", "dissector", "package",
+TEST_FOLDERS = {"protocols", "pcap", "analyzer", "dissector", "package",
                 "support", "corpus", "structure"}
 
 

@@ -16,7 +16,7 @@
 #include "cli/exit_status.h"
 #include "cli/mqtt_command_options.h"
 #include "pipeline/pipeline.h"
-#include "pvtap/capture/link_types.h"
+#include "pvtap/pcap/link_types.h"
 #include "pvtap/session/draft_map.h"
 #include "run/run_output.h"
 

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "cli/sample_rate_argument.h"
-#include "pvtap/capture/link_types.h"
+#include "pvtap/pcap/link_types.h"
 
 namespace pvtap::analyzer {
 namespace {

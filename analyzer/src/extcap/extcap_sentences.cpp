@@ -1,7 +1,7 @@
 #include "extcap/extcap_sentences.h"
 
 #include "extcap/extcap_options.h"
-#include "pvtap/capture/link_types.h"
+#include "pvtap/pcap/link_types.h"
 
 namespace pvtap::analyzer {
 namespace {

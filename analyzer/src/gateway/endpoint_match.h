@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <cstring>
 
-#include "pvtap/capture/network_packet.h"
+#include "pvtap/pcap/network_packet.h"
 
 namespace pvtap::analyzer {
 

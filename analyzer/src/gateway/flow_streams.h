@@ -6,8 +6,8 @@
 #include <span>
 
 #include "gateway/tcp_stream.h"
-#include "pvtap/capture/network_packet.h"
 #include "pvtap/framing/bus_chunk.h"
+#include "pvtap/pcap/network_packet.h"
 #include "report/network_stats.h"
 
 namespace pvtap::analyzer {

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "gateway/bus_provider.h"
-#include "pvtap/capture/network_packet.h"
+#include "pvtap/pcap/network_packet.h"
 #include "pvtap/session/bus_session.h"
 #include "report/network_stats.h"
 

@@ -5,7 +5,7 @@
 #include <cstdio>
 
 #include "logic/tap/uart_tap.h"
-#include "pvtap/session/carrier_timing.h"
+#include "pvtap/session/timestamping.h"
 
 namespace pvtap::analyzer {
 namespace {

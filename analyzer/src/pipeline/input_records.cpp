@@ -1,9 +1,9 @@
 // InputRecords: one capture record, by the kind of input its link type makes it.
 #include "pipeline/input_records.h"
 
-#include "pvtap/capture/exported_pdu_reader.h"
-#include "pvtap/capture/exported_pdu_tags.h"
-#include "pvtap/capture/rtac_record.h"
+#include "pvtap/pcap/exported_pdu_reader.h"
+#include "pvtap/pcap/exported_pdu_tags.h"
+#include "pvtap/pcap/rtac_record.h"
 
 namespace pvtap::analyzer {
 namespace {
@@ -28,19 +28,19 @@ void InputRecords::begin(int link_type, bool batched_serial, bool serial_timing_
   network_ = network_ || kind_ == InputKind::Network;
 }
 
-Carrier InputRecords::carrier_of(InputKind kind, bool has_timestamps) const {
-  if (!has_timestamps) return Carrier::PlainDump;
+Timestamping InputRecords::timestamping_of(InputKind kind, bool has_timestamps) const {
+  if (!has_timestamps) return Timestamping::PlainDump;
   switch (kind) {
     case InputKind::Network:
-      return Carrier::GatewaySegments;
+      return Timestamping::GatewaySegments;
     case InputKind::ExportedPdu:
-      return Carrier::ExportedPdus;
+      return Timestamping::ExportedPdus;
     case InputKind::Serial:
-      return batched_serial_ ? Carrier::SerialBatches : Carrier::SerialCharacters;
+      return batched_serial_ ? Timestamping::SerialBatches : Timestamping::SerialCharacters;
     case InputKind::RtacSerial:
       break;
   }
-  return Carrier::SerialCharacters;
+  return Timestamping::SerialCharacters;
 }
 
 std::optional<SerialBytes> InputRecords::serial_bytes(const CapturedPacket& packet) {

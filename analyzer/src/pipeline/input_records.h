@@ -5,12 +5,12 @@
 #include <cstdint>
 #include <optional>
 
-#include "pvtap/capture/capture_file.h"
-#include "pvtap/capture/link_types.h"
-#include "pvtap/capture/network_packet.h"
-#include "pvtap/capture/pvtap_record_facts.h"
 #include "pvtap/framing/bus_chunk.h"
-#include "pvtap/session/carrier_timing.h"
+#include "pvtap/pcap/capture_file.h"
+#include "pvtap/pcap/link_types.h"
+#include "pvtap/pcap/network_packet.h"
+#include "pvtap/pcap/pvtap_record_facts.h"
+#include "pvtap/session/timestamping.h"
 #include "report/audit_report.h"
 
 namespace pvtap::analyzer {
@@ -44,7 +44,7 @@ class InputRecords {
   // Records of the serial bus: its bytes; nullopt when the record was skipped, and counted.
   std::optional<SerialBytes> serial_bytes(const CapturedPacket& packet);
   // How the bytes of that kind of input reach pvtap, for what their timestamps prove.
-  Carrier carrier_of(InputKind kind, bool has_timestamps) const;
+  Timestamping timestamping_of(InputKind kind, bool has_timestamps) const;
 
   // An input of IP packets was read.
   bool network() const { return network_; }

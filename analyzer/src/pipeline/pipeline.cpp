@@ -1,7 +1,7 @@
 #include "pipeline/pipeline.h"
 
-#include "pvtap/capture/exported_pdu_reader.h"
-#include "pvtap/session/carrier_timing.h"
+#include "pvtap/pcap/exported_pdu_reader.h"
+#include "pvtap/session/timestamping.h"
 #include "pvtap/statistics/bus_timing.h"
 
 namespace pvtap::analyzer {
@@ -98,17 +98,17 @@ BusSession& Pipeline::written_bus(const std::optional<RunFacts>& run) {
 }
 
 BusSessionOptions Pipeline::bus_options(InputKind kind) const {
-  return carrier_options(input_.carrier_of(kind, settings_.has_timestamps));
+  return session_options_for(input_.timestamping_of(kind, settings_.has_timestamps));
 }
 
-BusSessionOptions Pipeline::carrier_options(Carrier carrier) const {
+BusSessionOptions Pipeline::session_options_for(Timestamping timestamping) const {
   BusSessionOptions o;
   o.reassembler.dialects = settings_.dialects;
   o.reassembler.baud = settings_.baud;
   o.matcher.timeout = settings_.timeout;
   o.decode_values = settings_.decode_values;
   o.infer_registers = settings_.infer_registers;
-  apply_carrier_timing(CarrierTiming{carrier, settings_.gateway_gap_ms / 1000.0, {}}, o);
+  apply_timestamping(TimestampFacts{timestamping, settings_.gateway_gap_ms / 1000.0, {}}, o);
   return o;
 }
 
@@ -121,7 +121,7 @@ BusSession& Pipeline::gateway_bus(const std::string& name) {
 }
 
 BusSession& Pipeline::logger_bus(const std::string& name) {
-  return buses_.find_or_add(name, carrier_options(Carrier::LoggerStickFrames));
+  return buses_.find_or_add(name, session_options_for(Timestamping::LoggerStickFrames));
 }
 
 // A capture of serial records or a plain dump names no device: its one bus is "serial", as

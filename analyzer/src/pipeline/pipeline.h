@@ -14,10 +14,10 @@
 #include "pipeline/bus_set.h"
 #include "pipeline/input_records.h"
 #include "pipeline/protocol_choices.h"
-#include "pvtap/capture/capture_file.h"
-#include "pvtap/capture/link_types.h"
+#include "pvtap/pcap/capture_file.h"
+#include "pvtap/pcap/link_types.h"
 #include "pvtap/session/bus_session.h"
-#include "pvtap/session/carrier_timing.h"
+#include "pvtap/session/timestamping.h"
 #include "report/audit_report.h"
 
 namespace pvtap::analyzer {
@@ -79,7 +79,7 @@ class Pipeline : private BusProvider {
   void exported_pdu(const SerialBytes& serial);
   void decided_record(const SerialBytes& serial, const RecordFacts& facts);
   BusSession& written_bus(const std::optional<RunFacts>& run);
-  BusSessionOptions carrier_options(Carrier carrier) const;
+  BusSessionOptions session_options_for(Timestamping timestamping) const;
   BusSession& gateway_bus(const std::string& name) override;
   BusSession& logger_bus(const std::string& name) override;
 

@@ -4,8 +4,8 @@
 #include <span>
 
 #include "formatting/number_text.h"
-#include "pvtap/capture/capture_file.h"
-#include "pvtap/capture/link_types.h"
+#include "pvtap/pcap/capture_file.h"
+#include "pvtap/pcap/link_types.h"
 
 namespace pvtap::analyzer {
 namespace {

@@ -8,7 +8,7 @@
 #include <cstring>
 #include <limits>
 
-#include "pvtap/capture/read_ahead_capture.h"
+#include "pvtap/pcap/read_ahead_capture.h"
 
 namespace pvtap::analyzer {
 namespace {

@@ -7,7 +7,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "pvtap/capture/link_types.h"
+#include "pvtap/pcap/link_types.h"
 
 namespace pvtap::analyzer {
 namespace {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "pvtap/capture/capture_file.h"
+#include "pvtap/pcap/capture_file.h"
 
 namespace pvtap::analyzer {
 

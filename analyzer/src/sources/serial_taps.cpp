@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "pvtap/session/carrier_timing.h"
+#include "pvtap/session/timestamping.h"
 #include "serial/device_tap.h"
 #include "sources/wall_clock.h"
 
@@ -47,7 +47,7 @@ BusSessionOptions SerialTaps::session_options(Tap& tap) const {
     o.reassembler.baud = search->baud();
     o.reassembler.bits_per_char = search->line().bits_per_char();
   }
-  apply_carrier_timing({Carrier::LiveSerial, 0.0, tap.device.latency_timer().ms}, o);
+  apply_timestamping({Timestamping::LiveSerial, 0.0, tap.device.latency_timer().ms}, o);
   return o;
 }
 

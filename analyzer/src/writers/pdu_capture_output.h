@@ -8,7 +8,7 @@
 #include <string_view>
 
 #include "events/event_writer.h"
-#include "pvtap/capture/exported_pdu_writer.h"
+#include "pvtap/pcap/exported_pdu_writer.h"
 
 namespace pvtap::analyzer {
 

@@ -4,8 +4,8 @@
 
 #include <algorithm>
 
-#include "pvtap/capture/packet_builder.h"
-#include "pvtap/capture/pcap_writer.h"
+#include "pvtap/pcap/packet_builder.h"
+#include "pvtap/pcap/pcap_writer.h"
 
 namespace pvtap::sim {
 namespace {

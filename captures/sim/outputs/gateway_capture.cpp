@@ -4,8 +4,8 @@
 
 #include "outputs/bus_bytes.h"
 #include "outputs/capture_outputs.h"
-#include "pvtap/capture/packet_builder.h"
-#include "pvtap/capture/pcap_writer.h"
+#include "pvtap/pcap/packet_builder.h"
+#include "pvtap/pcap/pcap_writer.h"
 #include "sim_random.h"
 
 namespace pvtap::sim {

@@ -1,5 +1,5 @@
 #include "outputs/capture_outputs.h"
-#include "pvtap/capture/exported_pdu_writer.h"
+#include "pvtap/pcap/exported_pdu_writer.h"
 
 namespace pvtap::sim {
 

@@ -27,7 +27,8 @@ struct V5Conversation {
 
 V5Conversation v5_conversation(packet_info* pinfo) {
   const int proto = v5_protocol().proto;
-  ConversationState& side = conversation_state(pinfo, rtu_protocol(), Carrier::LoggerStickFrames);
+  ConversationState& side =
+      conversation_state(pinfo, rtu_protocol(), Timestamping::LoggerStickFrames);
   conversation_t* conversation = find_or_create_conversation(pinfo);
   auto* track = static_cast<SolarmanV5Track*>(conversation_get_proto_data(conversation, proto));
   if (track == nullptr) {

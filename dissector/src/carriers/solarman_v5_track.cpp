@@ -44,9 +44,10 @@ void describe_itself(FrameRecord& r, Direction d, std::span<const std::uint8_t> 
 
 SolarmanV5Track::SolarmanV5Track(BusTrack& offsets, const ProtocolSettings& settings)
     : offsets_(offsets),
-      session_(bus_session_options(settings, Carrier::LoggerStickFrames), register_decoder(),
+      session_(bus_session_options(settings, Timestamping::LoggerStickFrames), register_decoder(),
                *this),
-      pairing_(bus_session_options(settings, Carrier::LoggerStickFrames).matcher.timeout, *this) {}
+      pairing_(bus_session_options(settings, Timestamping::LoggerStickFrames).matcher.timeout,
+               *this) {}
 
 SegmentedBus::CallSpan SolarmanV5Track::show(Direction d, std::uint64_t from,
                                              std::span<const std::uint8_t> bytes, double time,

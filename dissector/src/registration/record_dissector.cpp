@@ -5,7 +5,7 @@
 #include <algorithm>
 
 #include "fields/field_list.h"
-#include "pvtap/capture/exported_pdu_tags.h"
+#include "pvtap/pcap/exported_pdu_tags.h"
 #include "registration/record_layer.h"
 #include "stream/conversation_state.h"
 #include "stream/stream_dissection.h"

@@ -22,13 +22,14 @@ PreferenceBool g_claim_serial_payloads = true;
 // As pvtap audit: records of more than one byte are chunks read from an adapter, whose
 // timestamps are batched; one byte per record is a tap that stamps each character. The first
 // record decides, since a first pass cannot look ahead.
-Carrier carrier_of(tvbuff_t* tvb) {
-  return tvb_captured_length(tvb) > 1 ? Carrier::SerialBatches : Carrier::SerialCharacters;
+Timestamping timestamping_of(tvbuff_t* tvb) {
+  return tvb_captured_length(tvb) > 1 ? Timestamping::SerialBatches
+                                      : Timestamping::SerialCharacters;
 }
 
 int dissect_serial(tvbuff_t* tvb, packet_info* pinfo, proto_tree* tree, void*) {
   // All records of a capture are one bus, whatever layer shows them.
-  ConversationState& state = conversation_state(pinfo, rtu_protocol(), carrier_of(tvb));
+  ConversationState& state = conversation_state(pinfo, rtu_protocol(), timestamping_of(tvb));
   return dissect_serial_record(tvb, pinfo, tree, protocol_of_record(tvb, pinfo, RoleHint::Unknown),
                                *state.bus, g_fields);
 }

@@ -22,19 +22,19 @@ FrameRecord* new_frame_record() {
   return new (wmem_alloc(wmem_file_scope(), sizeof(FrameRecord))) FrameRecord{};
 }
 
-BusSessionOptions bus_session_options(const ProtocolSettings& s, Carrier carrier) {
+BusSessionOptions bus_session_options(const ProtocolSettings& s, Timestamping timestamping) {
   BusSessionOptions o;
   o.reassembler.dialects = DialectSet::all();  // a gateway may carry ASCII and RTU stations
   o.reassembler.baud = s.baud >= 300 ? s.baud : 9600;
   // What the timestamps prove, as pvtap audit reads the same carrier.
-  apply_carrier_timing(CarrierTiming{carrier, s.gateway_gap_ms / 1000.0, {}}, o);
+  apply_timestamping(TimestampFacts{timestamping, s.gateway_gap_ms / 1000.0, {}}, o);
   if (s.reply_timeout_ms > 0) o.matcher.timeout = s.reply_timeout_ms / 1000.0;
   o.decode_values = false;  // decoded when shown, into the tree
   return o;
 }
 
-BusTrack::BusTrack(const ProtocolSettings& settings, Carrier carrier)
-    : bus_(bus_session_options(settings, carrier), register_decoder(), *this) {}
+BusTrack::BusTrack(const ProtocolSettings& settings, Timestamping timestamping)
+    : bus_(bus_session_options(settings, timestamping), register_decoder(), *this) {}
 
 std::uint64_t BusTrack::stream_offset(Direction d, guint32 seq) {
   const std::size_t i = index_of(d);
@@ -140,8 +140,8 @@ void BusTrack::on_timeout(const SessionTimeout& t) {
   timeouts_.add(r);
 }
 
-BusTrack* new_bus_track(const ProtocolSettings& settings, Carrier carrier) {
-  g_tracks.push_back(std::make_unique<BusTrack>(settings, carrier));
+BusTrack* new_bus_track(const ProtocolSettings& settings, Timestamping timestamping) {
+  g_tracks.push_back(std::make_unique<BusTrack>(settings, timestamping));
   return g_tracks.back().get();
 }
 

@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "plan/frame_record.h"
-#include "pvtap/session/carrier_timing.h"
 #include "pvtap/session/segmented_bus.h"
+#include "pvtap/session/timestamping.h"
 #include "registration/inverter_protocol.h"
 #include "stream/held_bytes.h"
 #include "stream/station_names.h"
@@ -24,9 +24,9 @@ namespace pvtap::dissector {
 // the same frames, verdicts, request links and latencies for the same bytes.
 class BusTrack final : public BusSessionSink {
  public:
-  // `carrier`: how the bytes come (a gateway's segments, serial records), which decides what
+  // `timestamping`: how the bytes come (a gateway's segments, serial records), which decides what
   // their timestamps prove, as for pvtap audit.
-  BusTrack(const ProtocolSettings& settings, Carrier carrier);
+  BusTrack(const ProtocolSettings& settings, Timestamping timestamping);
 
   SegmentedBus& bus() { return bus_; }
   // Serial records: the bytes not decided yet.
@@ -70,14 +70,14 @@ class BusTrack final : public BusSessionSink {
 void fill_frame_record(FrameRecord& r, const SessionFrame& f);
 // The records a frame's links point to, from the records of its session by frame id.
 void link_frame_record(FrameRecord& r, const SessionFrame& f, std::span<FrameRecord* const> by_id);
-// A session as pvtap audit runs one for `carrier`, with the plugin's preferences.
-BusSessionOptions bus_session_options(const ProtocolSettings& settings, Carrier carrier);
+// A session as pvtap audit runs one for `timestamping`, with the plugin's preferences.
+BusSessionOptions bus_session_options(const ProtocolSettings& settings, Timestamping timestamping);
 // A new record in file scope, which frees memory without running destructors.
 FrameRecord* new_frame_record();
 
 // A track that lives until the capture file is closed.
 BusTrack* new_bus_track(const ProtocolSettings& settings,
-                        Carrier carrier = Carrier::GatewaySegments);
+                        Timestamping timestamping = Timestamping::GatewaySegments);
 
 // Frees every track; registered as a cleanup routine.
 void release_bus_tracks();

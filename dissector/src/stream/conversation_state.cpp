@@ -4,12 +4,13 @@
 
 namespace pvtap::dissector {
 
-ConversationState& conversation_state(packet_info* pinfo, InverterProtocol& p, Carrier carrier) {
+ConversationState& conversation_state(packet_info* pinfo, InverterProtocol& p,
+                                      Timestamping timestamping) {
   conversation_t* conversation = find_or_create_conversation(pinfo);
   auto* state = static_cast<ConversationState*>(conversation_get_proto_data(conversation, p.proto));
   if (state == nullptr) {
     state = new (wmem_alloc(wmem_file_scope(), sizeof(ConversationState))) ConversationState{};
-    state->bus = new_bus_track(p.settings, carrier);
+    state->bus = new_bus_track(p.settings, timestamping);
     conversation_add_proto_data(conversation, p.proto, state);
   }
   return *state;

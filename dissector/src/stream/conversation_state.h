@@ -18,9 +18,9 @@ struct ConversationState {
 };
 
 // The state of the packet's conversation for a protocol, made on first use with a bus for
-// `carrier`.
+// `timestamping`.
 ConversationState& conversation_state(packet_info* pinfo, InverterProtocol& protocol,
-                                      Carrier carrier = Carrier::GatewaySegments);
+                                      Timestamping timestamping = Timestamping::GatewaySegments);
 
 // Records which side is the slave: the sender of this packet, or its receiver.
 void set_slave_side(ConversationState& state, packet_info* pinfo, bool sender_is_slave);

@@ -24,7 +24,8 @@ void describe_itself(FrameRecord& r, Direction d, std::span<const std::uint8_t> 
 }  // namespace
 
 MbapTrack::MbapTrack(const ProtocolSettings& settings)
-    : session_(bus_session_options(settings, Carrier::GatewaySegments), register_decoder(), *this),
+    : session_(bus_session_options(settings, Timestamping::GatewaySegments), register_decoder(),
+               *this),
       flow_(session_, settings.reply_timeout_ms > 0 ? settings.reply_timeout_ms / 1000.0 : 1.0) {}
 
 FrameRecord* MbapTrack::feed(Direction d, std::span<const std::uint8_t> adu, double time) {

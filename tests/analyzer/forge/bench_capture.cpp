@@ -3,8 +3,8 @@
 
 #include "gateway_render.h"
 #include "inverter_traffic.h"
-#include "pvtap/capture/capture_writer.h"
 #include "pvtap/carriers/solarman_v5_frame.h"
+#include "pvtap/pcap/capture_writer.h"
 #include "test_captures.h"
 
 namespace pvtap::forge {

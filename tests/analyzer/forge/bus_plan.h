@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "pvtap/capture/packet_builder.h"
 #include "pvtap/codec/frame.h"
 #include "pvtap/framing/stream_reassembler.h"
+#include "pvtap/pcap/packet_builder.h"
 
 namespace pvtap::forge {
 

@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "bus_plan.h"
-#include "pvtap/capture/capture_writer.h"
-#include "pvtap/capture/packet_builder.h"
+#include "pvtap/pcap/capture_writer.h"
+#include "pvtap/pcap/packet_builder.h"
 
 namespace pvtap::forge {
 

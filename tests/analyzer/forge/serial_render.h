@@ -5,7 +5,7 @@
 #include <string>
 
 #include "bus_plan.h"
-#include "pvtap/capture/capture_writer.h"
+#include "pvtap/pcap/capture_writer.h"
 
 namespace pvtap::forge {
 

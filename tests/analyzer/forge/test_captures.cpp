@@ -11,8 +11,8 @@
 #include "expectation_file.h"
 #include "gateway_render.h"
 #include "inverter_traffic.h"
-#include "pvtap/capture/capture_writer.h"
 #include "pvtap/codec/function_codes.h"
+#include "pvtap/pcap/capture_writer.h"
 #include "serial_render.h"
 
 namespace pvtap::forge {

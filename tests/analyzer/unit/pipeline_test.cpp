@@ -8,10 +8,10 @@
 #include <vector>
 
 #include "frame_builders.h"
-#include "pvtap/capture/exported_pdu_tags.h"
-#include "pvtap/capture/link_types.h"
-#include "pvtap/capture/packet_builder.h"
 #include "pvtap/codec/frame_codec.h"
+#include "pvtap/pcap/exported_pdu_tags.h"
+#include "pvtap/pcap/link_types.h"
+#include "pvtap/pcap/packet_builder.h"
 
 namespace pvtap::analyzer {
 namespace {

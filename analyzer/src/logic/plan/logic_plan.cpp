@@ -3,7 +3,7 @@
 #include "logic/plan/logic_plan.h"
 
 #include "logic/plan/channel_pairing.h"
-#include "pvtap/capture/file_format.h"
+#include "pvtap/pcap/file_format.h"
 
 #include <algorithm>
 #include <cerrno>
