@@ -3,7 +3,7 @@
 the logger's scan and decode its models' points with their scale factors. pvtap audit's newest
 value of every point the truth lays out equals the truth's last; the plugin's values (one pass
 and two) equal pvtap's; --draft-map records the chain, and a capture that starts after the scan
-decodes the same with it and not without it.
+decodes the same with it (in pvtap and in the plugin's station map table) and not without it.
 
     check_sunspec.py PVTAP_SIM PVTAP PLUGIN WORK_DIR
 """
@@ -42,9 +42,10 @@ def audited(pvtap, capture, maps=()):
     return {v["register"]: v for v in summary["stations"][str(STATION)]["values"]}
 
 
-def plugin_last(plugin, capture, two_pass):
+def plugin_last(plugin, capture, two_pass, station_map=None):
     """{key: last number} of the station map values Wireshark shows (PDML: each value's key
-    and number are its children)."""
+    and number are its children); with `station_map`, that map file given to STATION in the
+    plugin's "Station register maps" table."""
     import xml.etree.ElementTree as ET
     os.environ["PVTAP_PLUGIN"] = plugin
     from tshark_runner import TsharkHome
@@ -53,8 +54,12 @@ def plugin_last(plugin, capture, two_pass):
         name = os.path.basename(capture)
         with open(capture, "rb") as src, open(home.path(name), "wb") as dst:
             dst.write(src.read())
-        home._hand_over()
         args = (["-2"] if two_pass else []) + ["-r", home.path(name), "-T", "pdml"]
+        if station_map:
+            with open(station_map, encoding="utf-8") as f:
+                copied = home.write_text(os.path.basename(station_map), f.read())
+            args += ["-o", 'uat:pvtap_station_maps:"%d","%s"' % (STATION, copied)]
+        home._hand_over()
         last = {}
         for value in ET.fromstring(home.run(args).stdout).iter("field"):
             if value.get("name") != "invrtu.map_value":
@@ -109,13 +114,15 @@ def main():
                             % (key, without[register]))
 
     if os.path.isfile(plugin):
-        for two_pass in (False, True):
-            shown = plugin_last(plugin, capture, two_pass)
+        runs = [(capture, two_pass, None, "one pass" if not two_pass else "two passes")
+                for two_pass in (False, True)]
+        runs.append((cut, False, draft, "after the scan, with the draft map"))
+        for path, two_pass, station_map, what in runs:
+            shown = plugin_last(plugin, path, two_pass, station_map)
             for register, (key, value) in sorted(truth.items()):
                 if key not in shown or abs(shown[key] - value) > 1e-6 * max(1.0, abs(value)):
                     failures.append("plugin (%s): %s is %s, the truth %s"
-                                    % ("two passes" if two_pass else "one pass", key,
-                                       shown.get(key), value))
+                                    % (what, key, shown.get(key), value))
     else:
         print("plugin not built: its part skipped")
     print("%d SunSpec points checked against the truth" % len(truth))
