@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The shape of the tree, read from its includes and folders: the core reads no files (sans-I/O:
-callers hand it text and bytes); the analyzer's folders are floors, each including only the
-floors below it (ANALYZER_FLOORS); and the tests mirror the products: tests/<product>/ for
+callers hand it text and bytes); the analyzer's and the plugin's folders are floors, each
+including only the floors below it (ANALYZER_FLOORS, PLUGIN_FLOORS); and the tests mirror the products: tests/<product>/ for
 protocols, pcap, analyzer, dissector and packaging (tests/package), the core's in
 tests/protocols/<family>/ for the families of protocols/src, beside only the shared
 tests/support, tests/corpus and tests/structure. How many files a folder holds is no rule.
@@ -34,25 +34,34 @@ ANALYZER_FLOORS = ("formatting", "report", "events", "writers", "console", "html
                    "mqtt", "serial", "gateway", "pipeline", "run", "sources", "logic", "cli", "extcap")
 
 
-def analyzer_breaches(repo):
+# The plugin's folders from the ground up: the Wireshark API shims, the per-frame plan (plain
+# C++), the protocol handle every part fills or reads (field ids, subtrees, experts,
+# preferences), the preferences and maps, the fields and expert infos, the tree, the columns and
+# statistics, the streams of a bus, the carriers (Modbus/TCP, Solarman V5), and registration
+# with the plugin's entry point on top.
+PLUGIN_FLOORS = ("wireshark_api", "plan", "protocol", "settings", "fields", "tree", "columns",
+                 "statistics", "stream", "carriers", "registration")
+
+
+def floor_breaches(repo, product, floors):
     """Includes that reach a floor above their own, and folders missing from the floors."""
-    src = os.path.join(repo, "analyzer", "src")
+    src = os.path.join(repo, product, "src")
     breaches = []
     for folder in sorted(os.listdir(src)):
         if not os.path.isdir(os.path.join(src, folder)):
             continue
-        if folder not in ANALYZER_FLOORS:
-            breaches.append("analyzer/src/%s: a folder without a floor (add it to "
-                            "ANALYZER_FLOORS)" % folder)
+        if folder not in floors:
+            breaches.append("%s/src/%s: a folder without a floor (add it to the floors of "
+                            "check_tree_shape.py)" % (product, folder))
             continue
-        floor = ANALYZER_FLOORS.index(folder)
+        floor = floors.index(folder)
         for name in sorted(sources(os.path.join(src, folder))):
             path = os.path.join(src, folder, name)
             with open(path, encoding="utf-8") as f:
                 for number, line in enumerate(f, 1):
                     match = INCLUDE.match(line)
                     target = match.group(1).split("/")[0] if match else ""
-                    if target in ANALYZER_FLOORS and ANALYZER_FLOORS.index(target) > floor:
+                    if target in floors and floors.index(target) > floor:
                         breaches.append("%s:%d: %s/ includes %s, a floor above it"
                                         % (os.path.relpath(path, repo), number, folder,
                                            match.group(1)))
@@ -82,7 +91,9 @@ def unmirrored_tests(repo):
 
 def main():
     core = os.path.join(sys.argv[1], "protocols")
-    breaches = analyzer_breaches(sys.argv[1]) + unmirrored_tests(sys.argv[1])
+    breaches = (floor_breaches(sys.argv[1], "analyzer", ANALYZER_FLOORS) +
+                floor_breaches(sys.argv[1], "dissector", PLUGIN_FLOORS) +
+                unmirrored_tests(sys.argv[1]))
     for root, _, _ in os.walk(core):
         names = sources(root)
         for name in names:

@@ -1,4 +1,4 @@
-#include "registration/modbus_tcp_guard.h"
+#include "carriers/modbus_tcp_guard.h"
 
 namespace pvtap::dissector {
 namespace {

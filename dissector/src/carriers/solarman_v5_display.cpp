@@ -3,9 +3,9 @@
 #include <epan/expert.h>
 
 #include "carriers/solarman_v5_protocol.h"
+#include "protocol/inverter_protocol.h"
 #include "pvtap/carriers/solarman_v5_frame.h"
 #include "pvtap/carriers/solarman_v5_pairing.h"
-#include "registration/inverter_protocol.h"
 #include "stream/piece_display.h"
 
 namespace pvtap::dissector {

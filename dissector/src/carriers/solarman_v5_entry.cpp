@@ -6,11 +6,11 @@
 #include <algorithm>
 #include <span>
 
+#include "carriers/modbus_tcp_guard.h"
 #include "carriers/solarman_v5_dissection.h"
 #include "carriers/solarman_v5_protocol.h"
 #include "pvtap/carriers/solarman_v5_frame.h"
 #include "pvtap/carriers/solarman_v5_structure.h"
-#include "registration/modbus_tcp_guard.h"
 #include "stream/conversation_state.h"
 
 namespace pvtap::dissector {

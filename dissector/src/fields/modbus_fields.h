@@ -1,7 +1,7 @@
 // Registers the fields, expert infos and subtrees of the plain Modbus functions (invrtu).
 #pragma once
 
-#include "registration/inverter_protocol.h"
+#include "protocol/inverter_protocol.h"
 
 namespace pvtap::dissector {
 

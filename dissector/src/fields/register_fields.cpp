@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "fields/field_list.h"
+#include "fields/register_field_type.h"
 #include "fields/value_tables.h"
 #include "settings/register_maps.h"
-#include "tree/tree_description.h"
 
 namespace pvtap::dissector {
 namespace {

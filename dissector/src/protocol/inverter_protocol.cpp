@@ -1,4 +1,4 @@
-#include "registration/inverter_protocol.h"
+#include "protocol/inverter_protocol.h"
 
 namespace pvtap::dissector {
 namespace {

@@ -10,8 +10,8 @@
 #include <span>
 
 #include "fields/field_list.h"
+#include "protocol/inverter_protocol.h"
 #include "pvtap/carriers/mbap_structure.h"
-#include "registration/inverter_protocol.h"
 #include "stream/call_view.h"
 #include "stream/mbap_track.h"
 #include "stream/piece_display.h"

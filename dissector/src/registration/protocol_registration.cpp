@@ -7,7 +7,7 @@
 #include "fields/common_fields.h"
 #include "fields/modbus_fields.h"
 #include "fields/register_fields.h"
-#include "registration/inverter_protocol.h"
+#include "protocol/inverter_protocol.h"
 #include "registration/mbap_entry.h"
 #include "registration/record_dissector.h"
 #include "registration/serial_link_types.h"

@@ -3,8 +3,8 @@
 
 #include <epan/packet.h>
 
+#include "protocol/inverter_protocol.h"
 #include "pvtap/framing/framing_probe.h"
-#include "registration/inverter_protocol.h"
 
 namespace pvtap::dissector {
 

@@ -8,8 +8,8 @@
 
 #include <epan/dissectors/packet-tcp.h>
 
+#include "carriers/modbus_tcp_guard.h"
 #include "pvtap/framing/framing_probe.h"
-#include "registration/modbus_tcp_guard.h"
 #include "stream/conversation_state.h"
 #include "stream/stream_dissection.h"
 #include "wireshark_api/heuristic_verdict.h"

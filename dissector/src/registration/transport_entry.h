@@ -2,7 +2,7 @@
 // and Decode As for RTAC serial payloads.
 #pragma once
 
-#include "registration/inverter_protocol.h"
+#include "protocol/inverter_protocol.h"
 
 namespace pvtap::dissector {
 

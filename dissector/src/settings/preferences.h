@@ -1,7 +1,7 @@
 // The preferences of each protocol: checks, reassembly, reply timeout, the reference's options.
 #pragma once
 
-#include "registration/inverter_protocol.h"
+#include "protocol/inverter_protocol.h"
 
 namespace pvtap::dissector {
 

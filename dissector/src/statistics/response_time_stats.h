@@ -4,7 +4,7 @@
 #include <epan/packet.h>
 
 #include "plan/frame_record.h"
-#include "registration/inverter_protocol.h"
+#include "protocol/inverter_protocol.h"
 
 namespace pvtap::dissector {
 

@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "plan/frame_record.h"
+#include "protocol/inverter_protocol.h"
 #include "pvtap/session/segmented_bus.h"
 #include "pvtap/session/timestamping.h"
-#include "registration/inverter_protocol.h"
 #include "stream/held_bytes.h"
 #include "stream/station_names.h"
 #include "stream/timeout_queue.h"

@@ -4,7 +4,7 @@
 #include <epan/address.h>
 #include <epan/packet.h>
 
-#include "registration/inverter_protocol.h"
+#include "protocol/inverter_protocol.h"
 #include "stream/bus_track.h"
 
 namespace pvtap::dissector {

@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "plan/frame_record.h"
+#include "protocol/inverter_protocol.h"
 #include "pvtap/carriers/mbap_flow.h"
-#include "registration/inverter_protocol.h"
 #include "stream/station_names.h"
 #include "stream/timeout_queue.h"
 

@@ -7,6 +7,7 @@
 #include <string_view>
 #include <vector>
 
+#include "fields/register_field_type.h"
 #include "pvtap/codec/function_codes.h"
 #include "pvtap/matching/reply_rules.h"
 #include "pvtap/registers/register_format.h"
@@ -550,26 +551,6 @@ TreeDescription describe_noise(const std::optional<UnknownFunctionFrame>& unknow
   } catch (...) {
     return {};
   }
-}
-
-RegisterFieldType register_field_type(const RegisterDef& def) {
-  switch (def.kind) {
-    case RegisterKind::Number:
-    case RegisterKind::Bcd:
-    case RegisterKind::BcdPhaseCapacity:
-      return RegisterFieldType::Double;
-    case RegisterKind::Raw:
-      return def.words > 1 ? RegisterFieldType::Uint32 : RegisterFieldType::Uint16;
-    case RegisterKind::Bits:
-      return RegisterFieldType::Uint16;
-    case RegisterKind::Enum:
-    case RegisterKind::DeviceNumber:
-      return RegisterFieldType::Uint32;
-    case RegisterKind::Text:
-    case RegisterKind::BcdYearMonth:
-      return RegisterFieldType::String;
-  }
-  return RegisterFieldType::Uint16;
 }
 
 }  // namespace pvtap::dissector

@@ -180,9 +180,4 @@ TreeDescription describe_noise(const std::optional<UnknownFunctionFrame>& unknow
 TreeDescription describe_timeout(const FrameRecord& request,
                                  const DescriptionContext& ctx) noexcept;
 
-// RegisterFieldType: the type of the field the plugin registers for a map entry.
-enum class RegisterFieldType : std::uint8_t { Uint16, Uint32, Double, String };
-
-RegisterFieldType register_field_type(const RegisterDef& def);
-
 }  // namespace pvtap::dissector

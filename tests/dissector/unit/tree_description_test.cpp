@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "fields/register_field_type.h"
 #include "frame_builders.h"
 #include "hex_bytes.h"
 #include "plan_support.h"
