@@ -22,10 +22,7 @@ usage (as root, with Debian's /usr/bin/python3 for its paho-mqtt):
       [--hours 2] [--segment-minutes 10] [--inverters 8] [--period 0.5] [--out DIR]
 """
 import argparse
-import json
 import os
-import signal
-import subprocess
 import sys
 import tempfile
 import threading
@@ -35,12 +32,16 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.dont_write_bytecode = True  # no __pycache__ in the source tree
 sys.path.insert(0, os.path.join(HERE, "..", "tests", "analyzer", "sniff"))
 sys.path.insert(0, os.path.join(HERE, "..", "tests", "analyzer", "mqtt"))
+# The sniff and MQTT tests' own pieces: the sniffer, the by-id link, which jsonl events MQTT
+# carries. check_mqtt needs paho-mqtt (Debian's python3-paho-mqtt).
+import check_mqtt  # noqa: E402
+import check_sniff  # noqa: E402
+import mqtt_broker  # noqa: E402
 import pty_bus  # noqa: E402
 
 BAUD = 115200
 SAMPLE_S = 10
 BROKER_AWAY_S = 10
-GUARD_S = 30  # waiting for pvtap to open or close a device: a guard, not a timing check
 
 
 def proc_figures(pid):
@@ -97,28 +98,6 @@ class Sampler(threading.Thread):
                 out.flush()
 
 
-def replace_link(link, target):
-    temporary = link + ".new"
-    if os.path.lexists(temporary):
-        os.unlink(temporary)
-    os.symlink(target, temporary)
-    os.replace(temporary, link)
-
-
-def wait_open(pid, link):
-    real = os.path.realpath(link)
-    deadline = time.monotonic() + GUARD_S
-    while time.monotonic() < deadline:
-        for fd in os.listdir(f"/proc/{pid}/fd"):
-            try:
-                if os.readlink(f"/proc/{pid}/fd/{fd}") == real:
-                    return
-            except OSError:
-                continue
-        time.sleep(0.05)
-    raise RuntimeError(f"pvtap sniff did not open {link} in {GUARD_S} s")
-
-
 def simulate(options, scratch, index):
     """One segment's ground truth: its frames' bytes and every byte it plays."""
     truth = pty_bus.simulate(options.sim, scratch, f"segment{index}",
@@ -143,12 +122,11 @@ def restart_broker_mid_segment(broker, segment_s, stop_event, outages):
             return
 
 
-def play_segments(options, scratch, link, pid, truth, pty):
-    """Plays every segment onto its own pty behind `link`, the first (`truth`) onto `pty`;
-    returns (frames' hex, bytes played, the last pty)."""
-    segments = max(1, round(options.hours * 60 / options.segment_minutes))
+def play_segments(options, segments, scratch, link, sniffer, truth, pty):
+    """Plays `segments` segments each onto its own pty behind `link`, the first (`truth`) onto
+    `pty`; returns (frames' hex, bytes played, the last pty)."""
     frames, played = [], 0
-    wait_open(pid, link)
+    sniffer.wait_open(link)
     for index in range(segments):
         events = truth["events"]
         started = time.monotonic()
@@ -164,32 +142,8 @@ def play_segments(options, scratch, link, pid, truth, pty):
         pty.unplug()
         truth = simulate(options, scratch, index + 1)  # the adapter is away meanwhile
         pty = pty_bus.Pty()
-        replace_link(link, pty.path)
-        wait_open(pid, link)
-
-
-def read_output(path):
-    frames, events, summary = [], [], None
-    with open(path, encoding="utf-8") as f:
-        for line in f:
-            if not line.strip():
-                continue
-            e = json.loads(line)
-            if e["type"] == "frame":
-                frames.append(e)
-            if e["type"] == "summary":
-                summary = e
-            elif e["type"] in ("timeout", "gap") or (e["type"] == "frame" and (
-                    e["check"] == "bad" or any(i.startswith(
-                        ("malformed", "unsolicited", "late reply", "exception", "error reply"))
-                        for i in e["issues"]))):
-                events.append(e)
-    return frames, events, summary
-
-
-def mqtt_event_count(sub, prefix):
-    return sum(1 for topic, payload, _ in sub.snapshot()
-               if topic.startswith(prefix + "/") and topic.endswith("/events") and '"type":"station_' not in payload)
+        check_sniff.replace_link(link, pty.path)
+        sniffer.wait_open(link)
 
 
 def report_memory(rows):
@@ -225,56 +179,55 @@ def main():
     parser.add_argument("--out", help="folder for the curve and pvtap's output (default: a "
                                       "temporary folder, kept)")
     options = parser.parse_args()
-    import mqtt_broker  # needs paho-mqtt: Debian's python3-paho-mqtt
+    segments = max(1, round(options.hours * 60 / options.segment_minutes))
     scratch = options.out or tempfile.mkdtemp(prefix="pvtap-soak-")
     os.makedirs(scratch, exist_ok=True)
     broker = mqtt_broker.Broker(scratch, "soak")
     prefix = "soak"
     sub = mqtt_broker.Subscriber(broker, client_id="pvtap-soak-watcher")
     link = os.path.join(scratch, "usb-FTDI_soak-if00-port0")
-    out_path = os.path.join(scratch, "sniff.jsonl")
     truth = simulate(options, scratch, 0)
     pty = pty_bus.Pty()
-    replace_link(link, pty.path)
-    err = open(os.path.join(scratch, "sniff.err"), "w", encoding="utf-8")
-    with open(out_path, "w", encoding="utf-8") as out:
-        proc = subprocess.Popen(
-            [options.pvtap, "sniff", "--device", link, "--baud", str(BAUD), "--format", "jsonl",
-             "--mqtt", broker.url(), "--mqtt-user", mqtt_broker.USER, "--mqtt-password-file",
-             broker.password_file, "--mqtt-topic", prefix, "--mqtt-interval", "10"],
-            stdout=out, stderr=err)
-    sampler = Sampler(proc.pid, FrameCounter(out_path), os.path.join(scratch, "soak.csv"))
+    check_sniff.replace_link(link, pty.path)
+    sniffer = check_sniff.Sniffer(
+        options.pvtap, scratch, "sniff",
+        ["--device", link, "--baud", str(BAUD), "--format", "jsonl", "--mqtt", broker.url(),
+         "--mqtt-user", mqtt_broker.USER, "--mqtt-password-file", broker.password_file,
+         "--mqtt-topic", prefix, "--mqtt-interval", "10"])
+    sampler = Sampler(sniffer.proc.pid, FrameCounter(sniffer.out_path),
+                      os.path.join(scratch, "soak.csv"))
     sampler.start()
     stop_restarts, outages = threading.Event(), []
     restarts = threading.Thread(target=restart_broker_mid_segment,
                                 args=(broker, options.segment_minutes * 60, stop_restarts,
                                       outages), daemon=True)
     restarts.start()
-    truth_frames, played, pty = play_segments(options, scratch, link, proc.pid, truth, pty)
+    truth_frames, played, pty = play_segments(options, segments, scratch, link, sniffer, truth,
+                                              pty)
     stop_restarts.set()
     restarts.join()
     sampler.stop_event.set()
     sampler.join()
-    proc.send_signal(signal.SIGTERM)
-    proc.wait(GUARD_S)
+    status = sniffer.stop()
     pty.close()
-    err.close()
 
-    frames, events, summary = read_output(out_path)
-    sub.wait_for(lambda m: mqtt_event_count(sub, prefix) >= len(events), timeout=60)
-    got_mqtt = mqtt_event_count(sub, prefix)
+    lines = sniffer.events()
+    frames, summary = check_sniff.frames_of(lines), lines[-1]
+    events = check_mqtt.expected_events(lines)
+    sub.wait_for(lambda m: len(check_mqtt.mqtt_events(m, prefix)) >= len(events), timeout=60)
+    got_mqtt = len(check_mqtt.mqtt_events(sub.snapshot(), prefix))
     sub.close()
     broker.stop()
     same = [f["raw"] for f in frames] == truth_frames
-    unplugs = max(0, round(options.hours * 60 / options.segment_minutes) - 1)
-    print(f"pvtap exit status {proc.returncode}; output in {scratch}")
+    unplugs = segments - 1
+    print(f"pvtap exit status {status}; output in {scratch}")
     print(f"frames: {len(frames)} on stdout, {len(truth_frames)} on the bus, identical: {same}")
     print(f"bytes: {summary['bytes']} read, {played} played; frame bytes "
           f"{summary['frame_bytes']} + noise {summary['noise_bytes']}; lost "
           f"{summary['lost_bytes']}; gaps {summary['gaps']} for {unplugs} unplugs")
     print(f"MQTT: {got_mqtt} events of {len(events)} in jsonl, broker away {len(outages)} times")
     report_memory(sampler.rows)
-    ok = (proc.returncode == 0 and same and summary["bytes"] == played and
+    ok = (status == 0 and same and summary["bytes"] == played and
           summary["bytes"] == summary["frame_bytes"] + summary["noise_bytes"] and
           summary["lost_bytes"] == 0 and summary["gaps"] == unplugs and got_mqtt == len(events))
     print("soak: " + ("all held" if ok else "FAILED"))
