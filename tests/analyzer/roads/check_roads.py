@@ -114,43 +114,36 @@ def check_forms(options, report, stem, audited):
                            audited["pdu"], audited[form], RETIMED)
 
 
-def simulated_buses(options):
-    """{stem: {form: path}}: a bus of every fault class, written in every form."""
-    buses = {}
-    for i, fault in enumerate(FAULT_CLASSES + ("all",)):
-        stem = f"sim-{fault}"
-        folder = os.path.join(options.work, stem)
-        os.makedirs(folder, exist_ok=True)
-        paths = {form: os.path.join(folder, f"{stem}.{form}.pcap") for form in FORMS}
-        pairs = [os.path.join(folder, f"{stem}.{pair}.user0.pcap") for pair in ("req", "rep")]
-        faults = "all" if fault == "all" else f"{fault}=15"
-        subprocess.run([options.sim, "--seed", str(350 + i), "--dialect", "gsl,hybrid,ascii",
-                        "--inverters", "3", "--meter", "20", "--io-module", "21",
-                        "--duration", "90", "--faults", faults,
-                        "--pdu", paths["pdu"], "--gateway", paths["gateway"],
-                        "--chunked", paths["user0"], "--duplex", *pairs],
-                       check=True, capture_output=True, timeout=RUN_GUARD_S)
-        buses[stem] = paths
-        buses[stem]["duplex"] = pairs
-    buses["sim-sunspec"] = sunspec_bus(options)
-    return buses
-
-
-def sunspec_bus(options):
-    """A SunSpec inverter beside a mapped one, on a line that damages some replies: its model
-    chain is learned from the logger's scan in the first file of a cut too, and its values named
-    and scaled alike on every road."""
-    folder = os.path.join(options.work, "sim-sunspec")
+def simulated_bus(options, stem, sim_args):
+    """{form: path} of one simulated bus written in every form (the duplex form: two files)."""
+    folder = os.path.join(options.work, stem)
     os.makedirs(folder, exist_ok=True)
-    paths = {form: os.path.join(folder, f"sim-sunspec.{form}.pcap") for form in FORMS}
-    pairs = [os.path.join(folder, f"sim-sunspec.{pair}.user0.pcap") for pair in ("req", "rep")]
-    subprocess.run([options.sim, "--seed", "361", "--inverters", "1", "--sunspec", "3",
-                    "--duration", "90", "--faults", "corrupt=10,missing=10",
+    paths = {form: os.path.join(folder, f"{stem}.{form}.pcap") for form in FORMS}
+    pairs = [os.path.join(folder, f"{stem}.{pair}.user0.pcap") for pair in ("req", "rep")]
+    subprocess.run([options.sim, *sim_args, "--duration", "90",
                     "--pdu", paths["pdu"], "--gateway", paths["gateway"],
                     "--chunked", paths["user0"], "--duplex", *pairs],
                    check=True, capture_output=True, timeout=RUN_GUARD_S)
     paths["duplex"] = pairs
     return paths
+
+
+def simulated_buses(options):
+    """{stem: {form: path}}: a bus of every fault class, and a SunSpec inverter beside a mapped
+    one on a line that damages some replies (its model chain learned from the logger's scan in
+    the first file of a cut too, its values named and scaled alike on every road)."""
+    buses = {}
+    for i, fault in enumerate(FAULT_CLASSES + ("all",)):
+        faults = "all" if fault == "all" else f"{fault}=15"
+        buses[f"sim-{fault}"] = simulated_bus(
+            options, f"sim-{fault}",
+            ["--seed", str(350 + i), "--dialect", "gsl,hybrid,ascii", "--inverters", "3",
+             "--meter", "20", "--io-module", "21", "--faults", faults])
+    buses["sim-sunspec"] = simulated_bus(
+        options, "sim-sunspec",
+        ["--seed", "361", "--inverters", "1", "--sunspec", "3", "--faults",
+         "corrupt=10,missing=10"])
+    return buses
 
 
 def sample_buses(options):
