@@ -2,8 +2,11 @@
 #pragma once
 
 #include <algorithm>
+#include <cstdarg>
 #include <cstdint>
+#include <cstdio>
 #include <optional>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -19,6 +22,17 @@ inline constexpr std::uint8_t kField = 2;
 // A text of the plan, which a plan made by hand may lack.
 inline std::string_view text_of(const char* text) {
   return text != nullptr ? std::string_view(text) : std::string_view();
+}
+
+// printf-style text, for the sentences that print numbers in hex.
+[[gnu::format(printf, 1, 2)]] inline std::string printed(const char* format, ...) {
+  char text[160];
+  va_list args;
+  va_start(args, format);
+  const int n = std::vsnprintf(text, sizeof text, format, args);
+  va_end(args);
+  return std::string(text,
+                     static_cast<std::size_t>(std::clamp(n, 0, static_cast<int>(sizeof text) - 1)));
 }
 
 // Builder: the items of one description, gathered before they are copied to the arena.

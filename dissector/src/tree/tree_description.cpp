@@ -1,38 +1,17 @@
 #include "tree/tree_description.h"
 
-#include <algorithm>
-#include <cstdarg>
-#include <cstdio>
 #include <string>
 #include <string_view>
-#include <vector>
 
-#include "fields/register_field_type.h"
 #include "pvtap/codec/function_codes.h"
 #include "pvtap/matching/reply_rules.h"
-#include "pvtap/registers/register_format.h"
+#include "tree/link_description.h"
 #include "tree/modbus_description.h"
 #include "tree/tree_builder.h"
+#include "tree/value_description.h"
 
 namespace pvtap::dissector {
 namespace {
-
-// Warnings that point at a probable error in the data rather than a gap in the map.
-constexpr auto kSuspicious =
-    static_cast<std::uint16_t>(static_cast<unsigned>(ValueWarning::LowPartOver9999) |
-                               static_cast<unsigned>(ValueWarning::InvalidBcd) |
-                               static_cast<unsigned>(ValueWarning::InvalidDate));
-
-// printf-style text, for the sentences that print numbers in hex.
-[[gnu::format(printf, 1, 2)]] std::string printed(const char* format, ...) {
-  char text[160];
-  va_list args;
-  va_start(args, format);
-  const int n = std::vsnprintf(text, sizeof text, format, args);
-  va_end(args);
-  return std::string(text,
-                     static_cast<std::size_t>(std::clamp(n, 0, static_cast<int>(sizeof text) - 1)));
-}
 
 std::uint32_t add_top(Builder& b, Subtree subtree, std::string_view appended) {
   TreeItem top;
@@ -151,127 +130,6 @@ void add_exception(Builder& b, const FramePlan& plan) {
                   std::to_string(plan.exception_code) + ")");
 }
 
-void add_value_warnings(Builder& b, std::uint32_t item, const PlannedValue& v) {
-  for (unsigned bit = 0; bit < 16; ++bit) {
-    const auto w = static_cast<std::uint16_t>(1u << bit);
-    if ((v.warnings & w) == 0) continue;
-    const std::string_view why = describe(static_cast<ValueWarning>(w));
-    const TreeExpert expert =
-        (w & kSuspicious) != 0 ? TreeExpert::ValueSuspicious : TreeExpert::ValueNote;
-    b.expert_on(item, expert, std::string(text_of(v.label)) + ": " + std::string(why));
-  }
-}
-
-// The named flags of a bits register, one item each in bit order.
-void add_flags(Builder& b, const PlannedValue& v) {
-  unsigned named = 0;
-  for (const BitName& named_bit : v.def->bits) {
-    if (named_bit.index < 16 && !named_bit.name.empty()) named |= 1u << named_bit.index;
-  }
-  for (std::uint8_t bit = 0; bit < 16; ++bit) {
-    if ((named & (1u << bit)) == 0) continue;
-    TreeItem flag;
-    flag.field = TreeField::RegisterFlag;
-    flag.type = ValueType::Boolean;
-    flag.depth = kField;
-    flag.offset = v.span.offset;
-    flag.length = v.span.length;
-    flag.uint = v.raw;
-    flag.def = v.def;
-    flag.bit = bit;
-    b.add(flag);
-  }
-}
-
-bool numeric(const RegisterDef& def) {
-  return def.kind != RegisterKind::Text && def.kind != RegisterKind::BcdYearMonth;
-}
-
-// A value of a station's own map, which has no field of its own (Wireshark registers fields
-// at start-up; the table of station maps changes at run time): the generic map fields, with
-// the entry's key and, for numbers, the number under it.
-std::uint32_t add_map_value(Builder& b, const PlannedValue& v) {
-  TreeItem item;
-  item.field = TreeField::Modbus;
-  item.modbus = ModbusField::MapValue;
-  item.type = ValueType::String;
-  item.form = LabelForm::Whole;
-  item.depth = kFrame;
-  item.offset = v.span.offset;
-  item.length = v.span.length;
-  item.string = v.map_value;
-  item.text = b.text(std::string(text_of(v.label)) + ": " + std::string(text_of(v.text)));
-  item.subtree = Subtree::MapEntry;
-  const std::uint32_t index = b.add(item);
-  TreeItem key = item;
-  key.modbus = ModbusField::MapKey;
-  key.form = LabelForm::Default;
-  key.depth = kField;
-  key.string = v.map_key;
-  key.text = nullptr;
-  key.subtree = Subtree::None;
-  key.generated = true;
-  b.add(key);
-  if (!numeric(*v.def)) return index;
-  TreeItem number = key;
-  number.modbus = ModbusField::MapNumber;
-  number.type = ValueType::Double;
-  number.generated = false;
-  // Integer kinds (raw words, enumerations, bits) as their integer, the rest as shown.
-  number.number = register_field_type(*v.def) == RegisterFieldType::Double
-                      ? v.number
-                      : static_cast<double>(v.raw);
-  b.add(number);
-  return index;
-}
-
-std::uint32_t add_value(Builder& b, const PlannedValue& v) {
-  if (v.map_key != nullptr && v.def != nullptr) return add_map_value(b, v);
-  TreeItem item;
-  item.depth = kFrame;
-  item.offset = v.span.offset;
-  item.length = v.span.length;
-  item.form = LabelForm::Whole;
-  item.uint = v.raw;
-  if (v.def == nullptr) {
-    item.field = TreeField::Word;
-    item.text = b.text(std::string(text_of(v.label)) + ": " + std::string(text_of(v.text)) +
-                       " (not in the register map)");
-    return b.add(item);
-  }
-  item.field = TreeField::RegisterValue;
-  item.def = v.def;
-  item.text = b.text(std::string(text_of(v.label)) + ": " + std::string(text_of(v.text)));
-  switch (register_field_type(*v.def)) {
-    case RegisterFieldType::Double:
-      item.type = ValueType::Double;
-      item.number = v.number;
-      break;
-    case RegisterFieldType::String:
-      item.type = ValueType::String;
-      item.string = v.text;
-      break;
-    case RegisterFieldType::Uint16:
-    case RegisterFieldType::Uint32:
-      item.subtree = v.def->kind == RegisterKind::Bits ? Subtree::Flags : Subtree::None;
-      break;
-  }
-  const std::uint32_t index = b.add(item);
-  if (item.subtree == Subtree::Flags) add_flags(b, v);
-  return index;
-}
-
-void add_values(Builder& b, const FramePlan& plan) {
-  for (std::size_t i = 0; i < plan.value_count; ++i) {
-    const PlannedValue& v = plan.values[i];
-    add_value_warnings(b, add_value(b, v), v);
-  }
-  if (plan.decode_note == nullptr) return;
-  const TreeExpert expert =
-      plan.start_assumed ? TreeExpert::StartAssumed : TreeExpert::StartUnknown;
-  b.expert_item(expert, plan.layout.words, plan.decode_note);
-}
-
 void add_check(Builder& b, const FramePlan& plan) {
   if (plan.check.carried) {
     b.generated_uint(TreeField::CheckStatus, static_cast<std::uint32_t>(CheckStatus::NotPresent));
@@ -294,147 +152,6 @@ void add_check(Builder& b, const FramePlan& plan) {
       item, TreeExpert::BadCheck,
       printed("Bad %s 0x%04X, expected 0x%04X", b.ctx().check_word,
               static_cast<unsigned>(plan.check.found), static_cast<unsigned>(plan.check.expected)));
-}
-
-std::string unanswered_reason(const FrameRecord& r, const DescriptionContext& ctx) {
-  switch (r.unanswered) {
-    case UnansweredKind::DamagedRequest:
-      return "the request has a bad check: the slave rightly ignored it";
-    case UnansweredKind::AfterLoss:
-      return "capture data was lost while it waited: the reply may be in the gap";
-    case UnansweredKind::InputEnded:
-      return "no reply before the end of the capture";
-    case UnansweredKind::Timeout:
-      break;
-  }
-  switch (r.timeout_reason) {
-    case TimeoutReason::NoReply:
-      // The timeout is a preference: say which one judged, so that a reader can tell a
-      // silent station from a timeout set too short.
-      if (ctx.reply_timeout_ms == 0) return "no reply within the reply timeout";
-      return printed("no reply within the reply timeout (%u ms)",
-                     static_cast<unsigned>(ctx.reply_timeout_ms));
-    case TimeoutReason::NextRequestFirst:
-      return "the master sent its next request to the station first";
-    case TimeoutReason::CarrierNoReply:
-      return "no reply on the bus: the logger stick answered code 05";
-    case TimeoutReason::CaptureEnded:
-      break;
-  }
-  return "no reply before the end of the capture";
-}
-
-// A frame the session decided but no packet has shown yet (its bytes wait for the next
-// segment of its direction) has no packet to link to.
-bool shown(const FrameRecord* r) {
-  return r != nullptr && r->packet != 0;
-}
-
-// The reason, and the request that came first where that was the reason.
-std::string unanswered_text(const FrameRecord& r, const DescriptionContext& ctx) {
-  std::string text = unanswered_reason(r, ctx);
-  if (shown(r.next_request)) text += printed(" (frame %u)", r.next_request->packet);
-  return text;
-}
-
-void add_request_links(Builder& b, const FrameRecord& r) {
-  if (shown(r.response)) {
-    b.generated_uint(TreeField::ResponseIn, r.response->packet);
-    return;
-  }
-  // Only a later pass knows where the timeout was announced; the verdict stays there.
-  if (!b.ctx().visited || r.announced_in == 0) return;
-  TreeItem& item = b.item(b.generated_uint(TreeField::TimeoutIn, r.announced_in));
-  item.form = LabelForm::Whole;
-  item.text = b.text(printed("No reply: %s; announced in frame %u",
-                             unanswered_text(r, b.ctx()).c_str(), r.announced_in));
-}
-
-// As Wireshark's nstime_delta: b - a, both parts of one sign.
-RelativeTime time_between(const PacketTime& b, const PacketTime& a) {
-  RelativeTime d{b.secs - a.secs, b.nsecs - a.nsecs};
-  constexpr std::int32_t kNsPerSec = 1000000000;
-  if (b.secs < a.secs && d.nsecs > 0) {
-    d.nsecs -= kNsPerSec;
-    d.secs += 1;
-  } else if (b.secs > a.secs && d.nsecs < 0) {
-    d.nsecs += kNsPerSec;
-    d.secs -= 1;
-  }
-  return d;
-}
-
-// The latency the bus session measured (as pvtap audit reports it); a duplicate has none,
-// and shows the time since its request's packet.
-RelativeTime response_time(const FrameRecord& r) {
-  if (!r.has_latency) return time_between(r.time, r.request->time);
-  RelativeTime t;
-  const double ns = r.latency * 1e9;
-  t.secs = static_cast<std::int64_t>(r.latency);
-  t.nsecs = static_cast<std::int32_t>(ns - static_cast<double>(t.secs) * 1e9);
-  return t;
-}
-
-void add_reply_links(Builder& b, const FrameRecord& r) {
-  if (shown(r.request)) {
-    b.generated_uint(TreeField::RequestIn, r.request->packet);
-    TreeItem time;
-    time.field = TreeField::ResponseTime;
-    time.type = ValueType::Time;
-    time.depth = kFrame;
-    time.generated = true;
-    time.time = response_time(r);
-    b.add(time);
-  }
-  if (r.duplicate) {
-    b.expert_item(TreeExpert::Duplicate, FieldSpan{},
-                  "Duplicate reply: the station answered its request again");
-  }
-  if (r.address_conflict) {
-    b.expert_item(TreeExpert::AddressConflict, FieldSpan{},
-                  "Address conflict: a second reply to the request, with other contents: two "
-                  "devices answer to this station");
-  }
-  if (r.unsolicited) b.expert_item(TreeExpert::Unsolicited, FieldSpan{}, nullptr);
-  if (shown(r.late_for)) {
-    b.expert_item(
-        TreeExpert::LateReply, FieldSpan{},
-        b.text(printed("Reply after its request in frame %u timed out", r.late_for->packet)));
-  }
-}
-
-void add_count_mismatch(Builder& b, const FrameRecord& r) {
-  if (!r.count_mismatch) return;
-  const char* unit = r.count_unit == CountUnit::Words ? "words" : "bytes";
-  const std::uint32_t item = b.generated_uint(TreeField::ExpectedCount, r.count_expected);
-  b.expert_on(
-      item, TreeExpert::CountMismatch,
-      printed("The request asked for %u %s, the reply carries %u",
-              static_cast<unsigned>(r.count_expected), unit, static_cast<unsigned>(r.count_found)));
-}
-
-void add_matching(Builder& b, const FrameRecord& r) {
-  // An echo is the request again, not one of its own: it links to the request and no further.
-  if (r.echo) {
-    if (shown(r.echo_of)) b.generated_uint(TreeField::RequestIn, r.echo_of->packet);
-    b.expert_item(TreeExpert::Echo, FieldSpan{},
-                  shown(r.echo_of) ? b.text(printed("Echo of the request in frame %u: the tap's "
-                                                    "adapter repeating it, counted once",
-                                                    r.echo_of->packet))
-                                   : nullptr);
-    return;
-  }
-  // Read as a request, it echoes the pending one: a note only where the function's normal
-  // reply is no echo.
-  if (r.role_corrected && !reply_is_echo(r.dialect, r.function)) {
-    b.expert_item(TreeExpert::RoleCorrected, FieldSpan{}, nullptr);
-  }
-  if (r.role == Role::Request) {
-    add_request_links(b, r);
-  } else {
-    add_reply_links(b, r);
-    add_count_mismatch(b, r);
-  }
 }
 
 // The bytes a frame carries but the tree does not decode, as bytes: a reader sees what came,
