@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "plan/field_table.h"
+
 namespace pvtap::dissector {
 
 // FieldList: hf_register_info records with run-time names. Wireshark keeps pointers into the
@@ -32,5 +34,17 @@ class ExpertList {
  private:
   std::vector<ei_register_info> records_;
 };
+
+// ExpertRow: a line of an expert table (plan/field_table.h).
+struct ExpertRow {
+  TreeExpert id;
+  const char* abbrev;
+  int group;
+  int severity;
+  const char* summary;
+};
+
+#define PVTAP_EXPERT_ROW(id, abbrev, group, severity, summary) \
+  {TreeExpert::id, abbrev, group, severity, summary},
 
 }  // namespace pvtap::dissector

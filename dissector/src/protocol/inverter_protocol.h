@@ -5,72 +5,48 @@
 #include <epan/packet.h>
 
 #include <array>
+#include <cstddef>
 
-#include "plan/modbus_plan.h"
+#include "plan/field_table.h"
 #include "pvtap/codec/dialect.h"
 #include "wireshark_api/preference_types.h"
 
 namespace pvtap::dissector {
 
-// CommonFields: ids of the fields that frames of every dialect of a protocol may carry.
-struct CommonFields {
-  int dialect = -1;
-  int role = -1;
-  int station = -1;
-  int function = -1;
-  int start = -1;
-  int count = -1;
-  int byte_count = -1;
-  int device = -1;
-  int device_type = -1;
-  int device_serial = -1;
-  int exception_code = -1;
-  int error_body = -1;  // the fixed body of a Hybrid error reply
-  int word = -1;        // a data word no register map entry covers
-  int undecoded = -1;   // data or body not decoded: a bad check, or a frame that did not parse
-  int check = -1;
-  int check_status = -1;
-  int check_expected = -1;
-  int noise = -1;
-  int unknown_function = -1;
-  int request_in = -1;
-  int response_in = -1;
-  int unanswered_request = -1;  // the request a timeout announcement is about
-  int timeout_in = -1;          // on a request: the packet that announced its timeout
-  int response_time = -1;
-  int expected_count = -1;
-  // The Modbus fields (invrtu only), by ModbusField.
-  std::array<int, kModbusFieldCount> modbus = [] {
-    std::array<int, kModbusFieldCount> ids{};
-    ids.fill(-1);
-    return ids;
-  }();
+// Filled: an array of ids before Wireshark has assigned them.
+template <typename T, std::size_t N>
+constexpr std::array<T, N> filled(const T& unassigned) {
+  std::array<T, N> ids{};
+  ids.fill(unassigned);
+  return ids;
+}
+
+// FieldIds: the ids of a protocol's fields, by line of the field tables; -1 where the
+// protocol registered none (invascii has no Modbus fields, for one).
+struct FieldIds {
+  std::array<int, kFrameFieldCount> frame = filled<int, kFrameFieldCount>(-1);
+  std::array<int, kModbusFieldCount> modbus = filled<int, kModbusFieldCount>(-1);
+
+  // -1 too for the items whose ids come from elsewhere (TreeField::None and after).
+  int of(TreeField field) const {
+    const auto i = static_cast<std::size_t>(field);
+    return i < frame.size() ? frame[i] : -1;
+  }
+  int of(ModbusField field) const {
+    const auto i = static_cast<std::size_t>(field);
+    return i < modbus.size() ? modbus[i] : -1;
+  }
 };
 
-// ExpertFields: the expert infos a protocol raises.
-struct ExpertFields {
-  expert_field bad_check = EI_INIT;
-  expert_field malformed = EI_INIT;
-  expert_field noise = EI_INIT;
-  expert_field unknown_function = EI_INIT;
-  expert_field exception = EI_INIT;
-  expert_field unanswered = EI_INIT;
-  expert_field unsolicited = EI_INIT;
-  expert_field late_reply = EI_INIT;
-  expert_field duplicate = EI_INIT;
-  expert_field address_conflict = EI_INIT;
-  expert_field echo = EI_INIT;
-  expert_field collision = EI_INIT;
-  expert_field count_mismatch = EI_INIT;
-  expert_field role_corrected = EI_INIT;
-  expert_field start_unknown = EI_INIT;
-  expert_field start_assumed = EI_INIT;
-  expert_field value_note = EI_INIT;
-  expert_field value_suspicious = EI_INIT;
-  expert_field quantity_problem = EI_INIT;
-  expert_field dialect_changed = EI_INIT;
-  expert_field broadcast_not_allowed = EI_INIT;
-  expert_field write_count_problem = EI_INIT;
+// ExpertIds: the expert infos of a protocol, by line of the expert tables.
+struct ExpertIds {
+  std::array<expert_field, kExpertCount> all = filled<expert_field, kExpertCount>(EI_INIT);
+
+  // Null for TreeExpert::None.
+  expert_field* of(TreeExpert expert) {
+    const auto i = static_cast<std::size_t>(expert);
+    return i < all.size() ? &all[i] : nullptr;
+  }
 };
 
 // Subtrees: the ett ids of a protocol's subtrees.
@@ -106,8 +82,8 @@ struct InverterProtocol {
   DialectSet dialects;
   int proto = -1;
   int tap = -1;
-  CommonFields hf{};
-  ExpertFields ei{};
+  FieldIds hf{};
+  ExpertIds ei{};
   Subtrees ett{};
   ProtocolSettings settings{};
   dissector_handle_t stream_handle = nullptr;    // TCP: reassembles across segments

@@ -145,7 +145,7 @@ void show_collision(const SessionCollision& collision, tvbuff_t* tvb, packet_inf
   add_info(pinfo, p, "collision");
   const double now = nstime_to_sec(&pinfo->abs_ts);
   proto_tree_add_expert_format(
-      tree, pinfo, &p.ei.collision, tvb, 0, 0,
+      tree, pinfo, p.ei.of(TreeExpert::Collision), tvb, 0, 0,
       "Collision %.6f s before this packet: two transmissions at once garbled the bus for "
       "%.1f ms or more (a bus of more than one master)%s",
       now - collision.start_time, (collision.end_time - collision.start_time) * 1e3,

@@ -15,119 +15,6 @@ static_assert(static_cast<int>(CheckStatus::NotPresent) == PROTO_CHECKSUM_E_NOT_
 
 constexpr std::size_t kDepths = 4;
 
-// The id of a common field; -1 for the protocol's fields it does not register.
-int common_field_id(const CommonFields& hf, TreeField field) {
-  switch (field) {
-    case TreeField::Dialect:
-      return hf.dialect;
-    case TreeField::Role:
-      return hf.role;
-    case TreeField::Station:
-      return hf.station;
-    case TreeField::Function:
-      return hf.function;
-    case TreeField::Start:
-      return hf.start;
-    case TreeField::Count:
-      return hf.count;
-    case TreeField::ByteCount:
-      return hf.byte_count;
-    case TreeField::Device:
-      return hf.device;
-    case TreeField::DeviceType:
-      return hf.device_type;
-    case TreeField::DeviceSerial:
-      return hf.device_serial;
-    case TreeField::ExceptionCode:
-      return hf.exception_code;
-    case TreeField::ErrorBody:
-      return hf.error_body;
-    case TreeField::Word:
-      return hf.word;
-    case TreeField::Check:
-      return hf.check;
-    case TreeField::CheckStatus:
-      return hf.check_status;
-    case TreeField::CheckExpected:
-      return hf.check_expected;
-    case TreeField::Noise:
-      return hf.noise;
-    case TreeField::UnknownFunction:
-      return hf.unknown_function;
-    case TreeField::RequestIn:
-      return hf.request_in;
-    case TreeField::ResponseIn:
-      return hf.response_in;
-    case TreeField::ResponseTime:
-      return hf.response_time;
-    case TreeField::Undecoded:
-      return hf.undecoded;
-    case TreeField::ExpectedCount:
-      return hf.expected_count;
-    case TreeField::UnansweredRequest:
-      return hf.unanswered_request;
-    case TreeField::TimeoutIn:
-      return hf.timeout_in;
-    case TreeField::None:
-    case TreeField::Protocol:
-    case TreeField::Modbus:
-    case TreeField::RegisterValue:
-    case TreeField::RegisterFlag:
-      break;
-  }
-  return -1;
-}
-
-expert_field* expert_of(ExpertFields& ei, TreeExpert expert) {
-  switch (expert) {
-    case TreeExpert::BadCheck:
-      return &ei.bad_check;
-    case TreeExpert::Malformed:
-      return &ei.malformed;
-    case TreeExpert::Noise:
-      return &ei.noise;
-    case TreeExpert::UnknownFunction:
-      return &ei.unknown_function;
-    case TreeExpert::Exception:
-      return &ei.exception;
-    case TreeExpert::Unanswered:
-      return &ei.unanswered;
-    case TreeExpert::Unsolicited:
-      return &ei.unsolicited;
-    case TreeExpert::LateReply:
-      return &ei.late_reply;
-    case TreeExpert::Duplicate:
-      return &ei.duplicate;
-    case TreeExpert::AddressConflict:
-      return &ei.address_conflict;
-    case TreeExpert::Echo:
-      return &ei.echo;
-    case TreeExpert::CountMismatch:
-      return &ei.count_mismatch;
-    case TreeExpert::RoleCorrected:
-      return &ei.role_corrected;
-    case TreeExpert::StartUnknown:
-      return &ei.start_unknown;
-    case TreeExpert::StartAssumed:
-      return &ei.start_assumed;
-    case TreeExpert::ValueNote:
-      return &ei.value_note;
-    case TreeExpert::ValueSuspicious:
-      return &ei.value_suspicious;
-    case TreeExpert::QuantityProblem:
-      return &ei.quantity_problem;
-    case TreeExpert::DialectChanged:
-      return &ei.dialect_changed;
-    case TreeExpert::BroadcastNotAllowed:
-      return &ei.broadcast_not_allowed;
-    case TreeExpert::WriteCountProblem:
-      return &ei.write_count_problem;
-    case TreeExpert::None:
-      break;
-  }
-  return nullptr;
-}
-
 // Adder: one description going into the tree. Every member is plain: a longjmp out of a
 // Wireshark call leaves nothing to destroy.
 struct Adder {
@@ -138,13 +25,11 @@ struct Adder {
 
   int field_id(const TreeItem& item) const {
     if (item.field == TreeField::Protocol) return t.protocol->proto;
-    if (item.field == TreeField::Modbus) {
-      return t.protocol->hf.modbus[static_cast<std::size_t>(item.modbus)];
-    }
+    if (item.field == TreeField::Modbus) return t.protocol->hf.of(item.modbus);
     const RegisterField* f = item.def != nullptr ? register_field(dialect, item.def) : nullptr;
     if (item.field == TreeField::RegisterValue) return f != nullptr ? f->hf : -1;
     if (item.field == TreeField::RegisterFlag) return f != nullptr ? f->bits[item.bit] : -1;
-    return common_field_id(t.protocol->hf, item.field);
+    return t.protocol->hf.of(item.field);
   }
 
   int subtree_id(const TreeItem& item) const {
@@ -223,7 +108,8 @@ struct Adder {
 
   void raise(const TreeItem& i) const {
     proto_item* item = i.target >= 0 ? added[i.target] : nullptr;
-    expert_field* ei = expert_of(t.protocol->ei, i.expert);
+    expert_field* ei = t.protocol->ei.of(i.expert);
+    if (ei == nullptr) return;
     if (i.text == nullptr) {
       expert_add_info(t.pinfo, item, ei);
     } else {
@@ -232,7 +118,8 @@ struct Adder {
   }
 
   proto_item* add_expert_item(proto_tree* tree, const TreeItem& i) const {
-    expert_field* ei = expert_of(t.protocol->ei, i.expert);
+    expert_field* ei = t.protocol->ei.of(i.expert);
+    if (ei == nullptr) return nullptr;
     const gint start = t.offset + i.offset;
     if (i.text == nullptr) return proto_tree_add_expert(tree, t.pinfo, ei, t.tvb, start, i.length);
     return proto_tree_add_expert_format(tree, t.pinfo, ei, t.tvb, start, i.length, "%s", i.text);

@@ -7,71 +7,12 @@
 #include <type_traits>
 
 #include "plan/arena.h"
+#include "plan/field_table.h"
 #include "plan/frame_plan.h"
 #include "plan/frame_record.h"
 #include "pvtap/codec/unknown_function_frame.h"
 
 namespace pvtap::dissector {
-
-// TreeField: the field of an item; the plugin maps it to the field id it registered.
-enum class TreeField : std::uint8_t {
-  None,  // an expert info's item of its own
-  Protocol,
-  Dialect,
-  Role,
-  Station,
-  Function,
-  Start,
-  Count,
-  ByteCount,
-  Device,
-  DeviceType,
-  DeviceSerial,
-  ExceptionCode,
-  ErrorBody,  // a Hybrid error reply's fixed body
-  Word,       // a data word no register map entry covers
-  Undecoded,  // a frame's data or body, shown as bytes: its check failed or it did not parse
-  Check,
-  CheckStatus,
-  CheckExpected,
-  Noise,
-  UnknownFunction,
-  RequestIn,
-  ResponseIn,
-  ResponseTime,
-  ExpectedCount,
-  UnansweredRequest,  // the request a timeout announcement is about
-  TimeoutIn,          // on a request: the packet that announced its timeout
-  RegisterValue,      // the field of the map entry `def`
-  RegisterFlag,       // the flag `bit` of the map entry `def`
-  Modbus,             // the Modbus field `modbus`
-};
-
-// TreeExpert: the expert info an item raises.
-enum class TreeExpert : std::uint8_t {
-  None,
-  BadCheck,
-  Malformed,
-  Noise,
-  UnknownFunction,
-  Exception,
-  Unanswered,
-  Unsolicited,
-  LateReply,
-  Duplicate,
-  AddressConflict,  // a second reply with other contents: two devices at one address
-  Echo,             // a request repeated at once by the tap's adapter
-  CountMismatch,
-  RoleCorrected,
-  StartUnknown,
-  StartAssumed,
-  ValueNote,
-  ValueSuspicious,
-  QuantityProblem,      // a request asks a quantity out of the specification's range
-  DialectChanged,       // a station changed dialect
-  BroadcastNotAllowed,  // a request to address 0 that may not be broadcast
-  WriteCountProblem,    // a write whose byte count disagrees with its quantity
-};
 
 // ItemKind: what adding the item does.
 enum class ItemKind : std::uint8_t {

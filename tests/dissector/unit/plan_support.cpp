@@ -115,66 +115,24 @@ std::vector<std::string> lines_of(const TreeDescription& description) {
   return lines;
 }
 
+#define PVTAP_NAME(id, ...) #id,
+
 const char* name_of(TreeField field) {
-  static constexpr const char* kNames[] = {"None",
-                                           "Protocol",
-                                           "Dialect",
-                                           "Role",
-                                           "Station",
-                                           "Function",
-                                           "Start",
-                                           "Count",
-                                           "ByteCount",
-                                           "Device",
-                                           "DeviceType",
-                                           "DeviceSerial",
-                                           "ExceptionCode",
-                                           "ErrorBody",
-                                           "Word",
-                                           "Undecoded",
-                                           "Check",
-                                           "CheckStatus",
-                                           "CheckExpected",
-                                           "Noise",
-                                           "UnknownFunction",
-                                           "RequestIn",
-                                           "ResponseIn",
-                                           "ResponseTime",
-                                           "ExpectedCount",
-                                           "UnansweredRequest",
-                                           "TimeoutIn",
-                                           "RegisterValue",
-                                           "RegisterFlag",
-                                           "Modbus"};
+  static constexpr const char* kNames[] = {PVTAP_FRAME_FIELDS(PVTAP_NAME) "None", "Protocol",
+                                           "RegisterValue", "RegisterFlag", "Modbus"};
   static_assert(std::size(kNames) == static_cast<std::size_t>(TreeField::Modbus) + 1);
-  return kNames[static_cast<std::size_t>(field)];
+  const auto i = static_cast<std::size_t>(field);
+  return i < std::size(kNames) ? kNames[i] : "?";
 }
 
 const char* name_of(TreeExpert expert) {
-  static constexpr const char* kNames[] = {"None",
-                                           "BadCheck",
-                                           "Malformed",
-                                           "Noise",
-                                           "UnknownFunction",
-                                           "Exception",
-                                           "Unanswered",
-                                           "Unsolicited",
-                                           "LateReply",
-                                           "Duplicate",
-                                           "AddressConflict",
-                                           "Echo",
-                                           "CountMismatch",
-                                           "RoleCorrected",
-                                           "StartUnknown",
-                                           "StartAssumed",
-                                           "ValueNote",
-                                           "ValueSuspicious",
-                                           "QuantityProblem",
-                                           "DialectChanged",
-                                           "BroadcastNotAllowed",
-                                           "WriteCountProblem"};
-  static_assert(std::size(kNames) == static_cast<std::size_t>(TreeExpert::WriteCountProblem) + 1);
-  return kNames[static_cast<std::size_t>(expert)];
+  static constexpr const char* kNames[] = {PVTAP_FRAME_EXPERTS(PVTAP_NAME)
+                                               PVTAP_MODBUS_EXPERTS(PVTAP_NAME) "None"};
+  static_assert(std::size(kNames) == static_cast<std::size_t>(TreeExpert::None) + 1);
+  const auto i = static_cast<std::size_t>(expert);
+  return i < std::size(kNames) ? kNames[i] : "?";
 }
+
+#undef PVTAP_NAME
 
 }  // namespace pvtap::dissector::test
