@@ -20,27 +20,28 @@ proto_tree* piece_tree(const V5Target& t, int offset, int length, proto_item** i
 }
 
 void show_header(proto_tree* tree, const V5Target& t, const v5::Frame& f, int at) {
-  const V5Fields& hf = v5_protocol().hf;
-  proto_tree_add_uint(tree, hf.length, t.tvb, at + 1, 2, f.header.length);
-  proto_tree_add_uint(tree, hf.control, t.tvb, at + 3, 2, f.header.control);
-  proto_tree_add_uint(tree, hf.sequence, t.tvb, at + 5, 2, f.header.sequence);
-  proto_tree_add_uint(tree, hf.serial, t.tvb, at + 7, 4, f.header.serial);
+  const SolarmanV5Protocol& p = v5_protocol();
+  proto_tree_add_uint(tree, p.field(V5Field::Length), t.tvb, at + 1, 2, f.header.length);
+  proto_tree_add_uint(tree, p.field(V5Field::Control), t.tvb, at + 3, 2, f.header.control);
+  proto_tree_add_uint(tree, p.field(V5Field::Sequence), t.tvb, at + 5, 2, f.header.sequence);
+  proto_tree_add_uint(tree, p.field(V5Field::Serial), t.tvb, at + 7, 4, f.header.serial);
 }
 
 // Request and response payloads: fixed fields at `at` (the payload's start).
 void show_fixed_fields(proto_tree* tree, const V5Target& t, const v5::Frame& f, int at) {
-  const V5Fields& hf = v5_protocol().hf;
+  const SolarmanV5Protocol& p = v5_protocol();
   const bool request = f.kind == v5::FrameKind::Request;
-  proto_tree_add_uint(tree, hf.frame_type, t.tvb, at, 1, f.frame_type);
+  proto_tree_add_uint(tree, p.field(V5Field::FrameType), t.tvb, at, 1, f.frame_type);
   if (request) {
-    proto_tree_add_uint(tree, hf.sensor_type, t.tvb, at + 1, 2, f.sensor_type);
+    proto_tree_add_uint(tree, p.field(V5Field::SensorType), t.tvb, at + 1, 2, f.sensor_type);
   } else {
-    proto_tree_add_uint(tree, hf.status, t.tvb, at + 1, 1, f.status);
+    proto_tree_add_uint(tree, p.field(V5Field::Status), t.tvb, at + 1, 1, f.status);
   }
   const int times = at + (request ? 3 : 2);
-  proto_tree_add_uint(tree, hf.total_working_time, t.tvb, times, 4, f.total_working_time);
-  proto_tree_add_uint(tree, hf.power_on_time, t.tvb, times + 4, 4, f.power_on_time);
-  proto_tree_add_uint(tree, hf.offset_time, t.tvb, times + 8, 4, f.offset_time);
+  proto_tree_add_uint(tree, p.field(V5Field::TotalWorkingTime), t.tvb, times, 4,
+                      f.total_working_time);
+  proto_tree_add_uint(tree, p.field(V5Field::PowerOnTime), t.tvb, times + 4, 4, f.power_on_time);
+  proto_tree_add_uint(tree, p.field(V5Field::OffsetTime), t.tvb, times + 8, 4, f.offset_time);
 }
 
 // The RTU frame goes to invrtu whole (the V5 frame pins both its ends), with the verdicts of
@@ -51,11 +52,12 @@ void show_rtu(proto_tree* tree, const V5Target& t, const v5::Frame& f, const V5P
   SolarmanV5Protocol& p = v5_protocol();
   const int rtu_at = at + static_cast<int>(f.rtu_offset);
   const int rtu_length = static_cast<int>(f.rtu_length);
-  proto_tree_add_item(tree, p.hf.rtu, t.tvb, rtu_at, rtu_length, ENC_NA);
+  proto_tree_add_item(tree, p.field(V5Field::Rtu), t.tvb, rtu_at, rtu_length, ENC_NA);
   if (f.quirk_bytes > 0) {
-    proto_item* quirk = proto_tree_add_item(tree, p.hf.quirk, t.tvb, rtu_at + rtu_length,
-                                            static_cast<int>(f.quirk_bytes), ENC_NA);
-    expert_add_info(t.pinfo, quirk, &p.ei.quirk);
+    proto_item* quirk =
+        proto_tree_add_item(tree, p.field(V5Field::Quirk), t.tvb, rtu_at + rtu_length,
+                            static_cast<int>(f.quirk_bytes), ENC_NA);
+    expert_add_info(t.pinfo, quirk, p.expert(V5Expert::Quirk));
   }
   if (piece.rtu == nullptr) return;
   const auto rtu = f.rtu();
@@ -86,19 +88,20 @@ void show_stick_code(proto_tree* tree, const V5Target& t, const v5::Frame& f, co
                      int at) {
   SolarmanV5Protocol& p = v5_protocol();
   const int code_at = at + static_cast<int>(f.rtu_offset);
-  proto_item* item = proto_tree_add_uint(tree, p.hf.stick_code, t.tvb, code_at,
+  proto_item* item = proto_tree_add_uint(tree, p.field(V5Field::StickCode), t.tvb, code_at,
                                          static_cast<int>(v5::kStickCodeSize), *f.stick_code);
   using Kind = v5::Release::Kind;
   if (piece.code_meaning == Kind::NoReply) {
-    expert_add_info_format(t.pinfo, item, &p.ei.stick_no_reply,
+    expert_add_info_format(t.pinfo, item, p.expert(V5Expert::StickNoReply),
                            "%s: no reply from the bus behind it (a timeout)",
                            v5::no_reply_reason(*f.stick_code).c_str());
   } else if (piece.code_meaning == Kind::Refused) {
-    expert_add_info_format(t.pinfo, item, &p.ei.stick_refused, "The stick refused it: %s",
+    expert_add_info_format(t.pinfo, item, p.expert(V5Expert::StickRefused),
+                           "The stick refused it: %s",
                            v5::describe_refusal(piece.addressed_serial, f.header.serial).c_str());
   } else {
-    expert_add_info_format(t.pinfo, item, &p.ei.stick_code, "The stick answered code %02x",
-                           *f.stick_code);
+    expert_add_info_format(t.pinfo, item, p.expert(V5Expert::StickCode),
+                           "The stick answered code %02x", *f.stick_code);
   }
 }
 
@@ -108,9 +111,9 @@ void show_payload(proto_tree* tree, const V5Target& t, const v5::Frame& f, const
   const int payload_at = at + static_cast<int>(v5::kHeaderSize);
   const bool modbus = f.kind == v5::FrameKind::Request || f.kind == v5::FrameKind::Response;
   if (!modbus || f.payload_short) {
-    proto_item* item =
-        proto_tree_add_item(tree, p.hf.payload, t.tvb, payload_at, f.header.length, ENC_NA);
-    if (f.payload_short) expert_add_info(t.pinfo, item, &p.ei.payload_short);
+    proto_item* item = proto_tree_add_item(tree, p.field(V5Field::Payload), t.tvb, payload_at,
+                                           f.header.length, ENC_NA);
+    if (f.payload_short) expert_add_info(t.pinfo, item, p.expert(V5Expert::PayloadShort));
     return;
   }
   show_fixed_fields(tree, t, f, payload_at);
@@ -129,9 +132,9 @@ void show_v5_frame(const V5Target& t, const V5Piece& piece, std::span<const std:
   col_add_fstr(t.pinfo->cinfo, COL_INFO, "V5 %s, logger %u", name, f.header.serial);
   show_header(tree, t, f, at);
   const auto checksum_at = static_cast<guint>(at) + static_cast<guint>(bytes.size()) - 2;
-  proto_tree_add_checksum(tree, t.tvb, checksum_at, p.hf.checksum, p.hf.checksum_status,
-                          &p.ei.bad_checksum, t.pinfo, f.expected_checksum, ENC_NA,
-                          PROTO_CHECKSUM_VERIFY);
+  proto_tree_add_checksum(tree, t.tvb, checksum_at, p.field(V5Field::Checksum),
+                          p.field(V5Field::ChecksumStatus), p.expert(V5Expert::BadChecksum),
+                          t.pinfo, f.expected_checksum, ENC_NA, PROTO_CHECKSUM_VERIFY);
   show_payload(tree, t, f, piece, at);
 }
 
@@ -141,14 +144,17 @@ void show_run(const V5Target& t, const V5Piece& piece, int at) {
   proto_tree* tree = piece_tree(t, at, static_cast<int>(piece.length), &item);
   const int length = static_cast<int>(piece.length);
   if (piece.kind == v5::Event::Kind::Noise) {
-    expert_add_info(t.pinfo, proto_tree_add_item(tree, p.hf.noise, t.tvb, at, length, ENC_NA),
-                    &p.ei.noise);
+    expert_add_info(t.pinfo,
+                    proto_tree_add_item(tree, p.field(V5Field::Noise), t.tvb, at, length, ENC_NA),
+                    p.expert(V5Expert::Noise));
     return;
   }
-  proto_item* broken = proto_tree_add_item(tree, p.hf.broken, t.tvb, at, length, ENC_NA);
-  proto_tree_add_uint(tree, p.hf.claimed_length, t.tvb, at + 1, 2, piece.claimed_size);
+  proto_item* broken =
+      proto_tree_add_item(tree, p.field(V5Field::Broken), t.tvb, at, length, ENC_NA);
+  proto_tree_add_uint(tree, p.field(V5Field::ClaimedLength), t.tvb, at + 1, 2, piece.claimed_size);
   const bool truncated = piece.broken == v5::Broken::Truncated;
-  expert_add_info(t.pinfo, broken, truncated ? &p.ei.truncated : &p.ei.length_mismatch);
+  expert_add_info(t.pinfo, broken,
+                  truncated ? p.expert(V5Expert::Truncated) : p.expert(V5Expert::LengthMismatch));
 }
 
 }  // namespace
