@@ -45,6 +45,16 @@ constexpr FieldRow kFields[] = {PVTAP_FRAME_FIELDS(PVTAP_FIELD_ROW)};
 
 constexpr ExpertRow kExperts[] = {PVTAP_FRAME_EXPERTS(PVTAP_EXPERT_ROW)};
 
+// SubtreeRow: a line of PVTAP_SUBTREES.
+struct SubtreeRow {
+  Subtree id;
+  Protocols protocols;
+};
+
+#define PVTAP_SUBTREE_ROW(id, protocols) {Subtree::id, Protocols::protocols},
+constexpr SubtreeRow kSubtrees[] = {PVTAP_SUBTREES(PVTAP_SUBTREE_ROW)};
+#undef PVTAP_SUBTREE_ROW
+
 const value_string* device_type_names() {
   const RegisterDef* def = effective_map(Dialect::Hybrid).find_kind(RegisterKind::DeviceNumber);
   return def != nullptr ? register_value_names(*def) : nullptr;
@@ -119,13 +129,24 @@ void register_experts(InverterProtocol& p) {
   experts.register_all(p.proto);
 }
 
+// invrtu's Modbus subtrees are registered here too, before its Modbus fields: subtree ids
+// are counted apart from field ids, so that no id moves.
+void register_subtrees(InverterProtocol& p) {
+  gint* etts[kSubtreeCount] = {};
+  int count = 0;
+  for (const SubtreeRow& s : kSubtrees) {
+    if (s.protocols == Protocols::Rtu && !p.dialects.rtu()) continue;
+    etts[count++] = &p.ett.all[static_cast<std::size_t>(s.id)];
+  }
+  proto_register_subtree_array(etts, count);
+}
+
 }  // namespace
 
 void register_common_items(InverterProtocol& p) {
   register_fields(p);
   register_experts(p);
-  gint* etts[] = {&p.ett.frame, &p.ett.device, &p.ett.noise};
-  proto_register_subtree_array(etts, G_N_ELEMENTS(etts));
+  register_subtrees(p);
 }
 
 }  // namespace pvtap::dissector

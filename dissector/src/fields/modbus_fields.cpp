@@ -101,8 +101,6 @@ void register_experts(InverterProtocol& p) {
 void register_modbus_items(InverterProtocol& p) {
   register_fields(p);
   register_experts(p);
-  gint* etts[] = {&p.ett.coils, &p.ett.coil, &p.ett.device_object, &p.ett.map_entry};
-  proto_register_subtree_array(etts, G_N_ELEMENTS(etts));
 }
 
 }  // namespace pvtap::dissector

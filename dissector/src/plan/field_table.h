@@ -1,4 +1,4 @@
-// The fields and expert infos of invrtu and invascii, one line each, and the ids made of them.
+// The fields, expert infos and subtrees of invrtu and invascii, one line each, and their ids.
 #pragma once
 
 #include <cstddef>
@@ -154,6 +154,16 @@
   X(WriteCountProblem, "write_count_mismatch", PI_PROTOCOL, PI_WARN,                    \
     "Byte count disagrees with the quantity written")
 
+// The subtrees an item may open: X(id, protocols), as PVTAP_FRAME_FIELDS.
+#define PVTAP_SUBTREES(X) \
+  X(Frame, All)           \
+  X(Device, All)          \
+  X(Noise, All)           \
+  X(Coils, Rtu)           \
+  X(Coil, Rtu)            \
+  X(DeviceObject, Rtu)    \
+  X(MapEntry, Rtu) /* a value of a station's own map: its key and number */
+
 #define PVTAP_TABLE_ID(id, ...) id,
 #define PVTAP_TABLE_ONE(...) +1
 
@@ -187,6 +197,15 @@ inline constexpr std::size_t kExpertCount =
 // registration.
 enum class ModbusField : std::uint8_t { PVTAP_MODBUS_FIELDS(PVTAP_TABLE_ID) };
 inline constexpr std::size_t kModbusFieldCount = 0 PVTAP_MODBUS_FIELDS(PVTAP_TABLE_ONE);
+
+// Subtree: the subtree an item opens for the items one level deeper that follow it.
+enum class Subtree : std::uint8_t {
+  PVTAP_SUBTREES(PVTAP_TABLE_ID)
+  // Not in the table:
+  None,
+  Flags,  // the flags of the map entry `def`: their subtree is the register field's
+};
+inline constexpr std::size_t kSubtreeCount = 0 PVTAP_SUBTREES(PVTAP_TABLE_ONE);
 
 }  // namespace pvtap::dissector
 

@@ -49,15 +49,15 @@ struct ExpertIds {
   }
 };
 
-// Subtrees: the ett ids of a protocol's subtrees.
-struct Subtrees {
-  int frame = -1;
-  int device = -1;
-  int noise = -1;
-  int coils = -1;
-  int coil = -1;
-  int device_object = -1;
-  int map_entry = -1;  // a value of a station's own map
+// SubtreeIds: the ett ids of a protocol's subtrees, by line of PVTAP_SUBTREES.
+struct SubtreeIds {
+  std::array<int, kSubtreeCount> all = filled<int, kSubtreeCount>(-1);
+
+  // -1 too for the subtrees whose ids come from elsewhere (Subtree::None and after).
+  int of(Subtree subtree) const {
+    const auto i = static_cast<std::size_t>(subtree);
+    return i < all.size() ? all[i] : -1;
+  }
 };
 
 // ProtocolSettings: preference values; Wireshark writes them through pointers.
@@ -84,7 +84,7 @@ struct InverterProtocol {
   int tap = -1;
   FieldIds hf{};
   ExpertIds ei{};
-  Subtrees ett{};
+  SubtreeIds ett{};
   ProtocolSettings settings{};
   dissector_handle_t stream_handle = nullptr;    // TCP: reassembles across segments
   dissector_handle_t datagram_handle = nullptr;  // UDP, records, RTAC serial payloads

@@ -33,29 +33,9 @@ struct Adder {
   }
 
   int subtree_id(const TreeItem& item) const {
-    switch (item.subtree) {
-      case Subtree::Frame:
-        return t.protocol->ett.frame;
-      case Subtree::Noise:
-        return t.protocol->ett.noise;
-      case Subtree::Device:
-        return t.protocol->ett.device;
-      case Subtree::Coils:
-        return t.protocol->ett.coils;
-      case Subtree::Coil:
-        return t.protocol->ett.coil;
-      case Subtree::DeviceObject:
-        return t.protocol->ett.device_object;
-      case Subtree::MapEntry:
-        return t.protocol->ett.map_entry;
-      case Subtree::Flags: {
-        const RegisterField* f = register_field(dialect, item.def);
-        return f != nullptr ? f->ett : -1;
-      }
-      case Subtree::None:
-        break;
-    }
-    return -1;
+    if (item.subtree != Subtree::Flags) return t.protocol->ett.of(item.subtree);
+    const RegisterField* f = register_field(dialect, item.def);
+    return f != nullptr ? f->ett : -1;
   }
 
   proto_item* add_value(proto_tree* tree, int id, const TreeItem& i) const {

@@ -38,19 +38,6 @@ enum class LabelForm : std::uint8_t {
   Whole,    // `text` is the whole label
 };
 
-// Subtree: the subtree an item opens for the items one level deeper that follow it.
-enum class Subtree : std::uint8_t {
-  None,
-  Frame,
-  Noise,
-  Device,
-  Flags,
-  Coils,
-  Coil,
-  DeviceObject,
-  MapEntry,  // a value of a station's own map: its key and number
-};
-
 // CheckStatus: the value of the check status field, Wireshark's PROTO_CHECKSUM_E_* values.
 // As Wireshark's proto_checksum_vals; NotPresent: a carried frame (Modbus/TCP) has none.
 enum class CheckStatus : std::uint32_t { Bad = 0, Good = 1, Unverified = 2, NotPresent = 3 };
