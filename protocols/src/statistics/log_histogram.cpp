@@ -77,17 +77,34 @@ const Geometry& geometry() {
 
 }  // namespace
 
+void LogHistogram::cover(std::size_t b) {
+  if (counts_.empty()) {
+    first_ = b;
+    counts_.assign(1, 0);
+  } else if (b < first_) {
+    counts_.insert(counts_.begin(), first_ - b, 0);
+    first_ = b;
+  } else if (b >= first_ + counts_.size()) {
+    counts_.resize(b - first_ + 1, 0);
+  }
+}
+
 void LogHistogram::add(double value) {
   if (std::isnan(value)) return;
-  if (counts_.empty()) counts_.assign(geometry().buckets, 0);
-  ++counts_[bucket_of(value)];
+  const std::size_t b = bucket_of(value);
+  // Almost every value falls inside the window already: one comparison on the usual path.
+  if (b - first_ >= counts_.size()) cover(b);
+  ++counts_[b - first_];
   ++count_;
 }
 
 void LogHistogram::merge(const LogHistogram& other) {
   if (other.count_ == 0) return;
-  if (counts_.empty()) counts_.assign(geometry().buckets, 0);
-  for (std::size_t b = 0; b < counts_.size(); ++b) counts_[b] += other.counts_[b];
+  cover(other.first_);
+  cover(other.first_ + other.counts_.size() - 1);
+  for (std::size_t i = 0; i < other.counts_.size(); ++i) {
+    counts_[other.first_ + i - first_] += other.counts_[i];
+  }
   count_ += other.count_;
 }
 
@@ -97,9 +114,9 @@ double LogHistogram::quantile(double q) const {
   const auto rank = std::max<std::uint64_t>(
       1, static_cast<std::uint64_t>(std::ceil(q * static_cast<double>(count_))));
   std::uint64_t seen = 0;
-  for (std::size_t b = 0; b < counts_.size(); ++b) {
-    seen += counts_[b];
-    if (seen >= rank) return representative(b);
+  for (std::size_t i = 0; i < counts_.size(); ++i) {
+    seen += counts_[i];
+    if (seen >= rank) return representative(first_ + i);
   }
   return representative(geometry().overflow);
 }

@@ -77,6 +77,30 @@ TEST(TimingHistogramTest, EveryQuantileIsWithinTheStatedRelativeError) {
   }
 }
 
+TEST(TimingHistogramTest, OrderOfAddsAndMergesDoesNotChangeAQuantile) {
+  // Only the window of buckets in use is kept: values arriving below it, above it, or in
+  // another histogram merged in must give the quantiles of one histogram fed in order.
+  const std::vector<double> values = spread_values(5000, 1e-7, 2e4);  // beyond both ends
+  LogHistogram in_order;
+  for (double v : values) in_order.add(v);
+  std::vector<double> sorted = values;
+  std::sort(sorted.rbegin(), sorted.rend());
+  LogHistogram descending;  // every add below the window so far
+  for (double v : sorted) descending.add(v);
+  LogHistogram low, high, middle, merged;  // three windows apart
+  for (std::size_t i = 0; i < sorted.size(); ++i) {
+    (i < 1000 ? high : i < 4000 ? middle : low).add(sorted[i]);
+  }
+  merged.merge(middle);
+  merged.merge(high);
+  merged.merge(low);
+  merged.merge(LogHistogram{});
+  for (double q : {0.0, 0.001, 0.1, 0.5, 0.9, 0.999, 1.0}) {
+    EXPECT_EQ(descending.quantile(q), in_order.quantile(q)) << q;
+    EXPECT_EQ(merged.quantile(q), in_order.quantile(q)) << q;
+  }
+  EXPECT_EQ(merged.count(), values.size());
+}
 TEST(TimingHistogramTest, ValuesOnBucketBoundariesKeepTheBound) {
   // Powers of the bucket ratio sit exactly where a rounded logarithm could misplace them.
   const double gamma = (1 + LogHistogram::kRelativeError) / (1 - LogHistogram::kRelativeError);
