@@ -41,7 +41,9 @@ PVTAP_PACKAGES=(
   man-db
   bash-completion
   # scripts/fuzz: the libFuzzer targets are built with clang and its runtimes (the
-  # release's clang-N and libclang-rt-N-dev, added by pvtap_packages).
+  # release's clang-N and libclang-rt-N-dev, added by pvtap_packages); GNU time gives each
+  # fuzzer's CPU time (and the benchmarks' peak RSS).
+  time
   # The real-peer capture test (captures/real-peer/record): software we did not write.
   mbpoll
   python3-pymodbus
