@@ -100,7 +100,15 @@ bool SolarmanV5Reader::resync(bool final) {
   for (std::size_t q = consumed_ + 1; q < buffer_.size(); ++q) {
     if (buffer_[q] != kStart) continue;
     const Fit fit = fit_at(q, true, final);
-    if (fit == Fit::NeedMore) return false;
+    if (fit == Fit::NeedMore) {
+      // Whether q holds a frame decides only where the run before it ends. Once more than a
+      // frame's worth waits, the run up to q is given as it is, so that the reader never
+      // holds more than the frame at q (tests/corpus/solarman_v5_reader/crash-run-before-
+      // an-unfinished-frame).
+      if (buffer_.size() - consumed_ <= kOverhead + kMaxPayload) return false;
+      emit_run(q - consumed_, true);
+      return true;
+    }
     if (fit == Fit::Holds) {
       emit_run(q - consumed_, true);
       return true;
