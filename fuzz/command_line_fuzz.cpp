@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -27,8 +28,12 @@ std::vector<std::string> reversed_arguments(const std::uint8_t* data, std::size_
 // far more than parsing one argument list. Each input starts from the options as they were
 // right after the commands were added (defaults written by CLI11 included; the options are
 // bound by address, so they are reset in place), and CLI11 clears its own parse state when an
-// app parses again: every input is parsed as a fresh `pvtap` would parse it.
+// app parses again: every input is parsed as a fresh `pvtap` would parse it. All but one list:
+// CLI11's clear() keeps each app's parse_order(), which only grows, so the command line is built
+// anew once those lists hold kMaxParseOrder options (3.4 million inputs grew them to 2 GiB).
 struct CommandLine {
+  static constexpr std::size_t kMaxParseOrder = 1 << 16;
+
   CLI::App app{"pvtap", "pvtap"};
   pvtap::analyzer::AuditOptions audit_options;
   pvtap::analyzer::SniffCommandLine sniff_command;
@@ -44,22 +49,28 @@ struct CommandLine {
     audit_defaults = audit_options;
     sniff_defaults = sniff_command;
   }
+
+  bool worn() const {
+    return app.parse_order().size() + audit->parse_order().size() + sniff->parse_order().size() >=
+           kMaxParseOrder;
+  }
 };
 
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace pvtap::analyzer;
-  static CommandLine command_line;
-  command_line.audit_options = command_line.audit_defaults;
-  command_line.sniff_command = command_line.sniff_defaults;
+  static auto command_line = std::make_unique<CommandLine>();
+  if (command_line->worn()) command_line = std::make_unique<CommandLine>();
+  command_line->audit_options = command_line->audit_defaults;
+  command_line->sniff_command = command_line->sniff_defaults;
   auto args = reversed_arguments(data, size);
   try {
-    command_line.app.parse(args);
+    command_line->app.parse(args);
   } catch (const CLI::ParseError&) {
     return 0;
   }
-  if (command_line.audit->parsed()) apply_choices(command_line.audit_options);
-  if (command_line.sniff->parsed()) apply_choices(command_line.sniff_command.options);
+  if (command_line->audit->parsed()) apply_choices(command_line->audit_options);
+  if (command_line->sniff->parsed()) apply_choices(command_line->sniff_command.options);
   return 0;
 }
