@@ -113,6 +113,23 @@ Evidence bad_frame_evidence(const DecisionInput& in, const FrameCandidate& c, bo
   return good_frame_inside(in, c.length) ? Evidence::No : Evidence::Yes;
 }
 
+// Where the repair scan of this position goes on (see RepairScan).
+std::size_t resumed_scan(const DecisionInput& in) {
+  const RepairScan* s = in.repair_scan;
+  if (s == nullptr || s->offset != in.offset || s->trusted != in.timeline->trusted()) return 1;
+  return s->resume;
+}
+
+// The scan waits at `q`: every start before it was ruled out, but the one at the last byte gets
+// a second look: rtu_candidates.cpp may rule a start of one byte out on that byte alone, by a
+// rule that reads no second byte and so records no need for one.
+void remember_scan(const DecisionInput& in, std::size_t q) {
+  if (in.repair_scan == nullptr) return;
+  const std::size_t last_byte = in.bytes.size() - 1;
+  *in.repair_scan = RepairScan{in.offset, std::max<std::size_t>(1, std::min(q, last_byte)),
+                               in.timeline->trusted()};
+}
+
 // A pinned start that no reading fits: a frame sent with a byte count that lies or of a
 // user-defined code, if the CRC holds over the span, or one whose length field was damaged,
 // if the CRC says so. Its end is the
@@ -132,20 +149,23 @@ Decision repaired_at(const DecisionInput& in) {
     return Decision{Decision::Kind::Frame, *c, verify_check(frame, c->dialect)};
   };
   const auto noise = [&] { return Decision{Decision::Kind::Noise, {}, {}, scanned}; };
-  const Decision wait{Decision::Kind::Wait, {}, {}};
+  const auto wait = [&](std::size_t q) {
+    remember_scan(in, q);
+    return Decision{Decision::Kind::Wait, {}, {}};
+  };
   const std::size_t limit = std::min(in.bytes.size(), kMaxRtuFrameLength);
-  for (std::size_t q = 1; q <= limit; ++q) {
+  for (std::size_t q = resumed_scan(in); q <= limit; ++q) {
     if (in.timeline->silence_before(in.offset + q)) return repaired(q).value_or(noise());
     if (in.timeline->segment_ends_at(in.offset + q)) {
       if (auto d = repaired(q)) return *d;
     }
     if (q == in.bytes.size()) {
       if (in.final || in.silence_after) return repaired(q).value_or(noise());
-      return more_possible(in) ? wait : Decision{Decision::Kind::Noise, {}, {}};
+      return more_possible(in) ? wait(q) : Decision{Decision::Kind::Noise, {}, {}};
     }
     const StartAt next = start_at(in, q);
     if (next.good || next.delimited) return repaired(q).value_or(noise());
-    if (next.incomplete && more_possible(in)) return wait;
+    if (next.incomplete && more_possible(in)) return wait(q);
   }
   return Decision{Decision::Kind::Noise, {}, {}};
 }

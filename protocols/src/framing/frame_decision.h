@@ -9,16 +9,29 @@
 
 namespace pvtap::detail {
 
+// RepairScan: how far the repair scan of a pinned start got before it had to wait for bytes.
+// The next decision at the same position, with more bytes, goes on from there instead of
+// reading again every start it already ruled out: a slow line or a gateway delivers a few bytes
+// at a time, and each delivery would rescan up to a frame's length. A start ruled out stays
+// ruled out: it needed no byte beyond those seen, and the timeline's silences and segment ends
+// before it are fixed, as long as the timestamps are trusted or not as they were then.
+struct RepairScan {
+  std::uint64_t offset = UINT64_MAX;
+  std::size_t resume = 1;
+  bool trusted = false;
+};
+
 // DecisionInput: the buffered bytes from the position on, and what is known around them.
 struct DecisionInput {
   std::span<const std::uint8_t> bytes;
   std::uint64_t offset = 0;  // stream offset of bytes[0]
   const ChunkTimeline* timeline = nullptr;
   DialectSet dialects;
-  bool final = false;          // no further bytes will follow these
-  bool silence_after = false;  // trusted silence of t3.5 after the last buffered byte
-  bool give_up = false;        // silent so long that no more bytes of a frame will come
-  bool after_frame = false;    // the previous byte ended a frame (or input starts here)
+  bool final = false;                 // no further bytes will follow these
+  bool silence_after = false;         // trusted silence of t3.5 after the last buffered byte
+  bool give_up = false;               // silent so long that no more bytes of a frame will come
+  bool after_frame = false;           // the previous byte ended a frame (or input starts here)
+  RepairScan* repair_scan = nullptr;  // kept by the caller between decisions; null: scan all
 };
 
 // Decision: the verdict for the position.

@@ -46,6 +46,7 @@ struct StreamReassembler::Impl {
   bool silence_after = false;
   bool give_up = false;     // see ReassemblerOptions::give_up_after
   bool after_frame = true;  // input starts here: as good a frame boundary as a frame's end
+  detail::RepairScan repair_scan;
   // The piece being fed by feed_decided, whose times replace the timeline's when a frame or
   // noise run spans all of it.
   const DecidedPiece* decided = nullptr;
@@ -117,15 +118,16 @@ struct StreamReassembler::Impl {
 
   // Decides position after position until the bytes run out or a decision must wait.
   void process(bool final, std::size_t stop = SIZE_MAX) {
+    detail::DecisionInput in;
+    in.timeline = &timeline;
+    in.dialects = options.dialects;
+    in.silence_after = silence_after;
+    in.give_up = give_up;
+    in.repair_scan = &repair_scan;
     while (head < data.size() && head < stop) {
-      detail::DecisionInput in;
       in.bytes = data.subspan(head);
       in.offset = offset_of(head);
-      in.timeline = &timeline;
-      in.dialects = options.dialects;
       in.final = final || in.bytes.size() > kMaxLookahead;
-      in.silence_after = silence_after;
-      in.give_up = give_up;
       in.after_frame = after_frame;
       const detail::Decision d = detail::decide_at(in);
       if (d.kind == detail::Decision::Kind::Wait) break;

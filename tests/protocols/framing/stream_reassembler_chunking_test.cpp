@@ -74,6 +74,9 @@ TEST(StreamReassemblerChunking, SameEventsWhateverTheChunkSizes) {
   EXPECT_EQ(events_of(stream, {64 * 1024}), whole);
   EXPECT_EQ(events_of(stream, {3001, 2069, 2070, 9000}), whole);
   EXPECT_EQ(events_of(stream, {1, 7, 64, 300, 5, 2}), whole);
+  // A byte at a time: each decision at a pinned start goes on with the repair scan where the
+  // previous one waited (frame_decision.h, RepairScan).
+  EXPECT_EQ(events_of(stream, {1}), whole);
 }
 
 }  // namespace
