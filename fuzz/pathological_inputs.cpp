@@ -14,11 +14,11 @@
 #include <string>
 #include <vector>
 
+#include "carriers/tcp_stream.h"
 #include "cli/audit_command.h"
 #include "cli/common_options.h"
 #include "cli/exit_status.h"
 #include "fuzz_input.h"
-#include "gateway/tcp_stream.h"
 #include "pvtap/codec/frame_codec.h"
 #include "pvtap/pcap/capture_writer.h"
 #include "pvtap/pcap/exported_pdu_reader.h"

@@ -11,8 +11,8 @@
 #include <cstdint>
 #include <span>
 
+#include "carriers/tcp_stream.h"
 #include "fuzz_input.h"
-#include "gateway/tcp_stream.h"
 
 namespace {
 

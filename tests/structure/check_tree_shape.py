@@ -26,12 +26,12 @@ def sources(folder):
 
 # The analyzer's folders from the ground up: text helpers, the report, the event port and its
 # writers, the terminal line, the HTML page, the comparison of two audits (pvtap diff), the
-# broker client and what pvtap publishes on it, serial devices, gateway flows, the buses, the
-# run's assembly of outputs, the sources that feed a run, the commands, Wireshark's extcap
-# calls. A folder may include only those before
-# it, so that nothing reaches up and no two folders need each other.
+# broker client and what pvtap publishes on it, serial devices, the carriers (a gateway's TCP
+# flows: bare RTU, Modbus/TCP, logger sticks), the buses, the run's assembly of outputs, the
+# sources that feed a run, the commands, Wireshark's extcap calls. A folder may include only
+# those before it, so that nothing reaches up and no two folders need each other.
 ANALYZER_FLOORS = ("formatting", "report", "events", "writers", "console", "html", "diff", "broker",
-                   "mqtt", "serial", "gateway", "pipeline", "run", "sources", "logic", "cli", "extcap")
+                   "mqtt", "serial", "carriers", "pipeline", "run", "sources", "logic", "cli", "extcap")
 
 
 # The plugin's folders from the ground up: the Wireshark API shims, the per-frame plan (plain

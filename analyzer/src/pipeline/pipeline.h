@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "carriers/gateway_traffic.h"
 #include "events/event_writer.h"
-#include "gateway/gateway_traffic.h"
 #include "pipeline/bus_set.h"
 #include "pipeline/input_records.h"
 #include "pipeline/protocol_choices.h"

@@ -1,5 +1,5 @@
 // FlowProbe: whether a flow carries inverter frames, decided from its first bytes.
-#include "gateway/flow_probe.h"
+#include "carriers/flow_probe.h"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // TcpDirectionStream: one direction of a TCP connection back in order, holes reported as lost.
-#include "gateway/tcp_stream.h"
+#include "carriers/tcp_stream.h"
 
 #include <gtest/gtest.h>
 

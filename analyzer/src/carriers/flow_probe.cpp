@@ -1,4 +1,4 @@
-#include "gateway/flow_probe.h"
+#include "carriers/flow_probe.h"
 
 #include "pvtap/carriers/mbap_structure.h"
 

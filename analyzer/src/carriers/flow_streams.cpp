@@ -1,7 +1,7 @@
 // FlowStreams: segments to ordered bytes, per direction.
-#include "gateway/flow_streams.h"
+#include "carriers/flow_streams.h"
 
-#include "gateway/endpoint_match.h"
+#include "carriers/endpoint_match.h"
 
 namespace pvtap::analyzer {
 namespace {

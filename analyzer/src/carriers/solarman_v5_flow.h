@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "gateway/bus_provider.h"
+#include "carriers/bus_provider.h"
 #include "pvtap/carriers/solarman_v5_pairing.h"
 #include "pvtap/carriers/solarman_v5_reader.h"
 #include "pvtap/framing/bus_chunk.h"

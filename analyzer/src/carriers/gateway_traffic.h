@@ -8,7 +8,7 @@
 #include <tuple>
 #include <vector>
 
-#include "gateway/bus_provider.h"
+#include "carriers/bus_provider.h"
 #include "pvtap/pcap/network_packet.h"
 #include "pvtap/session/bus_session.h"
 #include "report/network_stats.h"

@@ -1,10 +1,10 @@
-#include "gateway/gateway_traffic.h"
+#include "carriers/gateway_traffic.h"
 
 #include <algorithm>
 #include <optional>
 
-#include "gateway/endpoint_match.h"
-#include "gateway/gateway_connection.h"
+#include "carriers/endpoint_match.h"
+#include "carriers/gateway_connection.h"
 
 namespace pvtap::analyzer {
 namespace {

@@ -1,4 +1,4 @@
-#include "gateway/solarman_v5_flow.h"
+#include "carriers/solarman_v5_flow.h"
 
 #include <algorithm>
 #include <cstdio>

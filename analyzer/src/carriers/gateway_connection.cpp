@@ -1,4 +1,4 @@
-#include "gateway/gateway_connection.h"
+#include "carriers/gateway_connection.h"
 
 #include <algorithm>
 

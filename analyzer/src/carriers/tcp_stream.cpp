@@ -1,4 +1,4 @@
-#include "gateway/tcp_stream.h"
+#include "carriers/tcp_stream.h"
 
 #include <algorithm>
 
