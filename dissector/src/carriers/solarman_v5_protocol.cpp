@@ -43,15 +43,7 @@ struct V5FieldRow {
 const V5FieldRow kFields[] = {PVTAP_V5_FIELDS(PVTAP_V5_FIELD_ROW)};
 #undef PVTAP_V5_FIELD_ROW
 
-// V5ExpertRow: a line of PVTAP_V5_EXPERTS.
-struct V5ExpertRow {
-  V5Expert id;
-  const char* abbrev;
-  int group;
-  int severity;
-  const char* summary;
-};
-
+using V5ExpertRow = ExpertRowOf<V5Expert>;  // a line of PVTAP_V5_EXPERTS
 #define PVTAP_V5_EXPERT_ROW(id, abbrev, group, severity, summary) \
   {V5Expert::id, abbrev, group, severity, summary},
 const V5ExpertRow kExperts[] = {PVTAP_V5_EXPERTS(PVTAP_V5_EXPERT_ROW)};

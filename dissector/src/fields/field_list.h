@@ -35,14 +35,17 @@ class ExpertList {
   std::vector<ei_register_info> records_;
 };
 
-// ExpertRow: a line of an expert table (plan/field_table.h).
-struct ExpertRow {
-  TreeExpert id;
+// ExpertRowOf: a line of an expert table (plan/field_table.h, and a carrier's own), whose ids
+// are of the enum `Id`.
+template <class Id>
+struct ExpertRowOf {
+  Id id;
   const char* abbrev;
   int group;
   int severity;
   const char* summary;
 };
+using ExpertRow = ExpertRowOf<TreeExpert>;
 
 #define PVTAP_EXPERT_ROW(id, abbrev, group, severity, summary) \
   {TreeExpert::id, abbrev, group, severity, summary},
