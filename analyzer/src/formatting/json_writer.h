@@ -109,6 +109,12 @@ class JsonWriter {
     value_start();
     out_ += "null";
   }
+  // Where a value goes that another formatter appends (register readings): what goes before
+  // a value is placed, and the buffer returned.
+  std::string& value_out() {
+    value_start();
+    return out_;
+  }
   // A value that is JSON text already (a number written elsewhere, a kept fragment).
   void raw(std::string_view json) {
     value_start();

@@ -1,11 +1,10 @@
 // Payloads of value, state and station-event topics.
 #include "mqtt/mqtt_payloads.h"
 
-#include "formatting/json_text.h"
-#include "formatting/number_text.h"
+#include "formatting/json_writer.h"
 #include "mqtt/station_table.h"
 #include "pvtap/registers/register_format.h"
-#include "report/frame_findings.h"
+#include "report/value_json.h"
 #include "writers/value_json_cache.h"
 
 namespace pvtap::analyzer {
@@ -16,10 +15,8 @@ bool is_text_kind(RegisterKind kind) {
          kind == RegisterKind::DeviceNumber;
 }
 
-void append_bus(std::string& out, std::string_view bus) {
-  if (bus.empty()) return;
-  out += ",\"bus\":";
-  append_json_string(out, bus);
+void write_bus(JsonWriter& w, std::string_view bus) {
+  if (!bus.empty()) w.field("bus", bus);
 }
 
 }  // namespace
@@ -29,47 +26,40 @@ void append_value_payload(std::string& out, const DecodedValue& v) {
     pvtap::append_value_text(out, v);
     return;
   }
-  append_value_json_reading(out, v);
+  JsonWriter w(out);
+  write_value_reading(w, v);
 }
 
 void append_state_json(std::string& out, const StationState& s, std::string_view bus,
                        ValueJsonCache& values) {
-  out += "{\"ts\":";
-  append_fixed(out, s.last_reply, 6);
-  out += ",\"station\":";
-  append_uint(out, s.address);
-  out += ",\"dialect\":\"";
-  out += to_string(s.dialect);
-  out += "\",\"values\":{";
-  bool first = true;
+  JsonWriter w(out);
+  w.begin_object();
+  w.field_fixed("ts", s.last_reply, 6);
+  w.field("station", s.address);
+  w.field_plain("dialect", to_string(s.dialect));
+  w.key("values");
+  w.begin_object();
   for (const auto& [key, held] : s.values) {
-    if (!first) out += ',';
-    first = false;
-    append_json_string(out, key);
-    out += ':';
-    values.append(out, held.value, s.dialect);
+    w.key_text(key);
+    values.write(w, held.value, s.dialect);
   }
-  out += '}';
-  append_bus(out, bus);
-  out += '}';
+  w.end_object();
+  write_bus(w, bus);
+  w.end_object();
 }
 
 void append_station_event_json(std::string& out, bool online, double now, const StationState& s,
                                std::string_view bus) {
-  out += online ? "{\"type\":\"station_online\",\"ts\":" : "{\"type\":\"station_offline\",\"ts\":";
-  append_fixed(out, now, 6);
-  out += ",\"dialect\":\"";
-  out += to_string(s.dialect);
-  out += "\",\"station\":";
-  append_uint(out, s.address);
-  out += ",\"last_reply_ts\":";
-  append_fixed(out, s.last_reply, 6);
-  if (const auto period = s.period()) {
-    out += ",\"poll_period_s\":";
-    append_fixed(out, *period, 3);
-  }
-  append_bus(out, bus);
-  out += '}';
+  JsonWriter w(out);
+  w.begin_object();
+  w.field_plain("type", online ? "station_online" : "station_offline");
+  w.field_fixed("ts", now, 6);
+  w.field_plain("dialect", to_string(s.dialect));
+  w.field("station", s.address);
+  w.field_fixed("last_reply_ts", s.last_reply, 6);
+  if (const auto period = s.period()) w.field_fixed("poll_period_s", *period, 3);
+  write_bus(w, bus);
+  w.end_object();
 }
 
 }  // namespace pvtap::analyzer

@@ -1,6 +1,5 @@
 #include "report/frame_contents.h"
 
-#include "formatting/json_text.h"
 #include "formatting/number_text.h"
 #include "pvtap/codec/device_identification.h"
 #include "pvtap/codec/function_codes.h"
@@ -83,47 +82,51 @@ void append_named_bits_text(std::string& o, const CoilBits& bits, const Register
   }
 }
 
-// ,"named":[{"address":19,"key":"pump","name":"pump relay","on":true}]
-void append_named_bits_json(std::string& o, const CoilBits& bits, const RegisterMap* map) {
+// "named":[{"address":19,"key":"pump","name":"pump relay","on":true}]
+void write_named_bits(JsonWriter& w, const CoilBits& bits, const RegisterMap* map) {
   if (map == nullptr || !bits.start) return;
   bool first = true;
   for (std::size_t i = 0; i < bits.count; ++i) {
     const CoilDef* def = coil_def(*map, bits, i);
     if (def == nullptr) continue;
-    o += first ? ",\"named\":[" : ",";
-    first = false;
-    o += "{\"address\":";
-    append_uint(o, def->address);
-    o += ",\"key\":";
-    append_json_string(o, def->key);
-    o += ",\"name\":";
-    append_json_string(o, def->name);
-    o += bits.on(i) ? ",\"on\":true}" : ",\"on\":false}";
+    if (first) {
+      w.key("named");
+      w.begin_array();
+      first = false;
+    }
+    w.begin_object();
+    w.field("address", def->address);
+    w.field("key", def->key);
+    w.field("name", def->name);
+    w.field_bool("on", bits.on(i));
+    w.end_object();
   }
-  if (!first) o += ']';
+  if (!first) w.end_array();
 }
 
-void append_bits_json(std::string& o, const CoilBits& bits, const RegisterMap* map) {
-  o += bits.inputs ? ",\"inputs\":{\"start\":" : ",\"coils\":{\"start\":";
-  if (bits.start) {
-    append_uint(o, *bits.start);
+void write_bits(JsonWriter& w, const CoilBits& bits, const RegisterMap* map) {
+  if (bits.inputs) {
+    w.key("inputs");
   } else {
-    o += "null";
+    w.key("coils");
   }
-  o += ",\"count\":";
-  append_uint(o, bits.count);
-  o += ",\"on\":[";
-  bool first = true;
+  w.begin_object();
+  w.key("start");
+  if (bits.start) {
+    w.uint(*bits.start);
+  } else {
+    w.null();
+  }
+  w.field("count", bits.count);
+  w.key("on");
+  w.begin_array();
   for (std::size_t i = 0; i < bits.count; ++i) {
-    if (!bits.on(i)) continue;
-    if (!first) o += ',';
-    first = false;
     // Without the request the bits are numbered from 0.
-    append_uint(o, bits.start.value_or(0) + i);
+    if (bits.on(i)) w.uint(bits.start.value_or(0) + i);
   }
-  o += ']';
-  append_named_bits_json(o, bits, map);
-  o += '}';
+  w.end_array();
+  write_named_bits(w, bits, map);
+  w.end_object();
 }
 
 void append_device_text(std::string& o, const DeviceIdentification& id) {
@@ -138,23 +141,22 @@ void append_device_text(std::string& o, const DeviceIdentification& id) {
   if (id.more_follows) o += " (more follows)";
 }
 
-void append_device_json(std::string& o, const DeviceIdentification& id) {
-  o += ",\"device\":{\"conformity\":";
-  append_uint(o, id.conformity);
-  o += ",\"more_follows\":";
-  o += id.more_follows ? "true" : "false";
-  o += ",\"objects\":[";
+void write_device(JsonWriter& w, const DeviceIdentification& id) {
+  w.key("device");
+  w.begin_object();
+  w.field("conformity", id.conformity);
+  w.field_bool("more_follows", id.more_follows);
+  w.key("objects");
+  w.begin_array();
   for (std::size_t i = 0; i < id.object_count; ++i) {
-    if (i > 0) o += ',';
-    o += "{\"id\":";
-    append_uint(o, id.objects[i].id);
-    o += ",\"name\":";
-    append_json_string(o, device_object_name(id.objects[i].id));
-    o += ",\"value\":";
-    append_json_string(o, id.objects[i].value);
-    o += '}';
+    w.begin_object();
+    w.field("id", id.objects[i].id);
+    w.field("name", device_object_name(id.objects[i].id));
+    w.field("value", id.objects[i].value);
+    w.end_object();
   }
-  o += "]}";
+  w.end_array();
+  w.end_object();
 }
 
 }  // namespace
@@ -188,29 +190,35 @@ void append_contents_text(std::string& o, const SessionFrame& f) {
   }
 }
 
-void append_contents_json(std::string& o, const SessionFrame& f) {
+void write_contents_json(JsonWriter& w, const SessionFrame& f) {
   if (!may_carry_contents(f)) return;
   const Frame& frame = *f.frame;
-  if (const auto bits = coil_bits(frame, f.placing_request)) append_bits_json(o, *bits, f.map);
+  if (const auto bits = coil_bits(frame, f.placing_request)) write_bits(w, *bits, f.map);
   if (frame.sub_function) {
-    o += ",\"diagnostics\":{\"sub_function\":";
-    append_uint(o, *frame.sub_function);
-    o += ",\"name\":";
+    w.key("diagnostics");
+    w.begin_object();
+    w.field("sub_function", *frame.sub_function);
+    w.key("name");
     const std::string_view name = fc::diagnostics_name(*frame.sub_function);
     if (name.empty()) {
-      o += "null";
+      w.null();
     } else {
-      append_json_string(o, name);
+      w.string(name);
     }
-    o += '}';
+    w.end_object();
   }
-  if (const auto id = read_device_identification(frame)) append_device_json(o, *id);
+  if (const auto id = read_device_identification(frame)) write_device(w, *id);
   if (const auto server = read_server_id(frame)) {
-    o += ",\"server_id\":{\"text\":";
-    append_json_string(o, server->text);
-    o += ",\"running\":";
-    o += !server->running ? "null" : *server->running ? "true" : "false";
-    o += '}';
+    w.key("server_id");
+    w.begin_object();
+    w.field("text", server->text);
+    w.key("running");
+    if (server->running) {
+      w.boolean(*server->running);
+    } else {
+      w.null();
+    }
+    w.end_object();
   }
 }
 

@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "formatting/json_writer.h"
 #include "pvtap/session/bus_session.h"
 
 namespace pvtap::analyzer {
@@ -12,8 +13,8 @@ namespace pvtap::analyzer {
 // a frame that carries none of these (checked first, at the cost of a switch).
 void append_contents_text(std::string& out, const SessionFrame& f);
 
-// ,"coils":{"start":19,"count":19,"on":[19,21]}, ,"diagnostics":{...}, ,"device":{...},
-// ,"server_id":{...}; nothing for a frame that carries none of these.
-void append_contents_json(std::string& out, const SessionFrame& f);
+// Members of the frame's object: "coils":{"start":19,"count":19,"on":[19,21]},
+// "diagnostics":{...}, "device":{...}, "server_id":{...}; none for a frame that carries none.
+void write_contents_json(JsonWriter& w, const SessionFrame& f);
 
 }  // namespace pvtap::analyzer

@@ -4,7 +4,6 @@
 #include <array>
 #include <iterator>
 
-#include "formatting/json_text.h"
 #include "formatting/number_text.h"
 #include "pvtap/codec/function_codes.h"
 #include "pvtap/matching/reply_rules.h"
@@ -12,13 +11,6 @@
 
 namespace pvtap::analyzer {
 namespace {
-
-constexpr ValueWarning kAllWarnings[] = {
-    ValueWarning::NotInMap,         ValueWarning::Incomplete,       ValueWarning::LowPartOver9999,
-    ValueWarning::UnknownEnumValue, ValueWarning::UnnamedBitSet,    ValueWarning::InvalidBcd,
-    ValueWarning::InvalidDate,      ValueWarning::NonPrintableText, ValueWarning::NoWrittenAddress,
-    ValueWarning::NotFinite,        ValueWarning::NoScaleFactor,
-};
 
 void add_count_mismatch(const ByteCountMismatch& m, std::vector<std::string>& out) {
   std::string text = m.unit == CountUnit::Words ? "word count " : "byte count ";
@@ -57,7 +49,7 @@ void add_exception(const SessionFrame& f, std::vector<std::string>& out) {
 void add_value_warnings(const SessionFrame& f, std::vector<std::string>& out) {
   for (const DecodedValue& v : f.values) {
     if (v.warnings == 0 || v.has(ValueWarning::NotInMap)) continue;
-    for (const ValueWarning w : kAllWarnings) {
+    for (const ValueWarning w : kAllValueWarnings) {
       if (!v.has(w)) continue;
       std::string text(format_value_address(v, f.dialect).view());
       text += ": ";
@@ -72,41 +64,6 @@ void add_decode_notes(const SessionFrame& f, std::vector<std::string>& out) {
     out.emplace_back("register words without a known start address (no matching request)");
   } else if (f.decode.status == DecodeStatus::Decoded && f.decode.start_assumed) {
     out.emplace_back("start address assumed (no matching request)");
-  }
-}
-
-// The value's text as a JSON string; `scratch` is reused so that no string is allocated per
-// value once it has grown.
-void append_text_json(std::string& out, const DecodedValue& v) {
-  static thread_local std::string scratch;
-  scratch.clear();
-  pvtap::append_value_text(scratch, v);
-  append_json_string(out, scratch);
-}
-
-void append_value_reading(std::string& out, const DecodedValue& v) {
-  switch (reading_kind(v)) {
-    case ReadingKind::Number:
-      append_value_number(out, v);
-      return;
-    case ReadingKind::Text:
-      append_text_json(out, v);
-      return;
-    case ReadingKind::None:
-      out += "null";
-      return;
-  }
-}
-
-bool has_extra_text(const RegisterDef& def) {
-  switch (def.kind) {
-    case RegisterKind::Raw:
-    case RegisterKind::Enum:
-    case RegisterKind::Bits:
-    case RegisterKind::BcdPhaseCapacity:
-      return true;
-    default:
-      return false;
   }
 }
 
@@ -190,24 +147,6 @@ std::string_view unanswered_reason(const SessionTimeout& t) {
   }
 }
 
-void append_value_json_head(std::string& out, const DecodedValue& v, Dialect d) {
-  out += "{\"register\":";
-  append_json_string(out, format_value_address(v, d).view());
-  out += ",\"name\":";
-  if (v.def == nullptr) {
-    out += "null";
-  } else {
-    append_json_string(out, v.def->name);
-  }
-  out += ",\"value\":";
-}
-
-void append_value_json_unit(std::string& out, const DecodedValue& v) {
-  if (v.def == nullptr || v.def->unit.empty()) return;
-  out += ",\"unit\":";
-  append_json_string(out, v.def->unit);
-}
-
 ReadingKind reading_kind(const DecodedValue& v) {
   if (v.def == nullptr) return ReadingKind::Number;  // the word itself
   // JSON has no NaN or infinity: null, and the warning says why.
@@ -242,44 +181,6 @@ void append_value_number(std::string& out, const DecodedValue& v) {
   }
 }
 
-void append_value_json_reading(std::string& out, const DecodedValue& v) {
-  append_value_reading(out, v);
-}
-
-void append_value_json_tail(std::string& out, const DecodedValue& v) {
-  if (v.def != nullptr && (!v.complete() || has_extra_text(*v.def))) {
-    out += ",\"text\":";
-    append_text_json(out, v);
-  }
-  if (v.def != nullptr && v.warnings != 0) {
-    // The descriptions are constant: quoted once, not escaped again for every value.
-    static const auto kQuoted = [] {
-      std::array<std::string, std::size(kAllWarnings)> quoted;
-      for (std::size_t i = 0; i < quoted.size(); ++i) {
-        append_json_string(quoted[i], describe(kAllWarnings[i]));
-      }
-      return quoted;
-    }();
-    out += ",\"warnings\":[";
-    bool first = true;
-    for (std::size_t i = 0; i < kQuoted.size(); ++i) {
-      if (!v.has(kAllWarnings[i])) continue;
-      if (!first) out += ',';
-      first = false;
-      out += kQuoted[i];
-    }
-    out += ']';
-  }
-  out += '}';
-}
-
-void append_value_json(std::string& out, const DecodedValue& v, Dialect d) {
-  append_value_json_head(out, v, d);
-  append_value_json_reading(out, v);
-  append_value_json_unit(out, v);
-  append_value_json_tail(out, v);
-}
-
 void append_value_words(std::string& out, const DecodedValue& v, Dialect d) {
   if (v.def == nullptr) {
     out += format_value_address(v, d).view();
@@ -306,54 +207,6 @@ std::string latest_value_text(const LatestValue& v) {
     text += ')';
   }
   return text;
-}
-
-namespace {
-
-std::string_view table_key(RegisterTable t) {
-  switch (t) {
-    case RegisterTable::Holding:
-      return "holding";
-    case RegisterTable::Input:
-      return "input";
-    case RegisterTable::Coils:
-      return "coils";
-    case RegisterTable::DiscreteInputs:
-      return "discrete_inputs";
-    case RegisterTable::Registers:
-      break;
-  }
-  return "registers";
-}
-
-}  // namespace
-
-void append_latest_value_json(std::string& out, const LatestValue& v) {
-  if (v.value.def != nullptr) {
-    append_value_json(out, v.value, v.dialect);
-    return;
-  }
-  out += "{\"register\":";
-  append_json_string(out, format_value_address(v.value, v.dialect).view());
-  out += ",\"name\":";
-  if (v.coil != nullptr) {
-    append_json_string(out, v.coil->name);
-  } else {
-    out += "null";
-  }
-  const std::uint8_t function = table_function(v.table);
-  if (function != 0) {
-    out += ",\"function\":";
-    append_uint(out, function);
-  }
-  out += ",\"table\":\"";
-  out += table_key(v.table);
-  out += "\",\"key\":";
-  append_json_string(
-      out, v.coil != nullptr ? v.coil->key : unmapped_key(v.table, v.value.address).view());
-  out += ",\"value\":";
-  append_uint(out, v.value.raw);
-  out += '}';
 }
 
 std::string inferred_address(const InferredBlock& b, const InferredValue& v) {
@@ -395,62 +248,6 @@ std::string inferred_reading(const InferredValue& v) {
     text += ')';
   }
   return text;
-}
-
-void append_inferred_block_json(std::string& out, const InferredBlock& b) {
-  out += "{\"table\":\"";
-  out += table_key(b.table);
-  out += '"';
-  append_json_count(out, "function", b.function);
-  append_json_key(out, "start");
-  append_json_string(out, format_register_address(b.dialect, b.start).view());
-  append_json_count(out, "count", b.count);
-  append_json_count(out, "replies", b.replies);
-  append_json_key(out, "values");
-  out += '[';
-  for (std::size_t i = 0; i < b.values.size(); ++i) {
-    const InferredValue& v = b.values[i];
-    if (i > 0) out += ',';
-    const auto address = static_cast<std::uint16_t>(b.start + v.offset * address_step(b.dialect));
-    out += "{\"register\":";
-    append_json_string(out, inferred_address(b, v));
-    append_json_key(out, "key");
-    append_json_string(out, unmapped_key(b.table, address).view());
-    append_json_key(out, "type");
-    append_json_string(out, to_string(v.kind));
-    append_json_count(out, "words", v.words);
-    append_json_key(out, "word_order");
-    if (v.words == 2) {
-      append_json_string(out, v.order == WordOrder::HighFirst ? "high_first" : "low_first");
-    } else {
-      out += "null";
-    }
-    out += ",\"constant\":";
-    out += v.constant ? "true" : "false";
-    out += ",\"counter\":";
-    out += v.counter ? "true" : "false";
-    append_json_key(out, "confidence");
-    append_fixed(out, v.confidence, 2);
-    if (v.kind == InferredKind::Text) {
-      append_json_key(out, "text");
-      append_json_string(out, v.text);
-    } else if (v.kind != InferredKind::Unused) {
-      const int decimals = v.kind == InferredKind::Float32 ? 6 : 0;
-      for (const auto& [name, number] :
-           {std::pair{"min", v.min}, std::pair{"max", v.max}, std::pair{"last", v.last}}) {
-        append_json_key(out, name);
-        append_fixed(out, number, decimals);
-      }
-    }
-    append_json_key(out, "evidence");
-    append_json_string(out, v.evidence);
-    if (!v.hint.empty()) {
-      append_json_key(out, "hint");
-      append_json_string(out, v.hint);
-    }
-    out += '}';
-  }
-  out += "]}";
 }
 
 std::string function_text(Dialect d, std::uint8_t function) {

@@ -10,6 +10,14 @@
 
 namespace pvtap::analyzer {
 
+// Every warning a decoded value can carry, in the order the outputs list them.
+inline constexpr ValueWarning kAllValueWarnings[] = {
+    ValueWarning::NotInMap,         ValueWarning::Incomplete,       ValueWarning::LowPartOver9999,
+    ValueWarning::UnknownEnumValue, ValueWarning::UnnamedBitSet,    ValueWarning::InvalidBcd,
+    ValueWarning::InvalidDate,      ValueWarning::NonPrintableText, ValueWarning::NoWrittenAddress,
+    ValueWarning::NotFinite,        ValueWarning::NoScaleFactor,
+};
+
 // The findings of a frame as short phrases ("unsolicited reply", "exception 0x02: ...").
 // `out` is cleared first and reused, so a frame without findings costs nothing.
 void collect_issues(const SessionFrame& f, std::vector<std::string>& out);
@@ -28,18 +36,6 @@ std::string timeouts_explained(const BusReport& b);
 // replies came 25.3 ms after their request (median), the other ones 41.2 ms (mean)".
 std::string answering_patterns(const StationSummary& s);
 
-// A register value as a JSON object: {"register":"0x1006","name":"battery voltage",
-// "value":52.3,"unit":"V"}, with "text" for readings that are more than a number and
-// "warnings" when the decoder had doubts.
-void append_value_json(std::string& out, const DecodedValue& v, Dialect d);
-// The same in parts: the part that depends only on the register
-// ({"register":"0x1006","name":"battery voltage","value":), the unit part (,"unit":"V" or
-// nothing), and the rest of the object after the reading's value.
-void append_value_json_head(std::string& out, const DecodedValue& v, Dialect d);
-void append_value_json_unit(std::string& out, const DecodedValue& v);
-void append_value_json_reading(std::string& out, const DecodedValue& v);
-void append_value_json_tail(std::string& out, const DecodedValue& v);
-
 // ReadingKind: how a value's reading is written: a number (scaled numbers and BCD; the raw
 // word of enums, bits, raw registers and words outside the map), a text (text registers,
 // year-month, device numbers) or nothing (part of it is outside the frame).
@@ -53,12 +49,9 @@ void append_value_words(std::string& out, const DecodedValue& v, Dialect d);
 
 // A station's newest value (LatestValue): its name, or for one no map names its table
 // ("holding register", "coil"); its reading ("0x00E6 (230)" for an unmapped word, "on" or
-// "off" for a bit); as JSON, an unmapped value with its function and table:
-// {"register":"0x0836","name":null,"function":3,"table":"holding","key":"reg_0x0836",
-// "value":17357}.
+// "off" for a bit).
 std::string latest_value_name(const LatestValue& v);
 std::string latest_value_text(const LatestValue& v);
-void append_latest_value_json(std::string& out, const LatestValue& v);
 
 // An inferred value (register_inference.h): the address of its first word ("0x0836"), its
 // type ("float32 high word first", "u16 counter", "text, 8 words"), its reading
@@ -66,11 +59,6 @@ void append_latest_value_json(std::string& out, const LatestValue& v);
 std::string inferred_address(const InferredBlock& b, const InferredValue& v);
 std::string inferred_type(const InferredValue& v);
 std::string inferred_reading(const InferredValue& v);
-// {"table":"holding","function":3,"start":"0x0836","count":80,"replies":172,"values":[
-// {"register":"0x0836","key":"reg_0x0836","type":"float32","words":2,"word_order":"high_first",
-// "constant":false,"counter":false,"confidence":0.99,"min":..,"max":..,"last":..,
-// "evidence":"...","hint":"..."},...]}
-void append_inferred_block_json(std::string& out, const InferredBlock& b);
 // "read holding registers (0x03)"
 std::string function_text(Dialect d, std::uint8_t function);
 

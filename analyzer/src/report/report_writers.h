@@ -1,6 +1,7 @@
 // The end-of-run report: as text for people, as one JSON line for jq.
 #pragma once
 
+#include "formatting/json_writer.h"
 #include "formatting/output_stream.h"
 #include "report/audit_report.h"
 
@@ -15,7 +16,7 @@ void write_text_report(const AuditReport& report, OutputStream& out);
 
 // The sources of a live capture (serial taps, interface) as report lines / JSON members.
 void append_live_sources_text(const LiveSources& live, std::string& o);
-void append_live_sources_json(const LiveSources& live, std::string& o);
+void write_live_sources_json(JsonWriter& w, const LiveSources& live);
 
 // Key of a station in the report: "1", or "10.0.0.5:4001/1" when there are several buses.
 std::string station_key(const AuditReport& report, const BusFindings& bus, std::uint8_t station);

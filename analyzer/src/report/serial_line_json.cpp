@@ -1,68 +1,58 @@
 // A logic-analyzer bus's serial line in the summary: "serial":{...},"line":{...}.
-#include "formatting/json_text.h"
-#include "formatting/number_text.h"
+#include "formatting/json_writer.h"
 #include "report/serial_line_report.h"
 
 namespace pvtap::analyzer {
 namespace {
 
 // "turnaround":[{"driver":"DE_1","station":1,"frames":9,"release_us":{...},"truncated":0}]
-void append_turnarounds_json(const std::vector<DriverTurnaround>& list, std::string& o) {
-  append_json_key(o, "turnaround");
-  o += '[';
-  for (std::size_t i = 0; i < list.size(); ++i) {
-    const DriverTurnaround& t = list[i];
-    o += i ? ",{\"driver\":" : "{\"driver\":";
-    append_json_string(o, t.driver);
-    append_json_count(o, "station", t.station);
-    append_json_count(o, "frames", t.frames);
-    append_json_key(o, "release_us");
-    o += "{\"min\":";
-    append_fixed(o, t.min_us, 1);
-    append_json_key(o, "mean");
-    append_fixed(o, t.mean_us, 1);
-    append_json_key(o, "max");
-    append_fixed(o, t.max_us, 1);
-    o += '}';
-    append_json_count(o, "truncated", t.truncated);
-    o += '}';
+void write_turnarounds(JsonWriter& w, const std::vector<DriverTurnaround>& list) {
+  w.key("turnaround");
+  w.begin_array();
+  for (const DriverTurnaround& t : list) {
+    w.begin_object();
+    w.field("driver", t.driver);
+    w.field("station", t.station);
+    w.field("frames", t.frames);
+    w.key("release_us");
+    w.begin_object();
+    w.field_fixed("min", t.min_us, 1);
+    w.field_fixed("mean", t.mean_us, 1);
+    w.field_fixed("max", t.max_us, 1);
+    w.end_object();
+    w.field("truncated", t.truncated);
+    w.end_object();
   }
-  o += ']';
+  w.end_array();
 }
 
 }  // namespace
 
-void append_serial_line_json(const SerialLineReport& s, std::string& o) {
-  append_json_key(o, "serial");
-  o += "{\"baud\":";
-  append_uint(o, s.baud);
+void write_serial_line_json(JsonWriter& w, const SerialLineReport& s) {
+  w.key("serial");
+  w.begin_object();
+  w.field("baud", s.baud);
   if (s.measured) {
-    append_json_key(o, "measured_baud");
-    append_fixed(o, s.measured_baud, 1);
-    append_json_key(o, "deviation_percent");
-    append_fixed(o, s.deviation * 100, 2);
+    w.field_fixed("measured_baud", s.measured_baud, 1);
+    w.field_fixed("deviation_percent", s.deviation * 100, 2);
   }
-  append_json_key(o, "parity");
-  append_json_string(o, s.parity);
-  append_json_count(o, "data_bits", s.data_bits);
-  append_json_count(o, "stop_bits", s.stop_bits);
-  append_json_key(o, "inverted");
-  o += s.inverted ? "true" : "false";
-  append_json_key(o, "detected");
-  o += s.detected ? "true" : "false";
-  append_json_key(o, "channel");
-  append_json_string(o, s.channel);
-  o += '}';
+  w.field("parity", s.parity);
+  w.field("data_bits", s.data_bits);
+  w.field("stop_bits", s.stop_bits);
+  w.field_bool("inverted", s.inverted);
+  w.field_bool("detected", s.detected);
+  w.field("channel", s.channel);
+  w.end_object();
   if (!s.has_line_errors) return;
-  append_json_key(o, "line");
-  o += "{\"framing_errors\":";
-  append_uint(o, s.framing_errors);
-  append_json_count(o, "parity_errors", s.parity_errors);
-  append_json_count(o, "breaks", s.breaks);
-  append_json_count(o, "driver_glitches", s.driver_glitches);
-  if (s.measured) append_json_count(o, "clock_deviations", s.clock_deviations);
-  o += '}';
-  if (!s.turnarounds.empty()) append_turnarounds_json(s.turnarounds, o);
+  w.key("line");
+  w.begin_object();
+  w.field("framing_errors", s.framing_errors);
+  w.field("parity_errors", s.parity_errors);
+  w.field("breaks", s.breaks);
+  w.field("driver_glitches", s.driver_glitches);
+  if (s.measured) w.field("clock_deviations", s.clock_deviations);
+  w.end_object();
+  if (!s.turnarounds.empty()) write_turnarounds(w, s.turnarounds);
 }
 
 }  // namespace pvtap::analyzer

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "formatting/json_writer.h"
+
 namespace pvtap::analyzer {
 
 // DriverTurnaround: how long after a frame's last stop bit a driver-enable channel fell, over
@@ -46,6 +48,6 @@ struct SerialLineReport {
 
 // The line in the text report (two lines) and in the summary's bus ("serial" and "line").
 void append_serial_line_text(const SerialLineReport& line, std::string& o);
-void append_serial_line_json(const SerialLineReport& line, std::string& o);
+void write_serial_line_json(JsonWriter& w, const SerialLineReport& line);
 
 }  // namespace pvtap::analyzer

@@ -4,8 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "formatting/json_text.h"
-#include "formatting/number_text.h"
+#include "formatting/json_writer.h"
 #include "pvtap/carriers/solarman_v5_pairing.h"
 #include "report/frame_contents.h"
 #include "report/frame_findings.h"
@@ -31,189 +30,150 @@ class JsonlEventWriter : public EventWriter {
   explicit JsonlEventWriter(OutputStream& out) : out_(out) {
     for (const Dialect d : {Dialect::Ascii, Dialect::Hybrid, Dialect::Gsl, Dialect::Modbus}) {
       for (const Role r : {Role::Request, Role::Response}) {
-        std::string& head = frame_heads_[head_index(d, r)];
-        head = ",\"dialect\":\"";
-        head += to_string(d);
-        head += "\",\"role\":\"";
-        head += to_string(r);
-        head += "\",\"station\":";
+        JsonWriter head(frame_heads_[head_index(d, r)]);
+        head.field_plain("dialect", to_string(d));
+        head.field_plain("role", to_string(r));
+        head.key("station");
       }
     }
   }
 
   void frame(const EventContext& c, const SessionFrame& f) override {
-    std::string& o = out_.buffer();
-    begin_line(o, "frame", c, f.start_time);
-    o += frame_heads_[head_index(f.dialect, f.role)];
-    append_station_and_function(o, f);
-    o += ",\"length\":";
-    append_uint(o, f.bytes.size());
+    JsonWriter w = begin_line("frame", c, f.start_time);
+    w.raw_members(frame_heads_[head_index(f.dialect, f.role)]);
+    write_station_and_function(w, f);
+    w.field("length", f.bytes.size());
     if (f.check.carried) {
-      o += ",\"check\":\"tcp\",\"raw\":\"";  // no check on the wire: TCP's vouched
+      w.field_plain("check", "tcp");  // no check on the wire: TCP's vouched
     } else if (f.check.ok) {
-      o += ",\"check\":\"ok\",\"raw\":\"";
+      w.field_plain("check", "ok");
     } else {
-      o += ",\"check\":\"bad\",\"check_expected\":\"";
-      append_hex(o, check_wire_bytes(f.dialect, f.check.expected));
-      o += "\",\"raw\":\"";
+      w.field_plain("check", "bad");
+      w.field_hex("check_expected", check_wire_bytes(f.dialect, f.check.expected));
     }
-    append_hex(o, f.bytes);
-    o += '"';
-    if (f.latency) {
-      o += ",\"latency_ms\":";
-      append_fixed(o, *f.latency * 1e3, 3);
-    }
-    o += ",\"values\":[";
-    for (std::size_t i = 0; i < f.values.size(); ++i) {
-      if (i > 0) o += ',';
-      values_.append(o, f.values[i], f.dialect);
-    }
-    o += ']';
-    append_contents_json(o, f);
-    if (f.echo) o += ",\"echo\":true";
-    o += ",\"issues\":[";
+    w.field_hex("raw", f.bytes);
+    if (f.latency) w.field_fixed("latency_ms", *f.latency * 1e3, 3);
+    w.key("values");
+    w.begin_array();
+    for (const DecodedValue& v : f.values) values_.write(w, v, f.dialect);
+    w.end_array();
+    write_contents_json(w, f);
+    if (f.echo) w.field_bool("echo", true);
+    w.key("issues");
+    w.begin_array();
     collect_issues(f, issues_);
-    for (std::size_t i = 0; i < issues_.size(); ++i) {
-      if (i > 0) o += ',';
-      append_json_string(o, issues_[i]);
-    }
-    o += ']';
-    end_line(o, c);
+    for (const std::string& issue : issues_) w.string(issue);
+    w.end_array();
+    end_line(w, c);
   }
 
   void timeout(const EventContext& c, const SessionTimeout& t) override {
-    std::string& o = out_.buffer();
-    begin_line(o, t.kind == UnansweredKind::Timeout ? "timeout" : "unanswered", c, t.time);
-    o += ",\"request_ts\":";
-    append_time(o, c, t.request_start);
-    o += ",\"dialect\":\"";
-    o += to_string(t.timeout.dialect);
-    o += "\",\"station\":";
-    append_uint(o, t.timeout.station);
-    o += ",\"function\":";
-    append_uint(o, t.timeout.function);
-    o += ",\"reason\":\"";
-    o += unanswered_reason(t);
-    o += '"';
+    JsonWriter w =
+        begin_line(t.kind == UnansweredKind::Timeout ? "timeout" : "unanswered", c, t.time);
+    w.key("request_ts");
+    write_time(w, c, t.request_start);
+    w.field_plain("dialect", to_string(t.timeout.dialect));
+    w.field("station", t.timeout.station);
+    w.field("function", t.timeout.function);
+    w.field_plain("reason", unanswered_reason(t));
     if (t.kind == UnansweredKind::Timeout && t.timeout.reason == TimeoutReason::CarrierNoReply) {
-      o += ",\"carrier_reason\":";
-      append_json_string(o, solarman_v5::no_reply_reason(t.timeout.carrier_code));
+      w.field("carrier_reason", solarman_v5::no_reply_reason(t.timeout.carrier_code));
     }
-    if (c.has_timestamps) {
-      o += ",\"waited_ms\":";
-      append_fixed(o, t.timeout.waited * 1e3, 3);
-    }
-    end_line(o, c);
+    if (c.has_timestamps) w.field_fixed("waited_ms", t.timeout.waited * 1e3, 3);
+    end_line(w, c);
   }
 
   void noise(const EventContext& c, const SessionNoise& n) override {
-    std::string& o = out_.buffer();
-    begin_line(o, "noise", c, n.noise.start_time);
-    o += ",\"bytes\":";
-    append_uint(o, n.noise.bytes.size());
-    o += ",\"offset\":";
-    append_uint(o, n.noise.offset);
-    o += ",\"raw\":\"";
-    append_hex(o, n.noise.bytes);
-    o += '"';
-    end_line(o, c);
+    JsonWriter w = begin_line("noise", c, n.noise.start_time);
+    w.field("bytes", n.noise.bytes.size());
+    w.field("offset", n.noise.offset);
+    w.field_hex("raw", n.noise.bytes);
+    end_line(w, c);
   }
 
   void driver_glitch(const EventContext& c, const DriverGlitchEvent& g) override {
-    std::string& o = out_.buffer();
-    begin_line(o, "driver_glitch", c, g.time);
-    o += ",\"raw\":\"";
-    append_hex(o, std::span(&g.value, 1));
-    o += g.switch_on ? "\",\"switching\":\"on\"" : "\",\"switching\":\"off\"";
-    o += g.framing_error ? ",\"framing_error\":true" : ",\"framing_error\":false";
-    end_line(o, c);
+    JsonWriter w = begin_line("driver_glitch", c, g.time);
+    w.field_hex("raw", std::span(&g.value, 1));
+    w.field_plain("switching", g.switch_on ? "on" : "off");
+    w.field_bool("framing_error", g.framing_error);
+    end_line(w, c);
   }
 
   void line_error(const EventContext& c, const LineErrorEvent& e) override {
-    std::string& o = out_.buffer();
-    begin_line(o, "line_error", c, e.time);
-    o += ",\"error\":\"";
-    o += line_error_name(e.kind);
-    o += '"';
-    if (e.kind != LineErrorEvent::Kind::line_break) {
-      o += ",\"raw\":\"";
-      append_hex(o, std::span(&e.value, 1));
-      o += '"';
-    }
-    o += ",\"duration_us\":";
-    append_fixed(o, e.duration * 1e6, 1);
-    end_line(o, c);
+    JsonWriter w = begin_line("line_error", c, e.time);
+    w.field_plain("error", line_error_name(e.kind));
+    if (e.kind != LineErrorEvent::Kind::line_break) w.field_hex("raw", std::span(&e.value, 1));
+    w.field_fixed("duration_us", e.duration * 1e6, 1);
+    end_line(w, c);
   }
 
   void gap(const EventContext& c, const SessionGap& g) override {
-    std::string& o = out_.buffer();
-    begin_line(o, "gap", c, g.time);
-    o += ",\"bytes\":";
+    JsonWriter w = begin_line("gap", c, g.time);
+    w.key("bytes");
     if (g.lost_bytes) {
-      append_uint(o, *g.lost_bytes);
+      w.uint(*g.lost_bytes);
     } else {
-      o += "null";
+      w.null();
     }
-    o += ",\"direction\":\"";
-    o += direction_key(g.direction);
-    o += '"';
-    end_line(o, c);
+    w.field_plain("direction", direction_key(g.direction));
+    end_line(w, c);
   }
 
   // {"type":"collision","ts":...,"end":...,"late":false}: `late` when it was named after the
   // fact, once the second master showed.
   void collision(const EventContext& c, const SessionCollision& k) override {
-    std::string& o = out_.buffer();
-    begin_line(o, "collision", c, k.start_time);
-    o += ",\"end\":";
-    append_time(o, c, k.end_time);
-    o += k.late ? ",\"late\":true" : ",\"late\":false";
-    end_line(o, c);
+    JsonWriter w = begin_line("collision", c, k.start_time);
+    w.key("end");
+    write_time(w, c, k.end_time);
+    w.field_bool("late", k.late);
+    end_line(w, c);
   }
 
  private:
-  static void append_time(std::string& o, const EventContext& c, double time) {
+  static void write_time(JsonWriter& w, const EventContext& c, double time) {
     if (c.has_timestamps) {
-      append_fixed(o, time, 6);
+      w.fixed(time, 6);
     } else {
-      o += "null";
+      w.null();
     }
   }
-  static void begin_line(std::string& o, std::string_view type, const EventContext& c,
-                         double time) {
-    o += "{\"type\":\"";
-    o += type;
-    o += "\",\"ts\":";
-    append_time(o, c, time);
+  JsonWriter begin_line(std::string_view type, const EventContext& c, double time) {
+    JsonWriter w(out_.buffer());
+    w.begin_object();
+    w.field_plain("type", type);
+    w.key("ts");
+    write_time(w, c, time);
+    return w;
   }
-  void end_line(std::string& o, const EventContext& c) {
+  void end_line(JsonWriter& w, const EventContext& c) {
     if (!c.bus.empty()) {
       // Lines of one bus come in runs: its quoted name is kept, not escaped for every line.
       if (c.bus != bus_name_) {
         bus_name_.assign(c.bus);
-        bus_field_ = ",\"bus\":";
-        append_json_string(bus_field_, c.bus);
+        bus_field_.clear();
+        JsonWriter(bus_field_).field("bus", c.bus);
       }
-      o += bus_field_;
+      w.raw_members(bus_field_);
     }
-    o += "}\n";
+    w.end_object();
+    w.buffer() += '\n';
     out_.done();
   }
   static std::size_t head_index(Dialect d, Role r) {
     return static_cast<std::size_t>(d) * 2 + static_cast<std::size_t>(r);
   }
-  static void append_station_and_function(std::string& o, const SessionFrame& f) {
+  static void write_station_and_function(JsonWriter& w, const SessionFrame& f) {
     if (f.frame == nullptr) {
-      o += "null,\"function\":null";
+      w.null();
+      w.field_null("function");
       return;
     }
-    append_uint(o, f.frame->station);
-    o += ",\"function\":";
-    append_uint(o, f.frame->function);
+    w.uint(f.frame->station);
+    w.field("function", f.frame->function);
   }
 
   OutputStream& out_;
-  // ,"dialect":"gsl","role":"response","station": for each dialect and role, written once.
+  // "dialect":"gsl","role":"response","station": for each dialect and role, written once.
   std::array<std::string, kDialectCount * 2> frame_heads_;
   ValueJsonCache values_;
   std::vector<std::string> issues_;

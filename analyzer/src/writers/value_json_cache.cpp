@@ -1,6 +1,6 @@
 #include "writers/value_json_cache.h"
 
-#include "report/frame_findings.h"
+#include "report/value_json.h"
 
 namespace pvtap::analyzer {
 
@@ -16,18 +16,20 @@ const ValueJsonCache::Parts& ValueJsonCache::parts_of(const DecodedValue& v, Dia
     p.def = v.def;
     p.head.clear();
     p.unit.clear();
-    append_value_json_head(p.head, v, d);
-    append_value_json_unit(p.unit, v);
+    JsonWriter head(p.head);
+    write_value_head(head, v, d);
+    JsonWriter unit(p.unit);
+    write_value_unit(unit, v);
   }
   return p;
 }
 
-void ValueJsonCache::append(std::string& out, const DecodedValue& v, Dialect d) {
+void ValueJsonCache::write(JsonWriter& w, const DecodedValue& v, Dialect d) {
   const Parts& p = parts_of(v, d);
-  out += p.head;
-  append_value_json_reading(out, v);
-  out += p.unit;
-  append_value_json_tail(out, v);
+  w.raw_object_start(p.head);
+  write_value_reading(w, v);
+  if (!p.unit.empty()) w.raw_members(p.unit);
+  write_value_tail(w, v);
 }
 
 }  // namespace pvtap::analyzer

@@ -7,14 +7,15 @@
 #include <cstdint>
 #include <string>
 
+#include "formatting/json_writer.h"
 #include "pvtap/registers/register_decoder.h"
 
 namespace pvtap::analyzer {
 
 class ValueJsonCache {
  public:
-  // Appends the whole {"register":...} object of `v`.
-  void append(std::string& out, const DecodedValue& v, Dialect d);
+  // Writes the whole {"register":...} object of `v`.
+  void write(JsonWriter& w, const DecodedValue& v, Dialect d);
 
  private:
   // Direct-mapped: a slot per key hash, replaced when another register maps to it.
@@ -23,7 +24,7 @@ class ValueJsonCache {
     std::uint64_t key = ~std::uint64_t{0};
     const RegisterDef* def = nullptr;
     std::string head;  // {"register":"0x1006","name":"battery voltage","value":
-    std::string unit;  // ,"unit":"V"
+    std::string unit;  // "unit":"V"
   };
   const Parts& parts_of(const DecodedValue& v, Dialect d);
 

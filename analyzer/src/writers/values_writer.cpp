@@ -5,7 +5,7 @@
 #include <string>
 
 #include "formatting/csv_text.h"
-#include "formatting/json_text.h"
+#include "formatting/json_writer.h"
 #include "formatting/number_text.h"
 #include "pvtap/registers/register_format.h"
 #include "report/frame_findings.h"
@@ -63,46 +63,43 @@ void append_csv_row(std::string& o, const ValueRow& r, std::string& scratch) {
   o += '\n';
 }
 
-void append_json_or_null(std::string& o, std::string_view text) {
+void string_or_null(JsonWriter& w, JsonKey name, std::string_view text) {
   if (text.empty()) {
-    o += "null";
+    w.field_null(name);
   } else {
-    append_json_string(o, text);
+    w.field(name, text);
   }
 }
 
 void append_jsonl_row(std::string& o, const ValueRow& r, std::string& scratch) {
-  o += "{\"ts\":";
+  JsonWriter w(o);
+  w.begin_object();
+  w.key("ts");
   if (r.context.has_timestamps) {
-    append_fixed(o, r.frame.start_time, 6);
+    w.fixed(r.frame.start_time, 6);
   } else {
-    o += "null";
+    w.null();
   }
-  o += ",\"bus\":";
-  append_json_or_null(o, r.context.bus);
-  append_json_count(o, "station", r.station());
-  o += ",\"dialect\":\"";
-  o += to_string(r.frame.dialect);
-  o += "\",\"register\":\"";
-  o += format_value_address(r.value, r.frame.dialect).view();
-  o += "\",\"key\":";
+  string_or_null(w, "bus", r.context.bus);
+  w.field("station", r.station());
+  w.field_plain("dialect", to_string(r.frame.dialect));
+  w.field_plain("register", format_value_address(r.value, r.frame.dialect).view());
   const UnmappedKey unmapped = r.key_buffer();
-  append_json_or_null(o, r.value.def != nullptr ? r.value.key() : unmapped.view());
-  o += ",\"name\":";
-  append_json_or_null(o, r.value.name());
-  o += ",\"value\":";
+  string_or_null(w, "key", r.value.def != nullptr ? r.value.key() : unmapped.view());
+  string_or_null(w, "name", r.value.name());
+  w.key("value");
   if (reading_kind(r.value) == ReadingKind::Number) {
-    append_value_number(o, r.value);
+    append_value_number(w.value_out(), r.value);
   } else if (reading_kind(r.value) == ReadingKind::Text) {
     scratch.clear();
     append_value_text(scratch, r.value);
-    append_json_string(o, scratch);
+    w.string(scratch);
   } else {
-    o += "null";
+    w.null();
   }
-  o += ",\"unit\":";
-  append_json_or_null(o, r.value.unit());
-  o += "}\n";
+  string_or_null(w, "unit", r.value.unit());
+  w.end_object();
+  o += '\n';
 }
 
 // Line protocol escapes commas, equals signs and spaces in tag values with a backslash, and
