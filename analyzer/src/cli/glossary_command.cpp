@@ -4,7 +4,7 @@
 #include <cstdio>
 
 #include "cli/exit_status.h"
-#include "formatting/json_text.h"
+#include "formatting/json_writer.h"
 #include "report/glossary.h"
 
 namespace pvtap::analyzer {
@@ -28,17 +28,18 @@ std::string as_text() {
 std::string as_jsonl() {
   std::string o;
   for (const GlossaryTerm& t : glossary()) {
-    o += "{\"term\":";
-    append_json_string(o, t.term);
-    o += ",\"key\":";
+    JsonWriter w(o);
+    w.begin_object();
+    w.field("term", t.term);
+    w.key("key");
     if (t.json_key.empty()) {
-      o += "null";
+      w.null();
     } else {
-      append_json_string(o, t.json_key);
+      w.string(t.json_key);
     }
-    o += ",\"meaning\":";
-    append_json_string(o, t.meaning);
-    o += "}\n";
+    w.field("meaning", t.meaning);
+    w.end_object();
+    o += '\n';
   }
   return o;
 }

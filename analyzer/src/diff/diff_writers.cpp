@@ -4,7 +4,7 @@
 #include <cmath>
 #include <utility>
 
-#include "formatting/json_text.h"
+#include "formatting/json_writer.h"
 #include "formatting/number_text.h"
 #include "html/html_assets.h"
 #include "html/html_text.h"
@@ -79,52 +79,44 @@ std::string what_text(const Difference& d) {
   return o;
 }
 
-void json_number(std::string& o, std::string_view key, const std::optional<double>& value) {
-  append_json_key(o, key);
+void json_number(JsonWriter& w, JsonKey key, const std::optional<double>& value) {
+  w.key(key);
   if (value) {
-    append_fixed(o, *value, 3);
+    w.fixed(*value, 3);
   } else {
-    o += "null";
+    w.null();
   }
 }
 
-void side_json(std::string& o, std::string_view key, const std::string& label,
-               const DiffSide& side) {
-  append_json_key(o, key);
-  o += "{\"files\":";
-  append_json_string(o, label);
-  append_json_count(o, "buses", side.report.buses.size());
-  append_json_count(o, "frames", frames_of(side));
-  append_json_key(o, "seconds");
-  if (const auto span = side.report.time_span()) {
-    append_fixed(o, span->seconds(), 3);
-  } else {
-    o += "null";
-  }
-  o += '}';
+void side_json(JsonWriter& w, JsonKey key, const std::string& label, const DiffSide& side) {
+  w.key(key);
+  w.begin_object();
+  w.field("files", label);
+  w.field("buses", side.report.buses.size());
+  w.field("frames", frames_of(side));
+  const auto span = side.report.time_span();
+  json_number(w, "seconds", span ? std::optional(span->seconds()) : std::nullopt);
+  w.end_object();
 }
 
-void thresholds_json(std::string& o, const DiffThresholds& t) {
-  append_json_key(o, "thresholds");
-  const std::pair<std::string_view, double> figures[] = {
+struct NamedThreshold {
+  JsonKey name;
+  double value;
+};
+
+void thresholds_json(JsonWriter& w, const DiffThresholds& t) {
+  w.key("thresholds");
+  const NamedThreshold figures[] = {
       {"noise_sigmas", t.noise_sigmas},  {"rate_per_1000", t.rate_per_1000},
       {"rate_percent", t.rate_percent},  {"requests_percent", t.requests_percent},
       {"latency_ms", t.latency_ms},      {"latency_percent", t.latency_percent},
       {"period_ms", t.period_ms},        {"period_percent", t.period_percent},
       {"jitter_ms", t.jitter_ms},        {"jitter_percent", t.jitter_percent},
       {"value_percent", t.value_percent}};
-  o += '{';
-  bool first = true;
-  for (const auto& [name, value] : figures) {
-    if (!first) o += ',';
-    first = false;
-    append_json_string(o, name);
-    o += ':';
-    append_fixed(o, value, 3);
-  }
-  append_json_key(o, "count_values");
-  o += t.count_values ? "true" : "false";
-  o += '}';
+  w.begin_object();
+  for (const auto& [name, value] : figures) w.field_fixed(name, value, 3);
+  w.field_bool("count_values", t.count_values);
+  w.end_object();
 }
 
 void html_cell(std::string& o, std::string_view text) {
@@ -194,35 +186,36 @@ void append_diff_text(std::string& o, const DiffReport& r) {
 
 void append_diff_jsonl(std::string& o, const DiffReport& r) {
   for (const Difference& d : r.result.differences) {
-    o += "{\"type\":\"difference\",\"bus\":";
-    append_json_string(o, d.bus);
-    append_json_key(o, "station");
+    JsonWriter w(o);
+    w.begin_object();
+    w.field_plain("type", "difference");
+    w.field("bus", d.bus);
+    w.key("station");
     if (d.station) {
-      append_uint(o, *d.station);
+      w.uint(*d.station);
     } else {
-      o += "null";
+      w.null();
     }
-    append_json_key(o, "what");
-    append_json_string(o, d.what);
-    append_json_key(o, "detail");
-    append_json_string(o, d.detail);
-    json_number(o, "before", d.before);
-    json_number(o, "after", d.after);
-    append_json_key(o, "unit");
-    append_json_string(o, d.unit);
-    append_json_key(o, "reason");
-    append_json_string(o, d.reason);
-    append_json_key(o, "counted");
-    o += d.counted ? "true" : "false";
-    o += "}\n";
+    w.field("what", d.what);
+    w.field("detail", d.detail);
+    json_number(w, "before", d.before);
+    json_number(w, "after", d.after);
+    w.field("unit", d.unit);
+    w.field("reason", d.reason);
+    w.field_bool("counted", d.counted);
+    w.end_object();
+    o += '\n';
   }
-  o += "{\"type\":\"summary\",\"differences\":";
-  append_uint(o, r.result.counted());
-  append_json_count(o, "not_counted", uncounted(r.result));
-  side_json(o, "before", r.before_label, *r.before);
-  side_json(o, "after", r.after_label, *r.after);
-  thresholds_json(o, r.thresholds);
-  o += "}\n";
+  JsonWriter w(o);
+  w.begin_object();
+  w.field_plain("type", "summary");
+  w.field("differences", r.result.counted());
+  w.field("not_counted", uncounted(r.result));
+  side_json(w, "before", r.before_label, *r.before);
+  side_json(w, "after", r.after_label, *r.after);
+  thresholds_json(w, r.thresholds);
+  w.end_object();
+  o += '\n';
 }
 
 void append_diff_html(std::string& o, const DiffReport& r) {

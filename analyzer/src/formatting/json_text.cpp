@@ -3,7 +3,6 @@
 #include <cstdint>
 #include <cstring>
 
-#include "formatting/number_text.h"
 
 namespace pvtap::analyzer {
 namespace {
@@ -34,17 +33,6 @@ std::size_t plain_prefix(std::string_view text) {
 }
 
 }  // namespace
-
-void append_json_key(std::string& out, std::string_view name) {
-  out += ",\"";
-  out += name;
-  out += "\":";
-}
-
-void append_json_count(std::string& out, std::string_view name, std::uint64_t value) {
-  append_json_key(out, name);
-  append_uint(out, value);
-}
 
 void append_json_string(std::string& out, std::string_view text) {
   out += '"';

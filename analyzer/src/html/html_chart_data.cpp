@@ -7,7 +7,7 @@
 #include <set>
 
 #include "formatting/csv_text.h"
-#include "formatting/json_text.h"
+#include "formatting/json_writer.h"
 #include "formatting/number_text.h"
 #include "html/html_sections.h"
 #include "html/html_silence_data.h"
@@ -23,58 +23,46 @@ constexpr std::array<std::string_view, kMarkKinds> kMarkNames = {
     "damaged", "timeout", "unanswered_damaged", "exception", "unsolicited", "duplicate",
     "noise",   "gap",     "collision"};
 
-void optional_number(std::string& o, const std::optional<std::uint16_t>& v) {
+void optional_number(JsonWriter& w, const std::optional<std::uint16_t>& v) {
   if (v) {
-    append_uint(o, *v);
+    w.uint(*v);
   } else {
-    o += "null";
+    w.null();
   }
 }
 
 // [[index,...],...]: one row per bucket that saw something, its fields after the index
 // written by `fields`.
 template <typename Fields>
-void bucket_rows(std::string& o, const BucketSeries& s, Fields fields) {
-  o += '[';
-  bool first = true;
+void bucket_rows(JsonWriter& w, const BucketSeries& s, Fields fields) {
+  w.begin_array();
   for (std::size_t i = 0; i < s.buckets().size(); ++i) {
     const Bucket& b = s.buckets()[i];
     if (b.count == 0) continue;
-    if (!first) o += ',';
-    first = false;
-    o += '[';
-    append_uint(o, i);
+    w.begin_array();
+    w.uint(i);
     fields(b);
-    o += ']';
+    w.end_array();
   }
-  o += ']';
+  w.end_array();
 }
 
 // [[index,count],...] of a counting series.
-void counts(std::string& o, const BucketSeries& s) {
-  bucket_rows(o, s, [&o](const Bucket& b) {
-    o += ',';
-    append_uint(o, b.count);
-  });
+void counts(JsonWriter& w, const BucketSeries& s) {
+  bucket_rows(w, s, [&w](const Bucket& b) { w.uint(b.count); });
 }
 
 // [[index,sum],...].
-void sums(std::string& o, const BucketSeries& s) {
-  bucket_rows(o, s, [&o](const Bucket& b) {
-    o += ',';
-    append_fixed(o, b.sum, 0);
-  });
+void sums(JsonWriter& w, const BucketSeries& s) {
+  bucket_rows(w, s, [&w](const Bucket& b) { w.fixed(b.sum, 0); });
 }
 
 // [[index,min,last,max],...] scaled by `factor`, with `decimals` digits.
-void ranges(std::string& o, const BucketSeries& s, double factor, int decimals, bool mean) {
-  bucket_rows(o, s, [&](const Bucket& b) {
-    o += ',';
-    append_fixed(o, b.min * factor, decimals);
-    o += ',';
-    append_fixed(o, (mean ? b.sum / b.count : b.last) * factor, decimals);
-    o += ',';
-    append_fixed(o, b.max * factor, decimals);
+void ranges(JsonWriter& w, const BucketSeries& s, double factor, int decimals, bool mean) {
+  bucket_rows(w, s, [&](const Bucket& b) {
+    w.fixed(b.min * factor, decimals);
+    w.fixed((mean ? b.sum / b.count : b.last) * factor, decimals);
+    w.fixed(b.max * factor, decimals);
   });
 }
 
@@ -93,115 +81,105 @@ std::string lane_label(const AuditReport& r, const Lane& lane) {
   return label;
 }
 
-void lanes(std::string& o, const AuditReport& r, const Timeline& t) {
-  o += ",\"lanes\":[";
-  for (std::size_t i = 0; i < t.lanes.size(); ++i) {
-    const Lane& lane = t.lanes[i];
-    if (i > 0) o += ',';
-    o += "{\"label\":";
-    append_json_string(o, lane_label(r, lane));
-    o += ",\"requests\":";
-    counts(o, lane.requests);
-    o += ",\"replies\":";
-    counts(o, lane.replies);
-    o += ",\"latency\":";
-    ranges(o, lane.latency, 1e3, 3, true);
-    o += ",\"histogram\":[";
-    for (std::size_t b = 0; b < lane.latency_bins.size(); ++b) {
-      if (b > 0) o += ',';
-      append_uint(o, lane.latency_bins[b]);
-    }
-    o += "]}";
+void lanes(JsonWriter& w, const AuditReport& r, const Timeline& t) {
+  w.key("lanes");
+  w.begin_array();
+  for (const Lane& lane : t.lanes) {
+    w.begin_object();
+    w.field("label", lane_label(r, lane));
+    w.key("requests");
+    counts(w, lane.requests);
+    w.key("replies");
+    counts(w, lane.replies);
+    w.key("latency");
+    ranges(w, lane.latency, 1e3, 3, true);
+    w.key("histogram");
+    w.begin_array();
+    for (const auto bin : lane.latency_bins) w.uint(bin);
+    w.end_array();
+    w.end_object();
   }
-  o += ']';
+  w.end_array();
 }
 
-void marks(std::string& o, const AuditReport& r, const Timeline& t) {
-  o += ",\"marks\":{";
+// [time,lane,"dialect",function,request,start,count,detail], null where a mark has none.
+void mark(JsonWriter& w, const AuditReport& r, const Mark& m) {
+  w.begin_array();
+  w.fixed(m.time, 6);
+  w.uint(m.lane);
+  w.plain_string(to_string(m.dialect));
+  if (m.has_function) {
+    w.uint(m.function);
+  } else {
+    w.null();
+  }
+  w.uint(m.is_request ? 1u : 0u);
+  if (m.start) {
+    w.string(start_address_text(r.settings, m.dialect, m.start));
+  } else {
+    w.null();
+  }
+  optional_number(w, m.count);
+  w.uint(m.detail);
+  w.end_array();
+}
+
+void marks(JsonWriter& w, const AuditReport& r, const Timeline& t) {
+  w.key("marks");
+  w.begin_object();
   for (std::size_t k = 0; k < kMarkKinds; ++k) {
-    if (k > 0) o += ',';
-    append_json_string(o, kMarkNames[k]);
-    o += ":[";
-    bool first = true;
+    w.key_text(kMarkNames[k]);
+    w.begin_array();
     for (const Mark& m : t.marks) {
-      if (static_cast<std::size_t>(m.kind) != k) continue;
-      if (!first) o += ',';
-      first = false;
-      o += '[';
-      append_fixed(o, m.time, 6);
-      o += ',';
-      append_uint(o, m.lane);
-      o += ",\"";
-      o += to_string(m.dialect);
-      o += "\",";
-      if (m.has_function) {
-        append_uint(o, m.function);
-      } else {
-        o += "null";
-      }
-      o += m.is_request ? ",1," : ",0,";
-      if (m.start) {
-        append_json_string(o, start_address_text(r.settings, m.dialect, m.start));
-      } else {
-        o += "null";
-      }
-      o += ',';
-      optional_number(o, m.count);
-      o += ',';
-      append_uint(o, m.detail);
-      o += ']';
+      if (static_cast<std::size_t>(m.kind) == k) mark(w, r, m);
     }
-    o += ']';
+    w.end_array();
   }
-  o += "},\"marks_dropped\":{";
+  w.end_object();
+  w.key("marks_dropped");
+  w.begin_object();
   for (std::size_t k = 0; k < kMarkKinds; ++k) {
-    if (k > 0) o += ',';
-    append_json_string(o, kMarkNames[k]);
-    o += ':';
-    append_uint(o, t.marks_dropped[k]);
+    w.key_text(kMarkNames[k]);
+    w.uint(t.marks_dropped[k]);
   }
-  o += '}';
+  w.end_object();
 }
 
 // The names of the functions the marks name, as "dialect function": "name (0x03)".
-void function_names(std::string& o, const Timeline& t) {
+void function_names(JsonWriter& w, const Timeline& t) {
   std::set<std::pair<Dialect, std::uint8_t>> seen;
   for (const Mark& m : t.marks) {
     if (m.has_function) seen.insert({m.dialect, m.function});
   }
-  o += ",\"functions\":{";
-  bool first = true;
+  w.key("functions");
+  w.begin_object();
   for (const auto& [dialect, function] : seen) {
-    if (!first) o += ',';
-    first = false;
     std::string key(to_string(dialect));
     key += ' ';
     append_uint(key, function);
-    append_json_string(o, key);
-    o += ':';
+    w.key_text(key);
     std::string name;
     append_function(name, dialect, function);
-    append_json_string(o, name);
+    w.string(name);
   }
-  o += '}';
+  w.end_object();
 }
 
-void loads(std::string& o, const Timeline& t) {
-  o += ",\"loads\":[";
-  for (std::size_t i = 0; i < t.loads.size(); ++i) {
-    const BusLoad& l = t.loads[i];
-    if (i > 0) o += ',';
-    o += "{\"bus\":";
-    append_json_string(o, l.bus);
-    o += ",\"to_slave\":";
-    sums(o, l.to_slave);
-    o += ",\"from_slave\":";
-    sums(o, l.from_slave);
-    o += ",\"unknown\":";
-    sums(o, l.unknown);
-    o += '}';
+void loads(JsonWriter& w, const Timeline& t) {
+  w.key("loads");
+  w.begin_array();
+  for (const BusLoad& l : t.loads) {
+    w.begin_object();
+    w.field("bus", l.bus);
+    w.key("to_slave");
+    sums(w, l.to_slave);
+    w.key("from_slave");
+    sums(w, l.from_slave);
+    w.key("unknown");
+    sums(w, l.unknown);
+    w.end_object();
   }
-  o += ']';
+  w.end_array();
 }
 
 bool wanted(const ValueSeries& s, const HtmlOptions& options) {
@@ -224,10 +202,7 @@ std::string group_of(const ValueSeries& s) {
   }
 }
 
-void value_series(std::string& o, const AuditReport& r, const Timeline& t, const ValueSeries& s) {
-  o += "{\"lane\":";
-  append_uint(o, s.lane);
-  o += ",\"label\":";
+std::string series_label(const AuditReport& r, const Timeline& t, const ValueSeries& s) {
   std::string label = lane_label(r, t.lanes[s.lane]);
   label += ' ';
   if (s.def == nullptr) {
@@ -242,24 +217,24 @@ void value_series(std::string& o, const AuditReport& r, const Timeline& t, const
     append_uint(label, s.instance);
     label += ']';
   }
-  append_json_string(o, label);
-  o += ",\"key\":";
-  append_json_string(o, s.key);
-  o += ",\"name\":";
+  return label;
+}
+
+void value_series(JsonWriter& w, const AuditReport& r, const Timeline& t, const ValueSeries& s) {
+  w.begin_object();
+  w.field("lane", s.lane);
+  w.field("label", series_label(r, t, s));
+  w.field("key", s.key);
   if (s.def == nullptr) {
-    append_json_string(o, std::string(table_name(s.table)) + " " + s.address);
+    w.field("name", std::string(table_name(s.table)) + " " + s.address);
   } else {
-    append_json_string(o, s.def->name);
+    w.field("name", s.def->name);
   }
-  o += ",\"address\":";
-  append_json_string(o, s.address);
-  o += ",\"dialect\":\"";
-  o += to_string(s.dialect);
-  o += "\",\"unit\":";
-  append_json_string(o, s.def != nullptr ? s.def->unit : std::string_view{});
-  o += ",\"step\":";
-  o += group_of(s) == "states" ? "true" : "false";
-  o += ",\"points\":";
+  w.field("address", s.address);
+  w.field_plain("dialect", to_string(s.dialect));
+  w.field("unit", s.def != nullptr ? s.def->unit : std::string_view{});
+  w.field_bool("step", group_of(s) == "states");
+  w.key("points");
   const bool scaled = s.def != nullptr &&
                       (s.def->kind == RegisterKind::Number || s.def->kind == RegisterKind::Bcd ||
                        s.def->kind == RegisterKind::BcdPhaseCapacity);
@@ -268,55 +243,49 @@ void value_series(std::string& o, const AuditReport& r, const Timeline& t, const
   const int digits = !scaled                     ? 0
                      : s.def->has_scale_factor() ? std::max(3, int{s.def->decimals})
                                                  : s.def->decimals;
-  ranges(o, s.points, 1.0, digits, false);
-  o += '}';
+  ranges(w, s.points, 1.0, digits, false);
+  w.end_object();
 }
 
-void values(std::string& o, const AuditReport& r, const Timeline& t, const HtmlOptions& options) {
+void values(JsonWriter& w, const AuditReport& r, const Timeline& t, const HtmlOptions& options) {
   std::map<std::string, std::vector<const ValueSeries*>> groups;
   for (const ValueSeries& s : t.values) {
     if (wanted(s, options)) groups[group_of(s)].push_back(&s);
   }
   // Whether --plot chose the registers: then no chart means none of them was read, not that
   // nothing changed.
-  o += ",\"plot_chosen\":";
-  o += options.plot_keys.empty() ? "false" : "true";
-  o += ",\"values\":[";
-  bool first = true;
+  w.field_bool("plot_chosen", !options.plot_keys.empty());
+  w.key("values");
+  w.begin_array();
   for (const auto& [group, members] : groups) {
-    if (!first) o += ',';
-    first = false;
-    o += "{\"group\":";
-    append_json_string(o, group);
-    o += ",\"series\":[";
-    for (std::size_t i = 0; i < members.size(); ++i) {
-      if (i > 0) o += ',';
-      value_series(o, r, t, *members[i]);
-    }
-    o += "]}";
+    w.begin_object();
+    w.field("group", group);
+    w.key("series");
+    w.begin_array();
+    for (const ValueSeries* s : members) value_series(w, r, t, *s);
+    w.end_array();
+    w.end_object();
   }
-  o += ']';
+  w.end_array();
 }
 
 }  // namespace
 
 void append_chart_data_json(std::string& o, const AuditReport& r, const Timeline& t,
                             const HtmlOptions& options) {
-  o += "{\"has_timestamps\":";
-  o += r.settings.has_timestamps ? "true" : "false";
-  o += ",\"wall_clock\":";
-  o += r.settings.time_base == TimeBase::WallClock ? "true" : "false";
-  o += ",\"start\":";
-  append_fixed(o, t.start, 6);
-  o += ",\"bucket\":";
-  append_fixed(o, t.bucket_width, 6);
-  lanes(o, r, t);
-  marks(o, r, t);
-  function_names(o, t);
-  loads(o, t);
-  values(o, r, t, options);
-  append_silence_data_json(o, r);
-  o += '}';
+  JsonWriter w(o);
+  w.begin_object();
+  w.field_bool("has_timestamps", r.settings.has_timestamps);
+  w.field_bool("wall_clock", r.settings.time_base == TimeBase::WallClock);
+  w.field_fixed("start", t.start, 6);
+  w.field_fixed("bucket", t.bucket_width, 6);
+  lanes(w, r, t);
+  marks(w, r, t);
+  function_names(w, t);
+  loads(w, t);
+  values(w, r, t, options);
+  write_silence_data_json(w, r);
+  w.end_object();
 }
 
 }  // namespace pvtap::analyzer

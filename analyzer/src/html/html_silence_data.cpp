@@ -1,45 +1,43 @@
 // The silence histograms as JSON: edges in ms, a count per bucket (one more than the edges).
 #include "html/html_silence_data.h"
 
-#include "formatting/json_text.h"
-#include "formatting/number_text.h"
+#include "formatting/json_writer.h"
 
 namespace pvtap::analyzer {
 namespace {
 
 // Microseconds resolve every edge: the lowest is an eighth of a character (13 us at 9600).
-void milliseconds(std::string& o, double seconds) {
-  append_fixed(o, seconds * 1e3, 6);
+void milliseconds(JsonWriter& w, double seconds) {
+  w.fixed(seconds * 1e3, 6);
 }
 
-void histogram(std::string& o, const char* key, const SilenceHistogram& h) {
-  append_json_key(o, key);
-  o += "{\"edges_ms\":[";
-  for (std::size_t i = 0; i < h.edges().size(); ++i) {
-    if (i > 0) o += ',';
-    milliseconds(o, h.edges()[i]);
-  }
-  o += "],\"counts\":[";
-  for (std::size_t i = 0; i < h.counts().size(); ++i) {
-    if (i > 0) o += ',';
-    append_uint(o, h.counts()[i]);
-  }
-  o += "]}";
+void histogram(JsonWriter& w, JsonKey key, const SilenceHistogram& h) {
+  w.key(key);
+  w.begin_object();
+  w.key("edges_ms");
+  w.begin_array();
+  for (const double edge : h.edges()) milliseconds(w, edge);
+  w.end_array();
+  w.key("counts");
+  w.begin_array();
+  for (const auto count : h.counts()) w.uint(count);
+  w.end_array();
+  w.end_object();
 }
 
-void bus_silences(std::string& o, const BusFindings& bus) {
+void bus_silences(JsonWriter& w, const BusFindings& bus) {
   const BusGapReport& g = bus.report.timing.bus;
-  o += "{\"bus\":";
-  append_json_string(o, bus.name.empty() ? "serial" : bus.name);
-  append_json_key(o, "t15_ms");
-  milliseconds(o, g.t15);
-  append_json_key(o, "t35_ms");
-  milliseconds(o, g.t35);
-  append_json_key(o, "char_ms");
-  milliseconds(o, g.inner_silences->char_time());
-  histogram(o, "inner", *g.inner_silences);
-  histogram(o, "between", *g.frame_silences);
-  o += '}';
+  w.begin_object();
+  w.field("bus", bus.name.empty() ? std::string_view("serial") : std::string_view(bus.name));
+  w.key("t15_ms");
+  milliseconds(w, g.t15);
+  w.key("t35_ms");
+  milliseconds(w, g.t35);
+  w.key("char_ms");
+  milliseconds(w, g.inner_silences->char_time());
+  histogram(w, "inner", *g.inner_silences);
+  histogram(w, "between", *g.frame_silences);
+  w.end_object();
 }
 
 }  // namespace
@@ -49,16 +47,13 @@ bool has_silence_histograms(const BusReport& bus) {
   return g.measurable && g.inner_silences && g.frame_silences;
 }
 
-void append_silence_data_json(std::string& o, const AuditReport& r) {
-  o += ",\"silences\":[";
-  bool first = true;
+void write_silence_data_json(JsonWriter& w, const AuditReport& r) {
+  w.key("silences");
+  w.begin_array();
   for (const BusFindings& bus : r.buses) {
-    if (!has_silence_histograms(bus.report)) continue;
-    if (!first) o += ',';
-    first = false;
-    bus_silences(o, bus);
+    if (has_silence_histograms(bus.report)) bus_silences(w, bus);
   }
-  o += ']';
+  w.end_array();
 }
 
 }  // namespace pvtap::analyzer

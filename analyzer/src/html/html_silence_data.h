@@ -2,8 +2,7 @@
 // script (the chart data's "silences").
 #pragma once
 
-#include <string>
-
+#include "formatting/json_writer.h"
 #include "report/audit_report.h"
 
 namespace pvtap::analyzer {
@@ -12,8 +11,8 @@ namespace pvtap::analyzer {
 // order of report.buses.
 bool has_silence_histograms(const BusReport& bus);
 
-// ,"silences":[{"bus":..,"t15_ms":..,"t35_ms":..,"char_ms":..,"inner":{"edges_ms":[..],
-// "counts":[..]},"between":{..}},...]
-void append_silence_data_json(std::string& o, const AuditReport& r);
+// The member "silences":[{"bus":..,"t15_ms":..,"t35_ms":..,"char_ms":..,"inner":{"edges_ms":
+// [..],"counts":[..]},"between":{..}},...]
+void write_silence_data_json(JsonWriter& w, const AuditReport& r);
 
 }  // namespace pvtap::analyzer

@@ -1,8 +1,7 @@
 // BusHealth: counting and the health JSON.
 #include "mqtt/bus_health.h"
 
-#include "formatting/json_text.h"
-#include "formatting/number_text.h"
+#include "formatting/json_writer.h"
 
 namespace pvtap::analyzer {
 
@@ -33,38 +32,44 @@ const HealthField kHealthFields[22] = {
 
 namespace {
 
-void append_ms(std::string& out, std::string_view key, const DistributionSummary& d,
-               double seconds) {
-  append_json_key(out, key);
+// The keys of one latency's figures: the interval's and the total's.
+struct LatencyKeys {
+  JsonKey p50;
+  JsonKey p95;
+  JsonKey max;
+  JsonKey count;
+};
+
+void write_ms(JsonWriter& w, JsonKey key, const DistributionSummary& d, double seconds) {
+  w.key(key);
   if (d.count == 0) {
-    out += "null";
+    w.null();
   } else {
-    append_fixed(out, seconds * 1e3, 3);
+    w.fixed(seconds * 1e3, 3);
   }
 }
 
-void append_latency(std::string& out, std::string_view prefix, const DistributionAccumulator& a) {
+void write_latency(JsonWriter& w, const LatencyKeys& keys, const DistributionAccumulator& a) {
   const DistributionSummary d = a.summary();
-  const std::string p(prefix);
-  append_ms(out, p + "_p50_ms", d, d.p50);
-  append_ms(out, p + "_p95_ms", d, d.p95);
-  append_ms(out, p + "_max_ms", d, d.max);
-  append_json_count(out, p + "_count", d.count);
+  write_ms(w, keys.p50, d, d.p50);
+  write_ms(w, keys.p95, d, d.p95);
+  write_ms(w, keys.max, d, d.max);
+  w.field(keys.count, d.count);
 }
 
-void append_line_errors(std::string& out, const std::optional<LineErrorCounts>& e) {
-  append_json_key(out, "line_errors");
+void write_line_errors(JsonWriter& w, const std::optional<LineErrorCounts>& e) {
+  w.key("line_errors");
   if (!e) {
-    out += "null";
+    w.null();
     return;
   }
-  out += "{\"framing\":";
-  append_uint(out, e->framing);
-  append_json_count(out, "overrun", e->overrun);
-  append_json_count(out, "parity", e->parity);
-  append_json_count(out, "breaks", e->breaks);
-  append_json_count(out, "buffer_overrun", e->buffer_overrun);
-  out += '}';
+  w.begin_object();
+  w.field("framing", e->framing);
+  w.field("overrun", e->overrun);
+  w.field("parity", e->parity);
+  w.field("breaks", e->breaks);
+  w.field("buffer_overrun", e->buffer_overrun);
+  w.end_object();
 }
 
 }  // namespace
@@ -75,38 +80,39 @@ void BusHealth::count(const SessionFrame& f) {
 }
 
 void append_health_json(std::string& out, const BusHealth& h, const HealthContext& c) {
-  out += "{\"ts\":";
-  append_fixed(out, c.now, 6);
-  out += ",\"interval_s\":";
-  append_fixed(out, c.interval, 3);
+  JsonWriter w(out);
+  w.begin_object();
+  w.field_fixed("ts", c.now, 6);
+  w.field_fixed("interval_s", c.interval, 3);
   const EventCounts& e = h.events.counts();
-  append_json_count(out, "frames", e.frames);
-  append_json_count(out, "damaged_frames", e.damaged_frames);
-  append_json_count(out, "timeouts", e.timeouts);
-  append_json_count(out, "unanswered_damaged_requests", e.unanswered_damaged_requests);
-  append_json_count(out, "exceptions", e.exceptions);
-  append_json_count(out, "unsolicited", e.unsolicited);
-  append_json_count(out, "address_conflicts", e.address_conflicts);
-  append_json_count(out, "masters", c.sharing.masters);
-  append_json_count(out, "collisions", c.sharing.collisions);
-  append_json_count(out, "lost_in_collision", c.sharing.lost_in_collision);
-  append_json_count(out, "echoes", c.sharing.echoes);
-  append_json_count(out, "noise_bytes", e.noise_bytes);
-  append_json_count(out, "gaps", e.gaps.gaps);
-  append_latency(out, "latency", h.latency_interval);
-  append_latency(out, "latency_total", h.events.latency());
-  append_json_count(out, "stations", c.stations);
-  append_json_count(out, "stations_answering", c.stations_answering);
-  append_json_count(out, "poll_blocks", c.poll_blocks);
-  append_json_count(out, "poll_blocks_missing", c.poll_blocks_missing);
-  append_json_count(out, "events_queued", c.events_queued);
-  append_json_count(out, "events_dropped", c.events_dropped);
-  append_line_errors(out, h.line_errors);
-  if (!c.bus.empty()) {
-    out += ",\"bus\":";
-    append_json_string(out, c.bus);
-  }
-  out += '}';
+  w.field("frames", e.frames);
+  w.field("damaged_frames", e.damaged_frames);
+  w.field("timeouts", e.timeouts);
+  w.field("unanswered_damaged_requests", e.unanswered_damaged_requests);
+  w.field("exceptions", e.exceptions);
+  w.field("unsolicited", e.unsolicited);
+  w.field("address_conflicts", e.address_conflicts);
+  w.field("masters", c.sharing.masters);
+  w.field("collisions", c.sharing.collisions);
+  w.field("lost_in_collision", c.sharing.lost_in_collision);
+  w.field("echoes", c.sharing.echoes);
+  w.field("noise_bytes", e.noise_bytes);
+  w.field("gaps", e.gaps.gaps);
+  write_latency(w, {"latency_p50_ms", "latency_p95_ms", "latency_max_ms", "latency_count"},
+                h.latency_interval);
+  write_latency(w,
+                {"latency_total_p50_ms", "latency_total_p95_ms", "latency_total_max_ms",
+                 "latency_total_count"},
+                h.events.latency());
+  w.field("stations", c.stations);
+  w.field("stations_answering", c.stations_answering);
+  w.field("poll_blocks", c.poll_blocks);
+  w.field("poll_blocks_missing", c.poll_blocks_missing);
+  w.field("events_queued", c.events_queued);
+  w.field("events_dropped", c.events_dropped);
+  write_line_errors(w, h.line_errors);
+  if (!c.bus.empty()) w.field("bus", c.bus);
+  w.end_object();
 }
 
 }  // namespace pvtap::analyzer

@@ -3,7 +3,7 @@
 
 #include <array>
 
-#include "formatting/json_text.h"
+#include "formatting/json_writer.h"
 #include "formatting/number_text.h"
 #include "mqtt/bus_health.h"
 #include "mqtt/mqtt_payloads.h"
@@ -66,19 +66,17 @@ std::string identity_text(const StationState& s, std::string_view key) {
   return text;
 }
 
-void append_member(std::string& out, std::string_view key, std::string_view text) {
-  append_json_key(out, key);
-  append_json_string(out, text);
-}
-
-void append_station_device(std::string& out, const DiscoveryScope& scope, const StationState& s) {
-  out += ",\"device\":{\"identifiers\":[";
-  append_json_string(out, "pvtap_" + node_id(scope, s.address));
-  out += "],\"name\":";
+void write_station_device(JsonWriter& w, const DiscoveryScope& scope, const StationState& s) {
+  w.key("device");
+  w.begin_object();
+  w.key("identifiers");
+  w.begin_array();
+  w.string("pvtap_" + node_id(scope, s.address));
+  w.end_array();
   std::string name(to_string(s.dialect));
   name += " station " + std::to_string(s.address);
   if (!scope.bus.empty()) name += " on " + std::string(scope.bus);
-  append_json_string(out, name);
+  w.field("name", name);
   std::string model = identity_text(s, "model_name");
   if (model.empty()) model = s.device.product;
   const std::string device = identity_text(s, "device_number");
@@ -87,37 +85,47 @@ void append_station_device(std::string& out, const DiscoveryScope& scope, const 
   if (maker.empty()) maker = s.device.vendor;
   std::string firmware = identity_text(s, "firmware_version");
   if (firmware.empty()) firmware = s.device.revision;
-  if (!model.empty() || !device.empty())
-    append_member(out, "model", model.empty() ? device : model);
+  if (!model.empty() || !device.empty()) w.field("model", model.empty() ? device : model);
   if (!serial.empty() || !device.empty()) {
-    append_member(out, "serial_number", serial.empty() ? device : serial);
+    w.field("serial_number", serial.empty() ? device : serial);
   }
-  if (!maker.empty()) append_member(out, "manufacturer", maker);
-  if (!firmware.empty()) append_member(out, "sw_version", firmware);
-  append_member(out, "via_device", "pvtap_" + bus_node_id(scope));
-  out += '}';
+  if (!maker.empty()) w.field("manufacturer", maker);
+  if (!firmware.empty()) w.field("sw_version", firmware);
+  w.field("via_device", "pvtap_" + bus_node_id(scope));
+  w.end_object();
 }
 
-void append_availability(std::string& out, const DiscoveryScope& scope, std::uint8_t station) {
-  out += ",\"availability_mode\":\"all\",\"availability\":[{\"topic\":";
+void write_availability(JsonWriter& w, const DiscoveryScope& scope, std::uint8_t station) {
+  w.field_plain("availability_mode", "all");
+  w.key("availability");
+  w.begin_array();
   if (scope.live) {
-    append_json_string(out, scope.topics->status());
-    out += "},{\"topic\":";
+    w.begin_object();
+    w.field("topic", scope.topics->status());
+    w.end_object();
   }
-  append_json_string(out, scope.topics->availability(scope.bus_level, station));
-  out += "}]";
+  w.begin_object();
+  w.field("topic", scope.topics->availability(scope.bus_level, station));
+  w.end_object();
+  w.end_array();
 }
 
-// The members every entity of a station has: name, ids, where it reads its state.
-std::string entity_head(const DiscoveryScope& scope, const StationState& s,
-                        const std::string& object, std::string_view name,
-                        const std::string& state_topic) {
-  std::string o = "{\"name\":";
-  append_json_string(o, name);
-  append_member(o, "unique_id", "pvtap_" + node_id(scope, s.address) + "_" + object);
-  append_member(o, "object_id", node_id(scope, s.address) + "_" + object);
-  append_member(o, "state_topic", state_topic);
-  return o;
+// Opens an entity of a station with the members every one has: name, ids, where it reads
+// its state.
+void open_entity(JsonWriter& w, const DiscoveryScope& scope, const StationState& s,
+                 const std::string& object, std::string_view name, const std::string& state_topic) {
+  w.begin_object();
+  w.field("name", name);
+  w.field("unique_id", "pvtap_" + node_id(scope, s.address) + "_" + object);
+  w.field("object_id", node_id(scope, s.address) + "_" + object);
+  w.field("state_topic", state_topic);
+}
+
+// Closes an entity of a station: availability and device.
+void close_entity(JsonWriter& w, const DiscoveryScope& scope, const StationState& s) {
+  write_availability(w, scope, s.address);
+  write_station_device(w, scope, s);
+  w.end_object();
 }
 
 std::string config_topic(std::string_view component, const std::string& node,
@@ -133,28 +141,27 @@ QueuedMessage sensor_config(const DiscoveryScope& scope, const StationState& s,
                             std::string_view key, const HeldValue& held) {
   const RegisterDef& def = *held.value.def;
   const std::string object = topic_level(key);
-  std::string o =
-      entity_head(scope, s, object, def.name, scope.topics->value(scope.bus_level, s.address, key));
+  // The value topic carries an enum's number; the state topic has its text.
+  const bool is_enum = def.kind == RegisterKind::Enum;
+  const std::string state_topic = is_enum ? scope.topics->state(scope.bus_level, s.address)
+                                          : scope.topics->value(scope.bus_level, s.address, key);
+  std::string o;
+  JsonWriter w(o);
+  open_entity(w, scope, s, object, def.name, state_topic);
   if (is_numeric(def.kind)) {
     const SensorClass c = sensor_class_of(def.unit);
-    if (!def.unit.empty()) append_member(o, "unit_of_measurement", def.unit);
-    if (!c.device_class.empty()) append_member(o, "device_class", c.device_class);
-    append_member(o, "state_class", c.state_class);
-    append_json_key(o, "suggested_display_precision");
-    append_uint(o, def.decimals);
-  } else if (def.kind == RegisterKind::Enum) {
-    // The value topic carries the number; the state topic has its text.
-    o.erase(o.rfind(",\"state_topic\""));
-    append_member(o, "state_topic", scope.topics->state(scope.bus_level, s.address));
+    if (!def.unit.empty()) w.field("unit_of_measurement", def.unit);
+    if (!c.device_class.empty()) w.field("device_class", c.device_class);
+    w.field("state_class", c.state_class);
+    w.field("suggested_display_precision", def.decimals);
+  } else if (is_enum) {
     std::string tpl = "{{ value_json['values']['";
     tpl += key;
     tpl += "']['text'] }}";
-    append_member(o, "value_template", tpl);
+    w.field("value_template", tpl);
   }
-  if (is_identity_key(def.key)) append_member(o, "entity_category", "diagnostic");
-  append_availability(o, scope, s.address);
-  append_station_device(o, scope, s);
-  o += '}';
+  if (is_identity_key(def.key)) w.field("entity_category", "diagnostic");
+  close_entity(w, scope, s);
   return {config_topic("sensor", node_id(scope, s.address), object), std::move(o)};
 }
 
@@ -162,17 +169,30 @@ QueuedMessage bit_config(const DiscoveryScope& scope, const StationState& s, std
                          const HeldValue& held, const BitName& bit) {
   const RegisterDef& def = *held.value.def;
   const std::string object = topic_level(key) + "_bit" + std::to_string(bit.index);
-  std::string o =
-      entity_head(scope, s, object, bit.name, scope.topics->value(scope.bus_level, s.address, key));
+  std::string o;
+  JsonWriter w(o);
+  open_entity(w, scope, s, object, bit.name, scope.topics->value(scope.bus_level, s.address, key));
   std::string tpl = "{{ 'ON' if (value | int // ";
   append_uint(tpl, std::uint64_t{1} << bit.index);
   tpl += ") % 2 == 1 else 'OFF' }}";
-  append_member(o, "value_template", tpl);
-  if (names_alarm(def.name) || names_alarm(def.key)) append_member(o, "device_class", "problem");
-  append_availability(o, scope, s.address);
-  append_station_device(o, scope, s);
-  o += '}';
+  w.field("value_template", tpl);
+  if (names_alarm(def.name) || names_alarm(def.key)) w.field("device_class", "problem");
+  close_entity(w, scope, s);
   return {config_topic("binary_sensor", node_id(scope, s.address), object), std::move(o)};
+}
+
+// The bus's own device, which the health sensors belong to.
+void write_bus_device(JsonWriter& w, const DiscoveryScope& scope, const std::string& node) {
+  w.key("device");
+  w.begin_object();
+  w.key("identifiers");
+  w.begin_array();
+  w.string("pvtap_" + node);
+  w.end_array();
+  w.field("name", "pvtap " + scope.topics->prefix() + " " + std::string(scope.bus_level));
+  w.field("manufacturer", "pvtap");
+  w.field("model", "passive RS485 tap");
+  w.end_object();
 }
 
 }  // namespace
@@ -201,27 +221,23 @@ std::vector<QueuedMessage> health_discovery_configs(const DiscoveryScope& scope)
   std::vector<QueuedMessage> out;
   const std::string node = bus_node_id(scope);
   for (const HealthField& f : kHealthFields) {
-    std::string o = "{\"name\":";
-    append_json_string(o, f.name);
-    append_member(o, "unique_id", "pvtap_" + node + "_" + std::string(f.key));
-    append_member(o, "object_id", node + "_" + std::string(f.key));
-    append_member(o, "state_topic", scope.topics->health(scope.bus_level));
-    append_member(o, "value_template", "{{ value_json." + std::string(f.key) + " }}");
-    append_member(o, "entity_category", "diagnostic");
-    append_member(o, "state_class", f.counter ? "total_increasing" : "measurement");
+    std::string o;
+    JsonWriter w(o);
+    w.begin_object();
+    w.field("name", f.name);
+    w.field("unique_id", "pvtap_" + node + "_" + std::string(f.key));
+    w.field("object_id", node + "_" + std::string(f.key));
+    w.field("state_topic", scope.topics->health(scope.bus_level));
+    w.field("value_template", "{{ value_json." + std::string(f.key) + " }}");
+    w.field("entity_category", "diagnostic");
+    w.field("state_class", std::string_view(f.counter ? "total_increasing" : "measurement"));
     if (!f.unit.empty()) {
-      append_member(o, "unit_of_measurement", f.unit);
-      append_member(o, "device_class", "duration");
+      w.field("unit_of_measurement", f.unit);
+      w.field("device_class", "duration");
     }
-    if (scope.live) {
-      o += ",\"availability_topic\":";
-      append_json_string(o, scope.topics->status());
-    }
-    o += ",\"device\":{\"identifiers\":[";
-    append_json_string(o, "pvtap_" + node);
-    o += "],\"name\":";
-    append_json_string(o, "pvtap " + scope.topics->prefix() + " " + std::string(scope.bus_level));
-    o += ",\"manufacturer\":\"pvtap\",\"model\":\"passive RS485 tap\"}}";
+    if (scope.live) w.field("availability_topic", scope.topics->status());
+    write_bus_device(w, scope, node);
+    w.end_object();
     out.push_back({config_topic("sensor", node, std::string(f.key)), std::move(o)});
   }
   return out;
