@@ -50,7 +50,8 @@ class JsonWriter {
   void begin_array() { open('['); }
   void end_array() { close(']'); }
 
-  void key(JsonKey name) {
+  // Inlined always: only where the key is a constant does its copy fold to a few stores.
+  [[gnu::always_inline]] void key(JsonKey name) {
     const std::string_view n = name.text();
     // `,"name":` copied at once: the key is a constant, so this folds to a few stores.
     char text[JsonKey::kMaxSize + 4];
@@ -76,7 +77,7 @@ class JsonWriter {
     append_json_string(out_, text);
   }
   // A string the program spells itself (a dialect, a role, a verdict): quoted, not scanned.
-  void plain_string(std::string_view text) {
+  [[gnu::always_inline]] void plain_string(std::string_view text) {
     value_start();
     out_ += '"';
     out_ += text;
@@ -158,7 +159,7 @@ class JsonWriter {
   // Not a string: a pointer would otherwise become a bool.
   void field(JsonKey name, bool value) = delete;
 
-  void field_plain(JsonKey name, std::string_view text) {
+  [[gnu::always_inline]] void field_plain(JsonKey name, std::string_view text) {
     key(name);
     plain_string(text);
   }
