@@ -9,13 +9,17 @@
 namespace pvtap::analyzer {
 namespace {
 
-// The value's text as a JSON string; `scratch` is reused so that no string is allocated per
+// The value's text; `scratch` is reused so that no string is allocated per
 // value once it has grown.
-void write_value_text(JsonWriter& w, const DecodedValue& v) {
+const std::string& value_text(const DecodedValue& v) {
   static thread_local std::string scratch;
   scratch.clear();
   pvtap::append_value_text(scratch, v);
-  w.string(scratch);
+  return scratch;
+}
+
+void write_value_text(JsonWriter& w, const DecodedValue& v) {
+  w.string(value_text(v));
 }
 
 bool has_extra_text(const RegisterDef& def) {
@@ -130,6 +134,36 @@ void write_value_tail(JsonWriter& w, const DecodedValue& v) {
     w.end_array();
   }
   w.end_object();
+}
+
+void write_kept_value_json(JsonWriter& w, std::string_view head, std::string_view unit_member,
+                           const DecodedValue& v) {
+  const bool tail_members =
+      v.def != nullptr && (!v.complete() || has_extra_text(*v.def) || v.warnings != 0);
+  if (tail_members) {
+    w.raw_object_start(head);
+    write_value_reading(w, v);
+    if (!unit_member.empty()) w.raw_members(unit_member.substr(1));
+    write_value_tail(w, v);
+    return;
+  }
+  // Most values are a number and a unit: the kept parts and the reading make the whole object,
+  // appended as one value of `w` without its bookkeeping member by member.
+  std::string& out = w.value_out();
+  out += head;
+  switch (reading_kind(v)) {
+    case ReadingKind::Number:
+      append_value_number(out, v);
+      break;
+    case ReadingKind::Text:
+      JsonWriter(out).string(value_text(v));
+      break;
+    case ReadingKind::None:
+      out += "null";
+      break;
+  }
+  out += unit_member;
+  out += '}';
 }
 
 void write_value_json(JsonWriter& w, const DecodedValue& v, Dialect d) {

@@ -20,16 +20,15 @@ const ValueJsonCache::Parts& ValueJsonCache::parts_of(const DecodedValue& v, Dia
     write_value_head(head, v, d);
     JsonWriter unit(p.unit);
     write_value_unit(unit, v);
+    // Kept with the comma before it: it always follows the value.
+    if (!p.unit.empty()) p.unit.insert(0, 1, ',');
   }
   return p;
 }
 
 void ValueJsonCache::write(JsonWriter& w, const DecodedValue& v, Dialect d) {
   const Parts& p = parts_of(v, d);
-  w.raw_object_start(p.head);
-  write_value_reading(w, v);
-  if (!p.unit.empty()) w.raw_members(p.unit);
-  write_value_tail(w, v);
+  write_kept_value_json(w, p.head, p.unit, v);
 }
 
 }  // namespace pvtap::analyzer

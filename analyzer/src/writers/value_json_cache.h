@@ -24,7 +24,7 @@ class ValueJsonCache {
     std::uint64_t key = ~std::uint64_t{0};
     const RegisterDef* def = nullptr;
     std::string head;  // {"register":"0x1006","name":"battery voltage","value":
-    std::string unit;  // "unit":"V"
+    std::string unit;  // ,"unit":"V"
   };
   const Parts& parts_of(const DecodedValue& v, Dialect d);
 
