@@ -138,10 +138,17 @@ class JsonlEventWriter : public EventWriter {
     }
   }
   JsonWriter begin_line(std::string_view type, const EventContext& c, double time) {
+    // Lines of one type come in runs: {"type":"frame","ts": is kept, not written each time.
+    if (type.data() != line_type_.data() || type.size() != line_type_.size()) {
+      line_type_ = type;
+      line_head_.clear();
+      JsonWriter head(line_head_);
+      head.begin_object();
+      head.field_plain("type", type);
+      head.key("ts");
+    }
     JsonWriter w(out_.buffer());
-    w.begin_object();
-    w.field_plain("type", type);
-    w.key("ts");
+    w.raw_object_start(line_head_);
     write_time(w, c, time);
     return w;
   }
@@ -179,6 +186,8 @@ class JsonlEventWriter : public EventWriter {
   std::vector<std::string> issues_;
   std::string bus_name_;
   std::string bus_field_;
+  std::string_view line_type_;  // a literal of this file, so its address names it
+  std::string line_head_;
 };
 
 }  // namespace
