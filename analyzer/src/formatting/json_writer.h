@@ -43,6 +43,15 @@ class JsonWriter {
  public:
   explicit JsonWriter(std::string& out) : out_(out) {}
 
+  // A writer for more members of an object that another writer holds open and has written
+  // members in already. A function that adds members is handed one of these rather than the
+  // caller's writer by reference, so that the caller's state stays in registers.
+  static JsonWriter more_members(std::string& out) {
+    JsonWriter w(out);
+    w.members_ = 1;
+    return w;
+  }
+
   std::string& buffer() { return out_; }
 
   void begin_object() { open('{'); }

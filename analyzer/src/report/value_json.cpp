@@ -136,20 +136,9 @@ void write_value_tail(JsonWriter& w, const DecodedValue& v) {
   w.end_object();
 }
 
-void write_kept_value_json(JsonWriter& w, std::string_view head, std::string_view unit_member,
+void write_kept_value_json(std::string& out, std::string_view head, std::string_view unit_member,
                            const DecodedValue& v) {
-  const bool tail_members =
-      v.def != nullptr && (!v.complete() || has_extra_text(*v.def) || v.warnings != 0);
-  if (tail_members) {
-    w.raw_object_start(head);
-    write_value_reading(w, v);
-    if (!unit_member.empty()) w.raw_members(unit_member.substr(1));
-    write_value_tail(w, v);
-    return;
-  }
-  // Most values are a number and a unit: the kept parts and the reading make the whole object,
-  // appended as one value of `w` without its bookkeeping member by member.
-  std::string& out = w.value_out();
+  // The kept parts and the reading appended whole; a writer only for what follows the unit.
   out += head;
   switch (reading_kind(v)) {
     case ReadingKind::Number:
@@ -163,6 +152,12 @@ void write_kept_value_json(JsonWriter& w, std::string_view head, std::string_vie
       break;
   }
   out += unit_member;
+  if (v.def != nullptr && (!v.complete() || has_extra_text(*v.def) || v.warnings != 0)) {
+    // The head's members are written: the tail's come after a comma.
+    JsonWriter w = JsonWriter::more_members(out);
+    write_value_tail(w, v);
+    return;
+  }
   out += '}';
 }
 

@@ -17,8 +17,8 @@ void write_value_reading(JsonWriter& w, const DecodedValue& v);
 void write_value_unit(JsonWriter& w, const DecodedValue& v);
 void write_value_tail(JsonWriter& w, const DecodedValue& v);
 // The whole object from the kept head and unit member (`,"unit":"V"` or empty), for
-// ValueJsonCache.
-void write_kept_value_json(JsonWriter& w, std::string_view head, std::string_view unit_member,
+// ValueJsonCache; `out` is where the value goes (JsonWriter::value_out()).
+void write_kept_value_json(std::string& out, std::string_view head, std::string_view unit_member,
                            const DecodedValue& v);
 
 // A station's newest value; one no map names with its function and table:

@@ -57,7 +57,11 @@ class JsonlEventWriter : public EventWriter {
     w.begin_array();
     for (const DecodedValue& v : f.values) values_.write(w, v, f.dialect);
     w.end_array();
-    write_contents_json(w, f);
+    {
+      // A writer of its own for the contents: `w` is not handed on, so stays in registers.
+      JsonWriter contents = JsonWriter::more_members(w.buffer());
+      write_contents_json(contents, f);
+    }
     if (f.echo) w.field_bool("echo", true);
     w.key("issues");
     w.begin_array();
@@ -130,46 +134,53 @@ class JsonlEventWriter : public EventWriter {
   }
 
  private:
-  static void write_time(JsonWriter& w, const EventContext& c, double time) {
+  [[gnu::always_inline]] static void write_time(JsonWriter& w, const EventContext& c, double time) {
     if (c.has_timestamps) {
       w.fixed(time, 6);
     } else {
       w.null();
     }
   }
-  JsonWriter begin_line(std::string_view type, const EventContext& c, double time) {
+  // Inlined always, as is end_line: the line's writer is a local of each event's function.
+  [[gnu::always_inline]] JsonWriter begin_line(std::string_view type, const EventContext& c,
+                                               double time) {
     // Lines of one type come in runs: {"type":"frame","ts": is kept, not written each time.
     if (type.data() != line_type_.data() || type.size() != line_type_.size()) {
-      line_type_ = type;
-      line_head_.clear();
-      JsonWriter head(line_head_);
-      head.begin_object();
-      head.field_plain("type", type);
-      head.key("ts");
+      set_line_type(type);
     }
     JsonWriter w(out_.buffer());
     w.raw_object_start(line_head_);
     write_time(w, c, time);
     return w;
   }
-  void end_line(JsonWriter& w, const EventContext& c) {
+  [[gnu::noinline]] void set_line_type(std::string_view type) {
+    line_type_ = type;
+    line_head_.clear();
+    JsonWriter head(line_head_);
+    head.begin_object();
+    head.field_plain("type", type);
+    head.key("ts");
+  }
+  [[gnu::always_inline]] void end_line(JsonWriter& w, const EventContext& c) {
     if (!c.bus.empty()) {
       // Lines of one bus come in runs: its quoted name is kept, not escaped for every line.
-      if (c.bus != bus_name_) {
-        bus_name_.assign(c.bus);
-        bus_field_.clear();
-        JsonWriter(bus_field_).field("bus", c.bus);
-      }
+      if (c.bus != bus_name_) set_bus(c.bus);
       w.raw_members(bus_field_);
     }
     w.end_object();
     w.buffer() += '\n';
     out_.done();
   }
+  [[gnu::noinline]] void set_bus(std::string_view bus) {
+    bus_name_.assign(bus);
+    bus_field_.clear();
+    JsonWriter(bus_field_).field("bus", bus);
+  }
   static std::size_t head_index(Dialect d, Role r) {
     return static_cast<std::size_t>(d) * 2 + static_cast<std::size_t>(r);
   }
-  static void write_station_and_function(JsonWriter& w, const SessionFrame& f) {
+  [[gnu::always_inline]] static void write_station_and_function(JsonWriter& w,
+                                                                const SessionFrame& f) {
     if (f.frame == nullptr) {
       w.null();
       w.field_null("function");

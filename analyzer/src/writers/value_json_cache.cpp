@@ -26,9 +26,9 @@ const ValueJsonCache::Parts& ValueJsonCache::parts_of(const DecodedValue& v, Dia
   return p;
 }
 
-void ValueJsonCache::write(JsonWriter& w, const DecodedValue& v, Dialect d) {
+void ValueJsonCache::write_to(std::string& out, const DecodedValue& v, Dialect d) {
   const Parts& p = parts_of(v, d);
-  write_kept_value_json(w, p.head, p.unit, v);
+  write_kept_value_json(out, p.head, p.unit, v);
 }
 
 }  // namespace pvtap::analyzer

@@ -14,10 +14,13 @@ namespace pvtap::analyzer {
 
 class ValueJsonCache {
  public:
-  // Writes the whole {"register":...} object of `v`.
-  void write(JsonWriter& w, const DecodedValue& v, Dialect d);
+  // Writes the whole {"register":...} object of `v`. Inline, so that `w` is not handed on by
+  // reference and stays in registers in the caller.
+  void write(JsonWriter& w, const DecodedValue& v, Dialect d) { write_to(w.value_out(), v, d); }
 
  private:
+  // The object, where the value goes: what goes before it is placed already.
+  void write_to(std::string& out, const DecodedValue& v, Dialect d);
   // Direct-mapped: a slot per key hash, replaced when another register maps to it.
   static constexpr std::size_t kSlots = 1024;  // the hash's top 10 bits
   struct Parts {
