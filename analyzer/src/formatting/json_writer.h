@@ -172,6 +172,22 @@ class JsonWriter {
     key(name);
     plain_string(text);
   }
+  // A member whose value is a literal of the program: `,"name":"text"` copied at once.
+  template <std::size_t N>
+  [[gnu::always_inline]] void field_plain(JsonKey name, const char (&text)[N]) {
+    const std::string_view n = name.text();
+    char member[JsonKey::kMaxSize + N + 5];
+    member[0] = ',';
+    member[1] = '"';
+    std::memcpy(member + 2, n.data(), n.size());
+    member[n.size() + 2] = '"';
+    member[n.size() + 3] = ':';
+    member[n.size() + 4] = '"';
+    std::memcpy(member + n.size() + 5, text, N - 1);
+    member[n.size() + N + 4] = '"';
+    const std::size_t skip = separated() ? 0 : 1;
+    out_.append(member + skip, n.size() + N + 5 - skip);
+  }
   void field_fixed(JsonKey name, double value, int decimals) {
     key(name);
     fixed(value, decimals);

@@ -165,16 +165,19 @@ class JsonlEventWriter : public EventWriter {
     if (!c.bus.empty()) {
       // Lines of one bus come in runs: its quoted name is kept, not escaped for every line.
       if (c.bus != bus_name_) set_bus(c.bus);
-      w.raw_members(bus_field_);
+      // The line has members (type, ts): the kept `,"bus":"a"}` ends it, newline and all.
+      w.buffer() += bus_tail_;
+    } else {
+      w.end_object();
+      w.buffer() += '\n';
     }
-    w.end_object();
-    w.buffer() += '\n';
     out_.done();
   }
   [[gnu::noinline]] void set_bus(std::string_view bus) {
     bus_name_.assign(bus);
-    bus_field_.clear();
-    JsonWriter(bus_field_).field("bus", bus);
+    bus_tail_.assign(1, ',');
+    JsonWriter(bus_tail_).field("bus", bus);
+    bus_tail_ += "}\n";
   }
   static std::size_t head_index(Dialect d, Role r) {
     return static_cast<std::size_t>(d) * 2 + static_cast<std::size_t>(r);
@@ -196,7 +199,7 @@ class JsonlEventWriter : public EventWriter {
   ValueJsonCache values_;
   std::vector<std::string> issues_;
   std::string bus_name_;
-  std::string bus_field_;
+  std::string bus_tail_;        // ,"bus":"a"}\n
   std::string_view line_type_;  // a literal of this file, so its address names it
   std::string line_head_;
 };
