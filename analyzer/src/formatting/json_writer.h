@@ -37,8 +37,9 @@ class JsonKey {
 
 // Appends to `out`; places commas, quotes and colons itself. Nesting is kept as one bit per
 // open level ("has it a member yet"), so a writer is three words and never allocates; 63
-// levels deep at most. Keys written with nothing open make a list of members (`"a":1,"b":2`)
-// for raw_members() of another writer: how fixed parts of a line are rendered once and kept.
+// levels deep at most. A writer from more_members() with nothing open makes a list of members
+// (`,"a":1,"b":2`) for raw_members() of another writer: how fixed parts of a line are rendered
+// once and kept.
 class JsonWriter {
  public:
   explicit JsonWriter(std::string& out) : out_(out) {}
@@ -58,19 +59,19 @@ class JsonWriter {
   void end_object() { close('}'); }
   void begin_array() { open('['); }
   void end_array() { close(']'); }
+  // The member `name` opened as an object or an array: `,"name":{` copied at once.
+  [[gnu::always_inline]] void begin_object(JsonKey name) {
+    put_key(name, "{");
+    members_ <<= 1;
+  }
+  [[gnu::always_inline]] void begin_array(JsonKey name) {
+    put_key(name, "[");
+    members_ <<= 1;
+  }
 
   // Inlined always: only where the key is a constant does its copy fold to a few stores.
   [[gnu::always_inline]] void key(JsonKey name) {
-    const std::string_view n = name.text();
-    // `,"name":` copied at once: the key is a constant, so this folds to a few stores.
-    char text[JsonKey::kMaxSize + 4];
-    text[0] = ',';
-    text[1] = '"';
-    std::memcpy(text + 2, n.data(), n.size());
-    text[n.size() + 2] = '"';
-    text[n.size() + 3] = ':';
-    const std::size_t skip = separated() ? 0 : 1;
-    out_.append(text + skip, n.size() + 4 - skip);
+    put_key(name, {});
     after_key_ = true;
   }
   // A member name made at run time (a station's name, a function's): escaped.
@@ -130,10 +131,11 @@ class JsonWriter {
     value_start();
     out_ += json;
   }
-  // Members that are JSON text already, made by a writer with nothing open; the last may be
-  // a key whose value comes next (`"a":1,"b":`).
+  // Members that are JSON text already, made by a writer from more_members() so that they
+  // begin with their comma (not empty); the comma is dropped where they come first. The last
+  // may be a key whose value comes next (`,"a":1,"b":`).
   void raw_members(std::string_view members) {
-    member_start();
+    if (!separated()) members.remove_prefix(1);
     out_ += members;
     after_key_ = ends_at_key(members);
   }
@@ -200,9 +202,10 @@ class JsonWriter {
     key(name);
     null();
   }
-  void field_hex(JsonKey name, std::span<const std::uint8_t> bytes) {
-    key(name);
-    hex(bytes);
+  [[gnu::always_inline]] void field_hex(JsonKey name, std::span<const std::uint8_t> bytes) {
+    put_key(name, "\"");
+    append_hex(out_, bytes);
+    out_ += '"';
   }
   void field_raw(JsonKey name, std::string_view json) {
     key(name);
@@ -210,6 +213,20 @@ class JsonWriter {
   }
 
  private:
+  // `,"name":` and what opens its value (`then`: nothing, a bracket or a quote) copied at once,
+  // the comma only after a member: the key is a constant, so this folds to a few stores.
+  [[gnu::always_inline]] void put_key(JsonKey name, std::string_view then) {
+    const std::string_view n = name.text();
+    char text[JsonKey::kMaxSize + 8];  // `then` is a character at most
+    text[0] = ',';
+    text[1] = '"';
+    std::memcpy(text + 2, n.data(), n.size());
+    text[n.size() + 2] = '"';
+    text[n.size() + 3] = ':';
+    std::memcpy(text + n.size() + 4, then.data(), then.size());
+    const std::size_t skip = separated() ? 0 : 1;
+    out_.append(text + skip, n.size() + 4 + then.size() - skip);
+  }
   // True when the open level has a member already (a comma goes first); marks it as having one.
   bool separated() {
     const bool had = (members_ & 1) != 0;

@@ -30,7 +30,7 @@ class JsonlEventWriter : public EventWriter {
   explicit JsonlEventWriter(OutputStream& out) : out_(out) {
     for (const Dialect d : {Dialect::Ascii, Dialect::Hybrid, Dialect::Gsl, Dialect::Modbus}) {
       for (const Role r : {Role::Request, Role::Response}) {
-        JsonWriter head(frame_heads_[head_index(d, r)]);
+        JsonWriter head = JsonWriter::more_members(frame_heads_[head_index(d, r)]);
         head.field_plain("dialect", to_string(d));
         head.field_plain("role", to_string(r));
         head.key("station");
@@ -53,8 +53,7 @@ class JsonlEventWriter : public EventWriter {
     }
     w.field_hex("raw", f.bytes);
     if (f.latency) w.field_fixed("latency_ms", *f.latency * 1e3, 3);
-    w.key("values");
-    w.begin_array();
+    w.begin_array("values");
     for (const DecodedValue& v : f.values) values_.write(w, v, f.dialect);
     w.end_array();
     {
@@ -63,8 +62,7 @@ class JsonlEventWriter : public EventWriter {
       write_contents_json(contents, f);
     }
     if (f.echo) w.field_bool("echo", true);
-    w.key("issues");
-    w.begin_array();
+    w.begin_array("issues");
     collect_issues(f, issues_);
     for (const std::string& issue : issues_) w.string(issue);
     w.end_array();
@@ -194,7 +192,7 @@ class JsonlEventWriter : public EventWriter {
   }
 
   OutputStream& out_;
-  // "dialect":"gsl","role":"response","station": for each dialect and role, written once.
+  // ,"dialect":"gsl","role":"response","station": for each dialect and role, written once.
   std::array<std::string, kDialectCount * 2> frame_heads_;
   ValueJsonCache values_;
   std::vector<std::string> issues_;

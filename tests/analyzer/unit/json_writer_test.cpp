@@ -33,6 +33,27 @@ TEST(JsonWriter, CommasGoBetweenMembersAndElementsOnly) {
   EXPECT_EQ(out, R"({"a":1,"b":[2,{},[],null],"c":{"d":-3},"e":false})");
 }
 
+// A member whose value is an object or an array is opened in one step, first or not.
+TEST(JsonWriter, MembersOpenedWithTheirKey) {
+  std::string out;
+  JsonWriter w(out);
+  w.begin_object();
+  w.begin_array("a");
+  w.uint(1);
+  w.begin_object();
+  w.begin_object("b");
+  w.end_object();
+  w.begin_array("c");
+  w.end_array();
+  w.end_object();
+  w.end_array();
+  w.begin_object("d");
+  w.field_hex("e", std::array<std::uint8_t, 1>{0x0a});
+  w.end_object();
+  w.end_object();
+  EXPECT_EQ(out, R"({"a":[1,{"b":{},"c":[]}],"d":{"e":"0a"}})");
+}
+
 TEST(JsonWriter, AppendsAfterWhatIsThere) {
   std::string out = "x";
   JsonWriter w(out);
@@ -84,13 +105,14 @@ TEST(JsonWriter, HexAndRawText) {
   EXPECT_EQ(out, R"({"raw":"0103ff","value":1e3,"list":[{"kept":1},2],"none":null})");
 }
 
-// Fixed parts of a line are written once with nothing open and put into each line whole.
+// Fixed parts of a line are written once, with the comma before them, and put into each line
+// whole.
 TEST(JsonWriter, MembersMadeApartJoinAnObject) {
   std::string head;
-  JsonWriter h(head);
+  JsonWriter h = JsonWriter::more_members(head);
   h.field_plain("dialect", "ascii");
   h.field_plain("role", "request");
-  EXPECT_EQ(head, R"("dialect":"ascii","role":"request")");
+  EXPECT_EQ(head, R"(,"dialect":"ascii","role":"request")");
 
   std::string out;
   JsonWriter w(out);
@@ -129,7 +151,7 @@ TEST(JsonWriter, KeptTextEndingAtAKeyTakesTheValueNext) {
     w.end_object();
   }
   w.begin_object();
-  w.raw_members(R"("station":)");
+  w.raw_members(R"(,"station":)");
   w.uint(3);
   w.end_object();
   w.end_array();
