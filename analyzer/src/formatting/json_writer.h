@@ -61,17 +61,17 @@ class JsonWriter {
   void end_array() { close(']'); }
   // The member `name` opened as an object or an array: `,"name":{` copied at once.
   [[gnu::always_inline]] void begin_object(JsonKey name) {
-    put_key(name, "{");
+    put_key(name, '{');
     members_ <<= 1;
   }
   [[gnu::always_inline]] void begin_array(JsonKey name) {
-    put_key(name, "[");
+    put_key(name, '[');
     members_ <<= 1;
   }
 
   // Inlined always: only where the key is a constant does its copy fold to a few stores.
   [[gnu::always_inline]] void key(JsonKey name) {
-    put_key(name, {});
+    put_key(name, '\0');
     after_key_ = true;
   }
   // A member name made at run time (a station's name, a function's): escaped.
@@ -203,7 +203,7 @@ class JsonWriter {
     null();
   }
   [[gnu::always_inline]] void field_hex(JsonKey name, std::span<const std::uint8_t> bytes) {
-    put_key(name, "\"");
+    put_key(name, '"');
     append_hex(out_, bytes);
     out_ += '"';
   }
@@ -213,19 +213,21 @@ class JsonWriter {
   }
 
  private:
-  // `,"name":` and what opens its value (`then`: nothing, a bracket or a quote) copied at once,
-  // the comma only after a member: the key is a constant, so this folds to a few stores.
-  [[gnu::always_inline]] void put_key(JsonKey name, std::string_view then) {
+  // `,"name":` and what opens its value (`then`: a bracket or a quote, or '\0' for nothing)
+  // copied at once, the comma only after a member: the key is a constant, so this folds to a
+  // few stores.
+  [[gnu::always_inline]] void put_key(JsonKey name, char then) {
     const std::string_view n = name.text();
-    char text[JsonKey::kMaxSize + 8];  // `then` is a character at most
+    char text[JsonKey::kMaxSize + 5];
     text[0] = ',';
     text[1] = '"';
     std::memcpy(text + 2, n.data(), n.size());
     text[n.size() + 2] = '"';
     text[n.size() + 3] = ':';
-    std::memcpy(text + n.size() + 4, then.data(), then.size());
+    text[n.size() + 4] = then;
     const std::size_t skip = separated() ? 0 : 1;
-    out_.append(text + skip, n.size() + 4 + then.size() - skip);
+    const std::size_t opener = then != '\0' ? 1 : 0;
+    out_.append(text + skip, n.size() + 4 + opener - skip);
   }
   // True when the open level has a member already (a comma goes first); marks it as having one.
   bool separated() {
