@@ -14,11 +14,11 @@
 #include <string>
 #include <vector>
 
-#include "carriers/tcp_stream.h"
 #include "cli/audit_command.h"
 #include "cli/common_options.h"
 #include "cli/exit_status.h"
 #include "fuzz_input.h"
+#include "pvtap/carriers/tcp_stream.h"
 #include "pvtap/codec/frame_codec.h"
 #include "pvtap/pcap/capture_writer.h"
 #include "pvtap/pcap/exported_pdu_reader.h"
@@ -29,7 +29,7 @@
 
 namespace {
 
-using pvtap::analyzer::TcpDirectionStream;
+using pvtap::TcpDirectionStream;
 using Bytes = std::vector<std::uint8_t>;
 
 long peak_rss_kb() {
@@ -38,7 +38,7 @@ long peak_rss_kb() {
   return u.ru_maxrss;
 }
 
-struct StreamCount : pvtap::analyzer::TcpStreamSink {
+struct StreamCount : pvtap::TcpStreamSink {
   void on_stream_data(std::span<const std::uint8_t> b, double) override { delivered += b.size(); }
   void on_stream_gap(std::uint64_t lost_bytes, double) override { lost += lost_bytes; }
   std::uint64_t delivered = 0;

@@ -11,14 +11,14 @@
 #include <cstdint>
 #include <span>
 
-#include "carriers/tcp_stream.h"
 #include "fuzz_input.h"
+#include "pvtap/carriers/tcp_stream.h"
 
 namespace {
 
-using pvtap::analyzer::TcpDirectionStream;
+using pvtap::TcpDirectionStream;
 
-class CountingSink : public pvtap::analyzer::TcpStreamSink {
+class CountingSink : public pvtap::TcpStreamSink {
  public:
   void on_stream_data(std::span<const std::uint8_t> bytes, double) override {
     PVTAP_FUZZ_CHECK(!bytes.empty());

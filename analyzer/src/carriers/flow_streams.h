@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <span>
 
-#include "carriers/tcp_stream.h"
+#include "pvtap/carriers/tcp_stream.h"
 #include "pvtap/framing/bus_chunk.h"
 #include "pvtap/pcap/network_packet.h"
 #include "report/network_stats.h"

@@ -7,10 +7,10 @@
 #include <memory>
 #include <span>
 
-#include "carriers/flow_probe.h"
 #include "carriers/flow_streams.h"
 #include "carriers/gateway_traffic.h"
 #include "carriers/solarman_v5_flow.h"
+#include "pvtap/carriers/flow_probe.h"
 #include "pvtap/carriers/mbap_flow.h"
 
 namespace pvtap::analyzer {

@@ -1,12 +1,12 @@
 // TcpDirectionStream: one direction of a TCP connection back in order, holes reported as lost.
-#include "carriers/tcp_stream.h"
+#include "pvtap/carriers/tcp_stream.h"
 
 #include <gtest/gtest.h>
 
 #include <string>
 #include <vector>
 
-namespace pvtap::analyzer {
+namespace pvtap {
 namespace {
 
 // Records what the stream delivers: bytes as text, gaps as "[lost N]".
@@ -154,4 +154,4 @@ TEST_F(TcpStreamTest, SnapLengthCutIsALoss) {
 }
 
 }  // namespace
-}  // namespace pvtap::analyzer
+}  // namespace pvtap

@@ -1,5 +1,5 @@
 // FlowProbe: whether a flow carries inverter frames, decided from its first bytes.
-#include "carriers/flow_probe.h"
+#include "pvtap/carriers/flow_probe.h"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-namespace pvtap::analyzer {
+namespace pvtap {
 namespace {
 
 using Bytes = std::vector<std::uint8_t>;
@@ -115,4 +115,4 @@ TEST(FlowProbe, AFlowOnAPortIsABusUnlessItOpensWithV5) {
 }
 
 }  // namespace
-}  // namespace pvtap::analyzer
+}  // namespace pvtap

@@ -14,7 +14,7 @@
 #include "pvtap/codec/dialect.h"
 #include "pvtap/framing/stream_reassembler.h"
 
-namespace pvtap::analyzer {
+namespace pvtap {
 
 class FlowProbe {
  public:
@@ -78,4 +78,4 @@ class FlowProbe {
   std::array<solarman_v5::Recognition, kDirections> v5_{};
 };
 
-}  // namespace pvtap::analyzer
+}  // namespace pvtap

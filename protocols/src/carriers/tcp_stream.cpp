@@ -1,8 +1,8 @@
-#include "carriers/tcp_stream.h"
+#include "pvtap/carriers/tcp_stream.h"
 
 #include <algorithm>
 
-namespace pvtap::analyzer {
+namespace pvtap {
 namespace {
 
 // An acknowledgement this far beyond the stream is not believed (a stray or corrupt segment).
@@ -152,4 +152,4 @@ void TcpDirectionStream::flush(double time) {
   while (!pending_.empty()) give_up_hole(time);
 }
 
-}  // namespace pvtap::analyzer
+}  // namespace pvtap

@@ -6,7 +6,7 @@
 #include <span>
 #include <vector>
 
-namespace pvtap::analyzer {
+namespace pvtap {
 
 // TcpStreamSink: receives one direction's bytes in stream order, and the holes that were
 // never filled (capture data loss) with their size.
@@ -87,4 +87,4 @@ class TcpDirectionStream {
   TcpStreamStats stats_;
 };
 
-}  // namespace pvtap::analyzer
+}  // namespace pvtap

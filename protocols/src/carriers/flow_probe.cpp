@@ -1,8 +1,8 @@
-#include "carriers/flow_probe.h"
+#include "pvtap/carriers/flow_probe.h"
 
 #include "pvtap/carriers/mbap_structure.h"
 
-namespace pvtap::analyzer {
+namespace pvtap {
 
 FlowProbe::FlowProbe(DialectSet dialects, bool listed) : dialects_(dialects), listed_(listed) {}
 
@@ -88,4 +88,4 @@ void FlowProbe::clear() {
   for (auto& head : v5_head_) head = {};
 }
 
-}  // namespace pvtap::analyzer
+}  // namespace pvtap
