@@ -1,6 +1,8 @@
 // FlowStreams: segments to ordered bytes, per direction.
 #include "carriers/flow_streams.h"
 
+#include <algorithm>
+
 #include "carriers/endpoint_match.h"
 
 namespace pvtap::analyzer {
@@ -42,6 +44,13 @@ void FlowStreams::on_segment(const Segment& s, double time) {
 void FlowStreams::expire(double now) {
   to_slave_.stream.expire(now);
   from_slave_.stream.expire(now);
+}
+
+std::optional<double> FlowStreams::hole_deadline() const {
+  const std::optional<double> to = to_slave_.stream.hole_deadline();
+  const std::optional<double> from = from_slave_.stream.hole_deadline();
+  if (to && from) return std::min(*to, *from);
+  return to ? to : from;
 }
 
 void FlowStreams::flush(double time) {

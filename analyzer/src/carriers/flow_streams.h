@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <span>
 
 #include "pvtap/carriers/tcp_stream.h"
@@ -38,6 +39,8 @@ class FlowStreams {
   void on_segment(const Segment& s, double time);
   // Gives up holes that waited longer than allowed.
   void expire(double now);
+  // The earlier hole deadline of the two directions (TcpDirectionStream::hole_deadline).
+  std::optional<double> hole_deadline() const;
   // End of the flow: every hole is lost, every byte delivered.
   void flush(double time);
 

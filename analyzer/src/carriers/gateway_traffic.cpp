@@ -1,6 +1,8 @@
 #include "carriers/gateway_traffic.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <optional>
 
 #include "carriers/endpoint_match.h"
@@ -14,6 +16,12 @@ constexpr double kExpiryInterval = 0.25;
 // A flow silent this long is closed, so that a long capture full of short flows (DNS over
 // UDP never says goodbye) does not keep them all; a later packet opens it again.
 constexpr double kIdleFlow = 120.0;
+
+// When a flow silent since `last_seen` is closed; compared with the same value that
+// next_deadline() gives, so that a wake at it always acts.
+double idle_flow_end(double last_seen) {
+  return std::nextafter(last_seen + kIdleFlow, std::numeric_limits<double>::infinity());
+}
 
 bool listed(const std::vector<std::uint16_t>& ports, std::uint16_t port) {
   return std::find(ports.begin(), ports.end(), port) != ports.end();
@@ -113,9 +121,25 @@ void GatewayTraffic::expire_old_state(double now) {
     Connection& c = *it->second;
     c.streams.expire(now);
     const auto next = std::next(it);
-    if (now - c.last_seen > kIdleFlow) close(it, now);
+    if (now >= idle_flow_end(c.last_seen)) close(it, now);
     it = next;
   }
+}
+
+void GatewayTraffic::idle(double now) {
+  const std::optional<double> due = next_deadline();
+  if (due && now >= *due) expire_old_state(now);
+}
+
+std::optional<double> GatewayTraffic::next_deadline() const {
+  std::optional<double> earliest;
+  for (const auto& entry : flows_) {
+    const Connection& c = *entry.second;
+    double due = idle_flow_end(c.last_seen);
+    if (const std::optional<double> hole = c.streams.hole_deadline()) due = std::min(due, *hole);
+    if (!earliest || due < *earliest) earliest = due;
+  }
+  return earliest;
 }
 
 void GatewayTraffic::finish(double time) {

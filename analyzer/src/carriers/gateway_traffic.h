@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -32,6 +33,12 @@ class GatewayTraffic {
   GatewayTraffic& operator=(const GatewayTraffic&) = delete;
 
   void on_segment(const Segment& segment, double time);
+  // Live input: nothing arrived until `now`; holes and silent flows whose time has come are
+  // given up, as a segment arriving at `now` would have them.
+  void idle(double now);
+  // When idle() can next give something up: the earliest hole deadline or silent flow's end;
+  // nullopt when only more segments can.
+  std::optional<double> next_deadline() const;
   // End of input: holes are lost, flows still being probed are decided.
   void finish(double time);
   NetworkStats stats() const;

@@ -1,5 +1,7 @@
 #include "pipeline/pipeline.h"
 
+#include <algorithm>
+
 #include "pvtap/pcap/exported_pdu_reader.h"
 #include "pvtap/session/timestamping.h"
 #include "pvtap/statistics/bus_timing.h"
@@ -140,7 +142,16 @@ void Pipeline::raw_bytes(std::span<const std::uint8_t> bytes) {
 }
 
 void Pipeline::idle(double now) {
+  // Bytes a hole held back reach their bus first, so that the bus judges them at `now` too.
+  gateway_.idle(now);
   buses_.idle(now);
+}
+
+std::optional<double> Pipeline::next_deadline() const {
+  const std::optional<double> buses = buses_.next_deadline();
+  const std::optional<double> flows = gateway_.next_deadline();
+  if (buses && flows) return std::min(*buses, *flows);
+  return buses ? buses : flows;
 }
 
 void Pipeline::finish(double time) {

@@ -62,10 +62,11 @@ class Pipeline : private BusProvider {
   BusSession& add_bus(const std::string& name, const BusSessionOptions& options);
   BusSessionOptions bus_options(InputKind kind) const;
 
-  // Live sources: every bus has been silent until `now`.
+  // Live sources: every bus and every gateway flow has been silent until `now`.
   void idle(double now);
-  // When the buses can next decide something while silent (see BusSession::next_deadline).
-  std::optional<double> next_deadline() const { return buses_.next_deadline(); }
+  // When the buses or the gateway flows can next decide something while silent (see
+  // BusSession::next_deadline and GatewayTraffic::next_deadline).
+  std::optional<double> next_deadline() const;
   // End of input at `time`: every byte decided, every waiting request judged.
   void finish(double time);
 

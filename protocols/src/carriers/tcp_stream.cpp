@@ -1,6 +1,8 @@
 #include "pvtap/carriers/tcp_stream.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 namespace pvtap {
 namespace {
@@ -139,11 +141,17 @@ void TcpDirectionStream::on_peer_ack(std::uint32_t ack, double time) {
   skip(static_cast<std::uint64_t>(ahead), time);  // the last segments were never captured
 }
 
+std::optional<double> TcpDirectionStream::hole_deadline() const {
+  if (pending_.empty()) return std::nullopt;
+  double oldest = pending_.begin()->second.time;
+  for (const auto& entry : pending_) oldest = std::min(oldest, entry.second.time);
+  // Given up once it has waited longer than hole_wait, not at it; expire() compares with
+  // this very value, so that a wake at the deadline always acts.
+  return std::nextafter(oldest + limits_.hole_wait, std::numeric_limits<double>::infinity());
+}
+
 void TcpDirectionStream::expire(double now) {
-  while (!pending_.empty()) {
-    double oldest = pending_.begin()->second.time;
-    for (const auto& entry : pending_) oldest = std::min(oldest, entry.second.time);
-    if (now - oldest <= limits_.hole_wait) return;
+  for (std::optional<double> due = hole_deadline(); due && now >= *due; due = hole_deadline()) {
     give_up_hole(now);
   }
 }

@@ -142,6 +142,59 @@ TEST_F(PipelineTest, GatewayPacketsMakeOneBusPerGatewayEndpoint) {
   EXPECT_EQ(report.totals().transactions, 4u);
 }
 
+// Wakes as the live loop does, at each deadline the pipeline gives up to `until`; the number
+// of wakes (a deadline that did not move would make them endless).
+int wake_at_deadlines(Pipeline& pipeline, double until) {
+  int wakes = 0;
+  for (std::optional<double> due = pipeline.next_deadline(); due && *due <= until && wakes < 1000;
+       due = pipeline.next_deadline()) {
+    pipeline.idle(*due);
+    ++wakes;
+  }
+  return wakes;
+}
+
+// A live interface: a request segment is missing and nothing more arrives. The hole is given
+// up at a deadline the pipeline announces, so that the bytes behind it reach their bus
+// without waiting for another segment.
+TEST_F(PipelineTest, ALiveTcpHoleIsGivenUpAtItsDeadlineWithoutAnotherSegment) {
+  Pipeline pipeline(settings_, decoder_, events_);
+  pipeline.begin_input(dlt::kEthernet, false);
+  const Endpoint master = ipv4_endpoint(10, 0, 0, 1, 50000);
+  const Endpoint gateway = ipv4_endpoint(10, 0, 0, 2, 4001);
+  std::uint32_t mseq = 1000;
+  std::uint32_t sseq = 9000;
+  double t = 10.0;
+  for (int i = 0; i < 3; ++i) {
+    const Bytes request = request_bytes(3);
+    const Bytes reply = reply_bytes(3);
+    pipeline.record(packet(t += 0.1, tcp_packet(LinkLayer::Ethernet, {master, gateway},
+                                                {mseq, sseq, tcp_flag::kAck}, request)));
+    mseq += static_cast<std::uint32_t>(request.size());
+    pipeline.record(packet(t += 0.1, tcp_packet(LinkLayer::Ethernet, {gateway, master},
+                                                {sseq, mseq, tcp_flag::kAck}, reply)));
+    sseq += static_cast<std::uint32_t>(reply.size());
+  }
+  const Bytes lost = request_bytes(3);
+  const Bytes after = request_bytes(3);
+  const double hole_time = t += 0.1;
+  const auto behind = mseq + static_cast<std::uint32_t>(lost.size());
+  pipeline.record(packet(hole_time, tcp_packet(LinkLayer::Ethernet, {master, gateway},
+                                               {behind, sseq, tcp_flag::kAck}, after)));
+  const std::size_t frames_before = events_.frames.size();
+
+  EXPECT_LT(wake_at_deadlines(pipeline, hole_time + 2.0), 1000);
+  EXPECT_EQ(events_.gaps, 0u);  // waited 2 s, not longer
+  EXPECT_LT(wake_at_deadlines(pipeline, hole_time + 2.0 + 1e-6), 1000);
+  EXPECT_EQ(events_.gaps, 1u);
+  // The request behind the hole reached its bus and is judged there by the live clock.
+  EXPECT_LT(wake_at_deadlines(pipeline, hole_time + 10.0), 1000);
+  EXPECT_EQ(events_.frames.size(), frames_before + 1);
+  EXPECT_EQ(events_.timeouts.size(), 1u);
+  pipeline.finish(hole_time + 10.0);
+  EXPECT_EQ(pipeline.report().flows.lost_bytes, lost.size());
+}
+
 TEST_F(PipelineTest, PlainBytesHaveOneBusWithoutTimeEvenWhenEmpty) {
   settings_.has_timestamps = false;
   Pipeline pipeline(settings_, decoder_, events_);

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -110,6 +111,24 @@ TEST_F(TcpStreamTest, OldHoleExpires) {
   EXPECT_EQ(sink_.text, "ab");
   stream_.expire(3.6);
   EXPECT_EQ(sink_.text, "ab[lost 2]ef");
+}
+
+// A live capture wakes at the deadline the stream gives: the hole must go then, not a wake
+// later, and not before it.
+TEST_F(TcpStreamTest, AHoleGoesAtItsDeadline) {
+  EXPECT_FALSE(stream_.hole_deadline().has_value());
+  segment(100, "ab", 1.0);
+  segment(106, "gh", 1.7);
+  segment(104, "ef", 1.5);
+  const std::optional<double> due = stream_.hole_deadline();
+  ASSERT_TRUE(due.has_value());
+  EXPECT_GT(*due, 3.5);  // the oldest waiting segment, 1.5, and 2 s
+  EXPECT_LT(*due, 3.5 + 1e-9);
+  stream_.expire(3.5);
+  EXPECT_EQ(sink_.text, "ab");
+  stream_.expire(*due);
+  EXPECT_EQ(sink_.text, "ab[lost 2]efgh");
+  EXPECT_FALSE(stream_.hole_deadline().has_value());
 }
 
 TEST_F(TcpStreamTest, TooMuchWaitingDataGivesTheHoleUp) {

@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -49,8 +50,12 @@ class TcpDirectionStream {
                   bool syn, bool fin, double time);
   // An acknowledgement sent by the other side.
   void on_peer_ack(std::uint32_t ack, double time);
-  // Gives up a hole that waited longer than allowed.
+  // Gives up the holes whose deadline has come.
   void expire(double now);
+  // When the oldest waiting segment has waited `hole_wait`, the hole before it is given up:
+  // the next time expire() acts, so that a live capture gives up a hole while nothing arrives.
+  // nullopt while nothing waits.
+  std::optional<double> hole_deadline() const;
   // End of the connection or the capture: every hole is lost, every byte delivered.
   void flush(double time);
 
