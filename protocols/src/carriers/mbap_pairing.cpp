@@ -1,6 +1,8 @@
 #include "pvtap/carriers/mbap_pairing.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 namespace pvtap {
 
@@ -45,11 +47,20 @@ void MbapPairing::reply(const MbapAdu& adu) {
 void MbapPairing::advance(double now) {
   // Held oldest first: the overdue ones are a prefix.
   auto it = held_.begin();
-  while (it != held_.end() && now - it->time > timeout_) {
+  while (it != held_.end() && now >= due(*it)) {
     hand_on(*it);
     ++it;
   }
   held_.erase(held_.begin(), it);
+}
+
+double MbapPairing::due(const Held& h) const {
+  return std::nextafter(h.time + timeout_, std::numeric_limits<double>::infinity());
+}
+
+std::optional<double> MbapPairing::next_deadline() const {
+  if (held_.empty()) return std::nullopt;
+  return due(held_.front());
 }
 
 void MbapPairing::finish() {

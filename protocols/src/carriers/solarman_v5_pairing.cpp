@@ -1,6 +1,8 @@
 #include "pvtap/carriers/solarman_v5_pairing.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 namespace pvtap::solarman_v5 {
 
@@ -141,14 +143,30 @@ void SolarmanV5Pairing::coded(const Frame& f, double time, std::uint64_t offset,
 }
 
 void SolarmanV5Pairing::advance(double now) {
-  if (on_bus_ && now - on_bus_->time > timeout_) on_bus_.reset();
+  if (on_bus_ && now >= due(*on_bus_)) on_bus_.reset();
   // Held oldest first: the ones whose wait ran out are a prefix.
   auto it = held_.begin();
-  while (it != held_.end() && now - it->time > timeout_) {
+  while (it != held_.end() && now >= due(*it)) {
     hand_on(*it);
     ++it;
   }
   held_.erase(held_.begin(), it);
+}
+
+double SolarmanV5Pairing::due(const Waiting& w) const {
+  return std::nextafter(w.time + timeout_, std::numeric_limits<double>::infinity());
+}
+
+void SolarmanV5Pairing::idle(double now) {
+  advance(now);
+  promote();
+}
+
+std::optional<double> SolarmanV5Pairing::next_deadline() const {
+  if (held_.empty()) return std::nullopt;
+  // The request on the bus ending its wait lets the next held one on (promote).
+  if (on_bus_) return std::min(due(*on_bus_), due(held_.front()));
+  return due(held_.front());
 }
 
 void SolarmanV5Pairing::finish() {

@@ -1,6 +1,7 @@
 // MbapPairing: transactions handed on whole, by transaction id, in the order replies came.
 #include <gtest/gtest.h>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -47,6 +48,26 @@ TEST(MbapPairing, AnUnansweredRequestIsHandedOnAloneAfterItsTimeout) {
   EXPECT_EQ(rec.order, (std::vector<std::string>{"req2", "rep2"}));
   pairing.advance(1.01);
   EXPECT_EQ(rec.order, (std::vector<std::string>{"req2", "rep2", "req1"}));
+}
+
+// A live capture wakes at the deadline the pairing gives: the held request goes then, not
+// before and not a wake later.
+TEST(MbapPairing, AHeldRequestGoesAtItsDeadline) {
+  Recorder rec;
+  MbapPairing pairing(1.0, rec);
+  EXPECT_FALSE(pairing.next_deadline().has_value());
+  pairing.request(adu(1, 2.0));
+  pairing.request(adu(2, 2.5));
+  const std::optional<double> due = pairing.next_deadline();
+  ASSERT_TRUE(due.has_value());
+  EXPECT_GT(*due, 3.0);
+  EXPECT_LT(*due, 3.0 + 1e-9);
+  pairing.advance(3.0);
+  EXPECT_TRUE(rec.order.empty());
+  pairing.advance(*due);
+  EXPECT_EQ(rec.order, (std::vector<std::string>{"req1"}));
+  ASSERT_TRUE(pairing.next_deadline().has_value());
+  EXPECT_GT(*pairing.next_deadline(), 3.5);
 }
 
 TEST(MbapPairing, AReplyNobodyWaitsForAndAReusedIdAndTheEnd) {

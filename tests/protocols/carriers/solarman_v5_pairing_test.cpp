@@ -2,6 +2,7 @@
 // and its codes read as what they answer.
 #include <gtest/gtest.h>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -140,6 +141,26 @@ TEST(SolarmanV5Pairing, Code05IsNoReplyAndCode06WithAnotherSerialARefusal) {
   EXPECT_EQ(t.stick_timeouts, 1u);
   EXPECT_EQ(t.refused_requests, 1u);
   EXPECT_EQ(t.other_codes, 1u);
+}
+
+// A live capture wakes at the deadline the pairing gives: at the end of the wait of the
+// request on the bus, the held one goes on it, as a frame arriving then would let it.
+TEST(SolarmanV5Pairing, AHeldRequestGoesOnTheBusAtTheDeadlineWithoutAnotherFrame) {
+  Flow run;
+  run.at(0.0, heartbeat());
+  EXPECT_FALSE(run.pairing.next_deadline().has_value());
+  run.at(0.1, request(1));
+  EXPECT_FALSE(run.pairing.next_deadline().has_value());  // nothing held behind it
+  run.at(0.2, request(2));
+  const std::optional<double> due = run.pairing.next_deadline();
+  ASSERT_TRUE(due.has_value());
+  EXPECT_GT(*due, 1.1);
+  EXPECT_LT(*due, 1.1 + 1e-9);
+  run.pairing.idle(1.1);
+  EXPECT_EQ(run.rec.order, (std::vector<std::string>{"req1"}));
+  run.pairing.idle(*due);
+  EXPECT_EQ(run.rec.order, (std::vector<std::string>{"req1", "req2"}));
+  EXPECT_FALSE(run.pairing.next_deadline().has_value());
 }
 
 TEST(SolarmanV5Pairing, ARequestWaitsAtMostTheTimeoutAndIsHandedOnAtTheEnd) {

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -29,6 +30,10 @@ class MbapFlow final : MbapReleaseSink {
   // Data of `d` was lost: its unfinished ADU is given up; the session is told by the caller.
   void data_lost(Direction d, double time);
   void finish(double time);
+  // Nothing arrived until `now` (a live capture): requests held past their wait are handed on.
+  void idle(double now) { pairing_.advance(now); }
+  // When idle() can next hand a request on (MbapPairing::next_deadline).
+  std::optional<double> next_deadline() const { return pairing_.next_deadline(); }
 
   MbapTotals totals() const;  // of both directions
   // Stream position of the next byte of `d`: the offset its next ADU's frame will have.

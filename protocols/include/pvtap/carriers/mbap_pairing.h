@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -43,6 +44,9 @@ class MbapPairing {
   void reply(const MbapAdu& adu);
   // Time has reached `now`: requests whose timeout ran out are handed on.
   void advance(double now);
+  // When advance() next hands a request on while nothing arrives (a live capture); nullopt
+  // while none is held.
+  std::optional<double> next_deadline() const;
   // The flow ended: every held request is handed on.
   void finish();
 
@@ -57,6 +61,8 @@ class MbapPairing {
     std::array<std::uint8_t, kMbapMaxLength> frame{};
   };
   void hand_on(const Held& h);
+  // Past its timeout, not at it; advance() and next_deadline() both compare with this value.
+  double due(const Held& h) const;
 
   double timeout_;
   MbapReleaseSink& sink_;

@@ -67,6 +67,11 @@ class SolarmanV5Pairing {
   void frame(const Frame& f, double time, std::uint64_t offset = 0);
   // Time has reached `now`: requests whose wait ran out stop waiting.
   void advance(double now);
+  // Nothing arrived until `now` (a live capture): what a frame at `now` would release, before
+  // what it carries: requests whose wait ran out, and the next held one on the bus.
+  void idle(double now);
+  // When idle() next releases a held request; nullopt while none is held.
+  std::optional<double> next_deadline() const;
   // The flow ended: every held request is handed on.
   void finish();
 
@@ -96,6 +101,8 @@ class SolarmanV5Pairing {
   void promote();
   bool for_this_stick(const Waiting& w) const { return stick_serial_ == w.serial; }
   void hand_on(const Waiting& w);
+  // Past its wait, not at it; advance() and next_deadline() both compare with this value.
+  double due(const Waiting& w) const;
 
   double timeout_;
   ReleaseSink& sink_;
