@@ -86,20 +86,18 @@ GatewayTraffic::Connection* GatewayTraffic::find_or_open(const Segment& s) {
   const bool opens = !s.payload.empty() || (s.flags & tcp_flag::kSyn) != 0 || s.payload_on_wire > 0;
   if (!opens) return nullptr;
   const std::optional<Endpoint> slave = slave_side(s, options_.ports);
-  using State = Connection::State;
   // A flow on a --port is still probed: its first bytes say whether a logger stick wraps it.
-  const State initial = slave ? State::Probing : State::Ignored;
   const bool listed = !options_.ports.empty();
   const Endpoint side = slave ? *slave : s.destination;
   auto connection =
-      std::make_unique<Connection>(s.transport, side, initial, listed, options_, buses_);
+      std::make_unique<Connection>(s.transport, side, slave.has_value(), listed, options_, buses_);
   last_flow_ = flows_.emplace(key, std::move(connection)).first->second.get();
   last_key_ = key;
   return last_flow_;
 }
 
 void GatewayTraffic::on_segment(const Segment& segment, double time) {
-  if (time - last_expiry_ >= kExpiryInterval) expire_old_state(time);
+  if (time - last_expiry_ >= kExpiryInterval) expire_old_state(time, false);
   Connection* c = find_or_open(segment);
   if (c == nullptr) return;
   c->on_segment(segment, time);
@@ -115,11 +113,17 @@ void GatewayTraffic::close(std::map<FlowKey, std::unique_ptr<Connection>>::itera
   flows_.erase(it);
 }
 
-void GatewayTraffic::expire_old_state(double now) {
+void GatewayTraffic::expire_old_state(double now, bool live) {
   last_expiry_ = now;
   for (auto it = flows_.begin(); it != flows_.end();) {
     Connection& c = *it->second;
-    c.streams.expire(now);
+    // A file's flows move their carriers' time with their own bytes only, so that one flow's
+    // packets do not change when another's held requests go on.
+    if (live) {
+      c.idle(now);
+    } else {
+      c.streams.expire(now);
+    }
     const auto next = std::next(it);
     if (now >= idle_flow_end(c.last_seen)) close(it, now);
     it = next;
@@ -128,7 +132,7 @@ void GatewayTraffic::expire_old_state(double now) {
 
 void GatewayTraffic::idle(double now) {
   const std::optional<double> due = next_deadline();
-  if (due && now >= *due) expire_old_state(now);
+  if (due && now >= *due) expire_old_state(now, true);
 }
 
 std::optional<double> GatewayTraffic::next_deadline() const {
@@ -136,7 +140,7 @@ std::optional<double> GatewayTraffic::next_deadline() const {
   for (const auto& entry : flows_) {
     const Connection& c = *entry.second;
     double due = idle_flow_end(c.last_seen);
-    if (const std::optional<double> hole = c.streams.hole_deadline()) due = std::min(due, *hole);
+    if (const std::optional<double> held = c.next_deadline()) due = std::min(due, *held);
     if (!earliest || due < *earliest) earliest = due;
   }
   return earliest;

@@ -52,8 +52,9 @@ class GatewayTraffic {
   Connection* find_or_open(const Segment& s);
   bool in_last_flow(const Segment& s) const;  // the flow of last_key_, either way round
   void close(std::map<FlowKey, std::unique_ptr<Connection>>::iterator it, double time);
-  // Gives up TCP holes that waited too long and closes flows silent for long.
-  void expire_old_state(double now);
+  // Gives up TCP holes that waited too long and closes flows silent for long; `live`: and
+  // the carriers' held requests whose wait ran out (see Connection::idle).
+  void expire_old_state(double now, bool live);
 
   GatewayOptions options_;
   BusProvider& buses_;

@@ -79,6 +79,18 @@ BusSession& SolarmanV5Flow::bus_for(std::uint32_t serial) {
   return *bus_;
 }
 
+void SolarmanV5Flow::add_stats(NetworkStats& into) const {
+  ++into.flows_analyzed;
+  ++into.v5_flows;
+  into.v5 += totals();
+  std::vector<std::string>& said = into.v5_finding_examples;
+  for (const std::string& e : examples_) {
+    if (said.size() >= NetworkStats::kMaxExamples) break;
+    // Each connection of a client with a wrong serial is refused alike: said once.
+    if (std::find(said.begin(), said.end(), e) == said.end()) said.push_back(e);
+  }
+}
+
 v5::Totals SolarmanV5Flow::totals() const {
   v5::Totals t = readers_[0].totals();
   t += readers_[1].totals();

@@ -195,6 +195,51 @@ TEST_F(PipelineTest, ALiveTcpHoleIsGivenUpAtItsDeadlineWithoutAnotherSegment) {
   EXPECT_EQ(pipeline.report().flows.lost_bytes, lost.size());
 }
 
+// A Modbus/TCP ADU around an RTU frame: the frame without its CRC after the MBAP header.
+Bytes mbap_adu(std::uint16_t transaction, const Bytes& rtu) {
+  const auto length = static_cast<std::uint16_t>(rtu.size() - 2);
+  Bytes adu = {
+      static_cast<std::uint8_t>(transaction >> 8), static_cast<std::uint8_t>(transaction), 0, 0,
+      static_cast<std::uint8_t>(length >> 8),      static_cast<std::uint8_t>(length)};
+  adu.insert(adu.end(), rtu.begin(), rtu.end() - 2);
+  return adu;
+}
+
+// A live Modbus/TCP flow: the last request gets no reply and nothing more arrives. The request
+// is held for its reply (10 s at least) and then handed on at a deadline the pipeline
+// announces, so that its bus judges it unanswered without waiting for another segment.
+TEST_F(PipelineTest, ALiveModbusTcpRequestHeldForItsReplyGoesOnAtItsDeadline) {
+  Pipeline pipeline(settings_, decoder_, events_);
+  pipeline.begin_input(dlt::kEthernet, false);
+  const Endpoint master = ipv4_endpoint(10, 0, 0, 1, 50000);
+  const Endpoint gateway = ipv4_endpoint(10, 0, 0, 2, 502);
+  std::uint32_t mseq = 1000;
+  std::uint32_t sseq = 9000;
+  double t = 10.0;
+  auto send = [&](const Endpoint& from, const Endpoint& to, std::uint32_t& seq, std::uint32_t ack,
+                  const Bytes& payload) {
+    pipeline.record(packet(t += 0.1, tcp_packet(LinkLayer::Ethernet, {from, to},
+                                                {seq, ack, tcp_flag::kAck}, payload)));
+    seq += static_cast<std::uint32_t>(payload.size());
+  };
+  for (std::uint16_t tid = 1; tid <= 3; ++tid) {
+    send(master, gateway, mseq, sseq, mbap_adu(tid, request_bytes(3)));
+    send(gateway, master, sseq, mseq, mbap_adu(tid, reply_bytes(3)));
+  }
+  send(master, gateway, mseq, sseq, mbap_adu(4, request_bytes(3)));
+  const double asked = t;
+  EXPECT_EQ(events_.frames.size(), 6u);
+
+  EXPECT_LT(wake_at_deadlines(pipeline, asked + 9.9), 1000);
+  EXPECT_EQ(events_.frames.size(), 6u);  // still held for its reply
+  EXPECT_LT(wake_at_deadlines(pipeline, asked + 12.0), 1000);
+  ASSERT_EQ(events_.frames.size(), 7u);
+  EXPECT_EQ(events_.frames.back().role, Role::Request);
+  ASSERT_EQ(events_.timeouts.size(), 1u);
+  pipeline.finish(asked + 12.0);
+  EXPECT_EQ(pipeline.report().flows.mbap_flows, 1u);
+}
+
 TEST_F(PipelineTest, PlainBytesHaveOneBusWithoutTimeEvenWhenEmpty) {
   settings_.has_timestamps = false;
   Pipeline pipeline(settings_, decoder_, events_);
