@@ -52,7 +52,7 @@ std::unique_ptr<UartTap> tap_planned_channels(const LogicPlan& plan, Pipeline& p
     const int pair = group.size() == 2 ? pairs++ : -1;
     for (std::size_t side = 0; side < group.size(); ++side) {
       const ProbedChannel& p = plan.channels[group[side]];
-      tapped.push_back(TappedChannel{p.channel, *p.line, &bus, pair, side});
+      tapped.push_back(TappedChannel{p.channel, *p.line, &bus, name, pair, side});
     }
   }
   return std::make_unique<UartTap>(std::move(tapped), plan.drivers, plan.sample_rate, events);
@@ -83,9 +83,8 @@ LogicRun run_logic_audit(const LogicPlan& plan, Pipeline& pipeline, EventWriter&
 // A bus on two channels reports its requests' line (the first), with the errors of both.
 void add_serial_lines(const LogicRun& run, AuditReport& report) {
   for (BusFindings& bus : report.buses) {
-    const std::string names = "," + bus.name + ",";
-    for (const SerialLineReport& line : run.lines) {
-      if (names.find("," + line.channel + ",") == std::string::npos) continue;
+    for (const auto& [bus_name, line] : run.lines) {
+      if (bus_name != bus.name) continue;
       if (bus.serial) {
         merge_errors(line, *bus.serial);
       } else {
@@ -94,7 +93,7 @@ void add_serial_lines(const LogicRun& run, AuditReport& report) {
       }
     }
   }
-  if (!run.lines.empty()) report.settings.baud = run.lines.front().baud;
+  if (!run.lines.empty()) report.settings.baud = run.lines.front().line.baud;
   // The sample clock counts from the recording's start: no time here is a wall-clock time.
   report.settings.time_base = TimeBase::RecordingStart;
   report.inputs.push_back(run.input);

@@ -17,7 +17,7 @@ struct LogicRun {
   std::string error;    // reading failed part way (what came before was fed)
   double end_time = 0;  // seconds from the recording's start
   InputReport input;
-  std::vector<SerialLineReport> lines;  // per bus, in plan order; the bus is the channel name
+  std::vector<TappedLine> lines;  // per channel, in plan order, with the bus each feeds
 };
 
 // A bus per planned bus (named after its channels) in `pipeline`, and the tap that feeds them

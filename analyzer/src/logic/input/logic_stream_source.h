@@ -51,7 +51,7 @@ class LogicStreamSource {
   std::vector<std::uint8_t> held_;
   LogicPlan plan_;
   std::unique_ptr<UartTap> tap_;
-  std::vector<SerialLineReport> lines_;
+  std::vector<TappedLine> lines_;
 };
 
 }  // namespace pvtap::analyzer

@@ -178,10 +178,10 @@ double UartTap::end_time() const {
                         : static_cast<double>(slots_.front().decoder.position()) / sample_rate_;
 }
 
-std::vector<SerialLineReport> UartTap::lines() const {
-  std::vector<SerialLineReport> out;
-  for (const Slot& s : slots_) out.push_back(s.report);
-  if (!out.empty()) out.front().turnarounds = turnaround_.turnarounds();
+std::vector<TappedLine> UartTap::lines() const {
+  std::vector<TappedLine> out;
+  for (const Slot& s : slots_) out.push_back(TappedLine{s.tapped.bus_name, s.report});
+  if (!out.empty()) out.front().line.turnarounds = turnaround_.turnarounds();
   return out;
 }
 

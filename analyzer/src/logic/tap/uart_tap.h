@@ -22,10 +22,17 @@ struct TappedChannel {
   LogicChannel channel;
   DetectedLine line;
   BusSession* bus = nullptr;
+  std::string bus_name;  // as the report names `bus`
   // One direction of a bus on two channels: the pair's index and its side (0: requests,
   // 1: replies); none for a channel that is a bus of its own.
   int pair = -1;
   std::size_t side = 0;
+};
+
+// TappedLine: a channel's serial line and the bus it feeds.
+struct TappedLine {
+  std::string bus;
+  SerialLineReport line;
 };
 
 class UartTap final : public LogicSink, private RunConsumer {
@@ -44,7 +51,7 @@ class UartTap final : public LogicSink, private RunConsumer {
   double end_time() const;
   std::uint64_t chunks() const { return chunks_; }  // of samples, as libsigrok handed them
   // Each channel's line, in the order given.
-  std::vector<SerialLineReport> lines() const;
+  std::vector<TappedLine> lines() const;
 
  private:
   struct Slot {
