@@ -158,7 +158,7 @@ int audit(const AuditOptions& options, const RegisterDecoder& decoder, OutputStr
   RunOutput output(output_settings(options), out);
   if (!output.open()) return kExitBadInput;
   Pipeline pipeline(input.pipeline_settings(pipeline_settings(options)), decoder, output.events());
-  const bool complete = input.read(pipeline, output.events());
+  const bool complete = input.read(pipeline);
   output.end_of_input(input.end_time());
   AuditReport report = pipeline.report();
   input.complete(report);

@@ -158,9 +158,9 @@ PipelineSettings AuditInput::pipeline_settings(PipelineSettings settings) const 
   return settings;
 }
 
-bool AuditInput::read(Pipeline& pipeline, EventWriter& events) {
+bool AuditInput::read(Pipeline& pipeline) {
   if (logic_) {
-    logic_run_ = run_logic_audit(*logic_plan_, pipeline, events);
+    logic_run_ = run_logic_audit(*logic_plan_, pipeline);
     end_time_ = logic_run_->end_time;
     return logic_run_->error.empty();
   }

@@ -40,10 +40,10 @@ class AuditInput {
   bool plan();
   // The settings the pipeline reading these inputs needs (plain dumps have no time).
   PipelineSettings pipeline_settings(PipelineSettings settings) const;
-  // Reads every input into `pipeline` and finishes it; a logic recording's driver glitches
-  // go to `events`. False when an input was damaged, not read or repeated another's records:
-  // what could be read was fed all the same (report_problems() says what went wrong).
-  bool read(Pipeline& pipeline, EventWriter& events);
+  // Reads every input into `pipeline` and finishes it. False when an input was damaged, not
+  // read or repeated another's records: what could be read was fed all the same
+  // (report_problems() says what went wrong).
+  bool read(Pipeline& pipeline);
   // The time the input ended (the latest record's).
   double end_time() const { return end_time_; }
   // The report's inputs, and a logic recording's serial lines.

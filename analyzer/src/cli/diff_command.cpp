@@ -147,7 +147,7 @@ bool read_side(const DiffCommandLine& command, const std::string& given,
   EventFanout events;
   events.add(ranges);
   Pipeline pipeline(settings, decoder, events);
-  const bool complete = input.read(pipeline, events);
+  const bool complete = input.read(pipeline);
   side.report = pipeline.report();
   input.complete(side.report);
   if (!complete) {

@@ -228,7 +228,7 @@ int capture(const SniffOptions& o, const RegisterDecoder& decoder, OutputStream&
   bool opened = false;
   std::unique_ptr<LogicStreamSource> logic;
   if (!o.live.logic_input.empty()) {
-    logic = std::make_unique<LogicStreamSource>(o.live, pipeline, output.events());
+    logic = std::make_unique<LogicStreamSource>(o.live, pipeline);
     opened = capture_from(*logic, o, pipeline, output, live);
   } else if (!o.live.devices.empty()) {
     SerialTaps taps(o.live, o.baud, pipeline);

@@ -31,10 +31,10 @@ class EventFanout : public EventWriter {
   void collision(const EventContext& c, const SessionCollision& k) override {
     for (EventWriter* w : consumers_) w->collision(c, k);
   }
-  void driver_glitch(const EventContext& c, const DriverGlitchEvent& g) override {
+  void driver_glitch(const EventContext& c, const SessionDriverGlitch& g) override {
     for (EventWriter* w : consumers_) w->driver_glitch(c, g);
   }
-  void line_error(const EventContext& c, const LineErrorEvent& e) override {
+  void line_error(const EventContext& c, const SessionLineError& e) override {
     for (EventWriter* w : consumers_) w->line_error(c, e);
   }
 

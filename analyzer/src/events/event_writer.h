@@ -20,36 +20,16 @@ struct EventContext {
   const BusSession* session = nullptr;
 };
 
-// DriverGlitchEvent: a byte an RS485 driver put on the line as it switched on (right before a
-// frame) or off (right after one); kept out of the frames and of the noise.
-struct DriverGlitchEvent {
-  double time = 0;  // its start bit's edge
-  std::uint8_t value = 0;
-  bool switch_on = true;
-  bool framing_error = false;
-};
-
-// LineErrorEvent: a character the UART could not read cleanly (a stop bit read as space, a
-// parity bit that does not hold) or a break. Such a character still goes to its frame, whose
-// check then fails; the event says which character and why.
-struct LineErrorEvent {
-  enum class Kind : std::uint8_t { framing, parity, framing_and_parity, line_break };
-  double time = 0;  // its start bit's edge
-  double duration = 0;
-  std::uint8_t value = 0;  // none for a break
-  Kind kind = Kind::framing;
-};
-
 // The words for a line error in every output: "framing", "parity", "framing+parity", "break".
-constexpr std::string_view line_error_name(LineErrorEvent::Kind kind) {
+constexpr std::string_view line_error_name(LineErrorKind kind) {
   switch (kind) {
-    case LineErrorEvent::Kind::framing:
+    case LineErrorKind::Framing:
       return "framing";
-    case LineErrorEvent::Kind::parity:
+    case LineErrorKind::Parity:
       return "parity";
-    case LineErrorEvent::Kind::framing_and_parity:
+    case LineErrorKind::FramingAndParity:
       return "framing+parity";
-    case LineErrorEvent::Kind::line_break:
+    case LineErrorKind::Break:
       return "break";
   }
   return "framing";
@@ -66,8 +46,8 @@ class EventWriter {
   // Only buses with a second master have them; formats that list events show them.
   virtual void collision(const EventContext&, const SessionCollision&) {}
   // Only logic recordings see the line itself: other formats need not show these.
-  virtual void driver_glitch(const EventContext&, const DriverGlitchEvent&) {}
-  virtual void line_error(const EventContext&, const LineErrorEvent&) {}
+  virtual void driver_glitch(const EventContext&, const SessionDriverGlitch&) {}
+  virtual void line_error(const EventContext&, const SessionLineError&) {}
 };
 
 }  // namespace pvtap::analyzer

@@ -20,13 +20,12 @@ BusSessionOptions logic_bus_options(const Pipeline& pipeline, const DetectedLine
   return o;
 }
 
-void merge_errors(const SerialLineReport& from, SerialLineReport& into) {
-  into.framing_errors += from.framing_errors;
-  into.parity_errors += from.parity_errors;
-  into.breaks += from.breaks;
-  into.driver_glitches += from.driver_glitches;
-  // Both directions of a bus off the standard rate are one clock finding, not two.
-  into.clock_deviations = std::max(into.clock_deviations, from.clock_deviations);
+// The line's errors are the bus's: its session counted them as they came.
+void take_line_errors(const LineErrorTally& counted, SerialLineReport& line) {
+  line.framing_errors = counted.framing_errors;
+  line.parity_errors = counted.parity_errors;
+  line.breaks = counted.breaks;
+  line.driver_glitches = counted.driver_glitches;
 }
 
 }  // namespace
@@ -38,8 +37,7 @@ std::string logic_link_text(const LogicPlan& plan) {
   return text;
 }
 
-std::unique_ptr<UartTap> tap_planned_channels(const LogicPlan& plan, Pipeline& pipeline,
-                                              EventWriter& events) {
+std::unique_ptr<UartTap> tap_planned_channels(const LogicPlan& plan, Pipeline& pipeline) {
   std::vector<TappedChannel> tapped;
   int pairs = 0;
   for (const std::vector<std::size_t>& group : plan.buses) {
@@ -55,11 +53,11 @@ std::unique_ptr<UartTap> tap_planned_channels(const LogicPlan& plan, Pipeline& p
       tapped.push_back(TappedChannel{p.channel, *p.line, &bus, name, pair, side});
     }
   }
-  return std::make_unique<UartTap>(std::move(tapped), plan.drivers, plan.sample_rate, events);
+  return std::make_unique<UartTap>(std::move(tapped), plan.drivers, plan.sample_rate);
 }
 
-LogicRun run_logic_audit(const LogicPlan& plan, Pipeline& pipeline, EventWriter& events) {
-  const std::unique_ptr<UartTap> owned = tap_planned_channels(plan, pipeline, events);
+LogicRun run_logic_audit(const LogicPlan& plan, Pipeline& pipeline) {
+  const std::unique_ptr<UartTap> owned = tap_planned_channels(plan, pipeline);
   UartTap& tap = *owned;
   LogicRun run;
   if (plan.held.whole) {
@@ -86,12 +84,15 @@ void add_serial_lines(const LogicRun& run, AuditReport& report) {
     for (const auto& [bus_name, line] : run.lines) {
       if (bus_name != bus.name) continue;
       if (bus.serial) {
-        merge_errors(line, *bus.serial);
+        // Both directions of a bus off the standard rate are one clock finding, not two.
+        bus.serial->clock_deviations =
+            std::max(bus.serial->clock_deviations, line.clock_deviations);
       } else {
         bus.serial = line;
         bus.serial->channel = bus.name;
       }
     }
+    if (bus.serial) take_line_errors(bus.report.line_errors, *bus.serial);
   }
   if (!run.lines.empty()) report.settings.baud = run.lines.front().line.baud;
   // The sample clock counts from the recording's start: no time here is a wall-clock time.

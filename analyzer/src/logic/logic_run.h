@@ -21,16 +21,15 @@ struct LogicRun {
 };
 
 // A bus per planned bus (named after its channels) in `pipeline`, and the tap that feeds them
-// the characters of the samples it is given. Driver glitches go to `events`.
-std::unique_ptr<UartTap> tap_planned_channels(const LogicPlan& plan, Pipeline& pipeline,
-                                              EventWriter& events);
+// the characters, line errors and driver glitches of the samples it is given.
+std::unique_ptr<UartTap> tap_planned_channels(const LogicPlan& plan, Pipeline& pipeline);
 
 // The input line of the report: "sigrok logic, N UART channels at R MS/s".
 std::string logic_link_text(const LogicPlan& plan);
 
 // Feeds `pipeline` a bus per planned channel (named after the channel) and reads the
-// recording into them; finishes the pipeline. Driver glitches go to `events` (the pipeline's).
-LogicRun run_logic_audit(const LogicPlan& plan, Pipeline& pipeline, EventWriter& events);
+// recording into them; finishes the pipeline.
+LogicRun run_logic_audit(const LogicPlan& plan, Pipeline& pipeline);
 
 // The report's buses get their serial lines, and the report its rate (the first bus's).
 void add_serial_lines(const LogicRun& run, AuditReport& report);

@@ -19,6 +19,10 @@ class BusOutput : public BusSessionSink {
   void on_noise(const SessionNoise& n) override { events_.noise(context_, n); }
   void on_gap(const SessionGap& g) override { events_.gap(context_, g); }
   void on_collision(const SessionCollision& k) override { events_.collision(context_, k); }
+  void on_line_error(const SessionLineError& e) override { events_.line_error(context_, e); }
+  void on_driver_glitch(const SessionDriverGlitch& g) override {
+    events_.driver_glitch(context_, g);
+  }
   const std::string& name() const { return name_; }
   void attach(const BusSession& session) { context_.session = &session; }
 

@@ -93,7 +93,7 @@ class JsonlEventWriter : public EventWriter {
     end_line(w, c);
   }
 
-  void driver_glitch(const EventContext& c, const DriverGlitchEvent& g) override {
+  void driver_glitch(const EventContext& c, const SessionDriverGlitch& g) override {
     JsonWriter w = begin_line("driver_glitch", c, g.time);
     w.field_hex("raw", std::span(&g.value, 1));
     w.field_plain("switching", g.switch_on ? "on" : "off");
@@ -101,10 +101,10 @@ class JsonlEventWriter : public EventWriter {
     end_line(w, c);
   }
 
-  void line_error(const EventContext& c, const LineErrorEvent& e) override {
+  void line_error(const EventContext& c, const SessionLineError& e) override {
     JsonWriter w = begin_line("line_error", c, e.time);
     w.field_plain("error", line_error_name(e.kind));
-    if (e.kind != LineErrorEvent::Kind::line_break) w.field_hex("raw", std::span(&e.value, 1));
+    if (e.kind != LineErrorKind::Break) w.field_hex("raw", std::span(&e.value, 1));
     w.field_fixed("duration_us", e.duration * 1e6, 1);
     end_line(w, c);
   }

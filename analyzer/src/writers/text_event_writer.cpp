@@ -87,7 +87,7 @@ class TextEventWriter : public EventWriter {
     out_.done();
   }
 
-  void driver_glitch(const EventContext& c, const DriverGlitchEvent& g) override {
+  void driver_glitch(const EventContext& c, const SessionDriverGlitch& g) override {
     std::string& o = out_.buffer();
     const std::size_t start = begin_line(o, c, g.time, 0);
     o += "glitch";
@@ -99,12 +99,12 @@ class TextEventWriter : public EventWriter {
     out_.done();
   }
 
-  void line_error(const EventContext& c, const LineErrorEvent& e) override {
+  void line_error(const EventContext& c, const SessionLineError& e) override {
     std::string& o = out_.buffer();
     const std::size_t start = begin_line(o, c, e.time, 0);
     o += "line";
     pad_to(o, start, 8);
-    if (e.kind != LineErrorEvent::Kind::line_break) {
+    if (e.kind != LineErrorKind::Break) {
       append_spaced_hex(o, std::span(&e.value, 1));
       o += "  ";
     }

@@ -19,7 +19,8 @@ constexpr bool holds_counters(std::size_t n) {
 static_assert(holds_counters<ReassemblerTotals>(6), "add the new counter up below");
 static_assert(holds_counters<RoleCounts>(2), "add the new counter up below");
 static_assert(holds_counters<GapTally>(3), "add the new counter up below");
-static_assert(holds_counters<BusCounters>(6 + 2 + kDialectCount * 2 + 1 + 1 + 2 + 4 + 16 + 3),
+static_assert(holds_counters<LineErrorTally>(4), "add the new counter up below");
+static_assert(holds_counters<BusCounters>(6 + 2 + kDialectCount * 2 + 1 + 1 + 2 + 4 + 16 + 3 + 4),
               "add the new counter up below");
 
 RoleCounts& operator+=(RoleCounts& a, const RoleCounts& b) {
@@ -52,6 +53,14 @@ ReassemblerTotals& ReassemblerTotals::operator+=(const ReassemblerTotals& o) {
   return *this;
 }
 
+LineErrorTally& LineErrorTally::operator+=(const LineErrorTally& o) {
+  framing_errors += o.framing_errors;
+  parity_errors += o.parity_errors;
+  breaks += o.breaks;
+  driver_glitches += o.driver_glitches;
+  return *this;
+}
+
 BusCounters& BusCounters::operator+=(const BusCounters& o) {
   bytes += o.bytes;
   requests += o.requests;
@@ -81,6 +90,7 @@ BusCounters& BusCounters::operator+=(const BusCounters& o) {
   exceptions += o.exceptions;
   gateway_timeouts += o.gateway_timeouts;
   gaps += o.gaps;
+  line_errors += o.line_errors;
   return *this;
 }
 

@@ -307,6 +307,16 @@ void BusSession::data_lost(Direction direction, double time,
   m.sink.on_gap(gap);
 }
 
+void BusSession::line_error(const SessionLineError& e) {
+  impl_->tally.add_line_error(e);
+  impl_->sink.on_line_error(e);
+}
+
+void BusSession::driver_glitch(const SessionDriverGlitch& g) {
+  impl_->tally.add_driver_glitch(g);
+  impl_->sink.on_driver_glitch(g);
+}
+
 void BusSession::restart(Direction direction) {
   auto& s = impl_->streams[index_of(direction)];
   if (s) s->reassembler.discontinuity();

@@ -99,6 +99,7 @@ void BusTally::fill(BusReport& r) const {
   r.exceptions = e.exceptions;
   r.gateway_timeouts = e.gateway_timeouts;
   r.gaps = e.gaps;
+  r.line_errors = e.line_errors;
   r.exception_codes.clear();
   for (const auto& [key, count] : exception_codes_) {
     r.exception_codes.push_back(ExceptionTally{key.first, key.second, count});

@@ -23,6 +23,8 @@ class BusTally {
   void add_timeout(const SessionTimeout& t);
   void add_gap(const SessionGap& g);
   void add_noise(const SessionNoise& n) { events_.add(n); }
+  void add_line_error(const SessionLineError& e) { events_.add(e); }
+  void add_driver_glitch(const SessionDriverGlitch& g) { events_.add(g); }
   void add_transaction(const Transaction& t);
   const EventTally& events() const { return events_; }
   // What EventTally does not count (requests, echoes, ...), as fill() writes them.

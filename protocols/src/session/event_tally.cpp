@@ -19,6 +19,7 @@ EventCounts& EventCounts::operator+=(const EventCounts& o) {
   gaps.gaps += o.gaps.gaps;
   gaps.lost_bytes += o.gaps.lost_bytes;
   gaps.gaps_of_unknown_size += o.gaps.gaps_of_unknown_size;
+  line_errors += o.line_errors;
   return *this;
 }
 
@@ -65,6 +66,22 @@ void EventTally::add(const SessionGap& g) {
   } else {
     ++counts_.gaps.gaps_of_unknown_size;
   }
+}
+
+// As a receiver counts them: a character with both errors counts under each.
+void EventTally::add(const SessionLineError& e) {
+  LineErrorTally& t = counts_.line_errors;
+  t.framing_errors += e.kind == LineErrorKind::Framing || e.kind == LineErrorKind::FramingAndParity;
+  t.parity_errors += e.kind == LineErrorKind::Parity || e.kind == LineErrorKind::FramingAndParity;
+  t.breaks += e.kind == LineErrorKind::Break ? 1 : 0;
+}
+
+// A glitch's byte was read with its errors too, before it was known to be a glitch.
+void EventTally::add(const SessionDriverGlitch& g) {
+  LineErrorTally& t = counts_.line_errors;
+  ++t.driver_glitches;
+  t.framing_errors += g.framing_error ? 1 : 0;
+  t.parity_errors += g.parity_error ? 1 : 0;
 }
 
 void EventTally::merge(const EventTally& other) {

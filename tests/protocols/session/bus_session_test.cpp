@@ -10,6 +10,7 @@
 #include "frame_builders.h"
 #include "hex_bytes.h"
 #include "pvtap/codec/frame_codec.h"
+#include "pvtap/session/event_tally.h"
 #include "pvtap/statistics/bus_timing.h"
 
 namespace pvtap {
@@ -48,12 +49,16 @@ struct Recorder : BusSessionSink {
   void on_timeout(const SessionTimeout& t) override { timeouts.push_back(t); }
   void on_noise(const SessionNoise& n) override { noise_bytes += n.noise.bytes.size(); }
   void on_gap(const SessionGap& g) override { gaps.push_back(g); }
+  void on_line_error(const SessionLineError& e) override { line_errors.push_back(e); }
+  void on_driver_glitch(const SessionDriverGlitch& g) override { glitches.push_back(g); }
 
   std::vector<SessionFrame> frames;
   std::vector<std::vector<std::string>> value_texts;
   std::vector<Bytes> raw;
   std::vector<SessionTimeout> timeouts;
   std::vector<SessionGap> gaps;
+  std::vector<SessionLineError> line_errors;
+  std::vector<SessionDriverGlitch> glitches;
   std::size_t noise_bytes = 0;
 };
 
@@ -119,6 +124,35 @@ TEST_F(BusSessionTest, TapOnTheBusGivesTransactionsLatencyAndLatestValues) {
 // byte, the reply would start before its request ended; on a half-duplex bus it cannot.
 // Every register a reply carries is a latest value, mapped or not: words no map names keep
 // their table (holding and input registers at one address apart), coils are bits.
+// What the UART saw besides bytes goes through the session as every other event: handed on
+// with its direction, and counted by the one tally, as a receiver counts: a character with
+// both errors under each, a glitch's byte with the errors it was read with.
+TEST_F(BusSessionTest, LineErrorsAndDriverGlitchesAreEventsOfTheBusAndItsCounts) {
+  make();
+  session_->line_error({1.0, 0.0005, 0x03, LineErrorKind::Framing, Direction::FromSlave});
+  session_->line_error({1.1, 0.0005, 0x00, LineErrorKind::Parity, Direction::ToSlave});
+  session_->line_error({1.2, 0.0005, 0x07, LineErrorKind::FramingAndParity, Direction::Unknown});
+  session_->line_error({1.3, 0.002, 0, LineErrorKind::Break, Direction::Unknown});
+  session_->driver_glitch({1.4, 0x00, true, true, false, Direction::FromSlave});
+  session_->driver_glitch({1.5, 0xFE, false, false, true, Direction::FromSlave});
+  session_->driver_glitch({1.6, 0xFF, false, false, false, Direction::ToSlave});
+  session_->finish();
+
+  ASSERT_EQ(recorder_.line_errors.size(), 4u);
+  EXPECT_EQ(recorder_.line_errors[0].direction, Direction::FromSlave);
+  EXPECT_EQ(recorder_.line_errors[3].kind, LineErrorKind::Break);
+  ASSERT_EQ(recorder_.glitches.size(), 3u);
+  EXPECT_EQ(recorder_.glitches[1].value, 0xFE);
+  const LineErrorTally& counted = session_->tally().counts().line_errors;
+  EXPECT_EQ(counted.framing_errors, 3u);  // framing, framing and parity, a glitch's
+  EXPECT_EQ(counted.parity_errors, 3u);   // parity, framing and parity, a glitch's
+  EXPECT_EQ(counted.breaks, 1u);
+  EXPECT_EQ(counted.driver_glitches, 3u);
+  const BusReport report = session_->report();
+  EXPECT_EQ(report.line_errors.framing_errors, 3u);
+  EXPECT_EQ(report.line_errors.driver_glitches, 3u);
+}
+
 TEST_F(BusSessionTest, UnmappedWordsAndBitsAreLatestValuesOfTheirTable) {
   make();
   const auto reply = [](std::uint8_t function, WordList words) {

@@ -27,9 +27,8 @@ std::vector<LogicChannel> named_channels(const std::vector<std::string>& names) 
 
 }  // namespace
 
-LogicStreamSource::LogicStreamSource(const LiveOptions& live, Pipeline& pipeline,
-                                     EventWriter& events)
-    : live_(live), pipeline_(pipeline), events_(events) {}
+LogicStreamSource::LogicStreamSource(const LiveOptions& live, Pipeline& pipeline)
+    : live_(live), pipeline_(pipeline) {}
 
 LogicStreamSource::~LogicStreamSource() {
   if (fd_ > STDIN_FILENO) ::close(fd_);
@@ -86,7 +85,7 @@ bool LogicStreamSource::open() {
 
 void LogicStreamSource::run(LiveLoop& loop, LiveSources& live) {
   loop.use_sample_clock();
-  tap_ = tap_planned_channels(plan_, pipeline_, events_);
+  tap_ = tap_planned_channels(plan_, pipeline_);
   tap_->samples(held_, unitsize_);
   held_ = {};
   loop.saw_time(tap_->end_time());

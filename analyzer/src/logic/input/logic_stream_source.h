@@ -22,7 +22,7 @@ namespace pvtap::analyzer {
 class LogicStreamSource {
  public:
   // Driver glitches go to `events` (the pipeline's).
-  LogicStreamSource(const LiveOptions& live, Pipeline& pipeline, EventWriter& events);
+  LogicStreamSource(const LiveOptions& live, Pipeline& pipeline);
   ~LogicStreamSource();
 
   // Reads the first stretch and finds the lines; false (after saying why) when no channel
@@ -42,7 +42,6 @@ class LogicStreamSource {
 
   const LiveOptions& live_;
   Pipeline& pipeline_;
-  EventWriter& events_;
   int fd_ = -1;
   unsigned unitsize_ = 1;
   bool ended_ = false;

@@ -32,6 +32,12 @@ double char_samples(const std::vector<TappedChannel>& channels, double sample_ra
   return sample_rate / line.baud * line.format.bits_per_char();
 }
 
+// The side of a bus on two channels: requests on the first, replies on the second.
+Direction side_direction(const TappedChannel& t) {
+  if (t.pair < 0) return Direction::Unknown;
+  return t.side == 0 ? Direction::ToSlave : Direction::FromSlave;
+}
+
 SerialLineReport settings_of(const TappedChannel& c) {
   SerialLineReport r;
   const DetectedLine& d = c.line;
@@ -50,10 +56,9 @@ SerialLineReport settings_of(const TappedChannel& c) {
 }  // namespace
 
 UartTap::UartTap(std::vector<TappedChannel> channels, std::vector<LogicChannel> drivers,
-                 double sample_rate, EventWriter& events)
+                 double sample_rate)
     : sample_rate_(sample_rate),
       scanner_(bits_of(channels, drivers)),
-      events_(events),
       turnaround_(names_of(drivers), sample_rate, char_samples(channels, sample_rate)) {
   slots_.reserve(channels.size());
   for (TappedChannel& c : channels) {
@@ -107,12 +112,9 @@ void UartTap::feed_merged(BusSession& bus) {
 void UartTap::deliver(Slot& s) {
   for (const UartCharacter& c : characters_) {
     if (c.is_break) {
-      ++s.report.breaks;
       report_line_error(s, c);
       continue;
     }
-    s.report.framing_errors += c.framing_error ? 1 : 0;
-    s.report.parity_errors += c.parity_error ? 1 : 0;
     s.glitch_filter.feed(c, bus_characters_, glitches_);
   }
   characters_.clear();
@@ -120,27 +122,25 @@ void UartTap::deliver(Slot& s) {
 }
 
 // Glitches have their own event; a character that stays on the bus, or a break, gets this one.
+// Both go through the bus's session, which counts them as it counts every other event.
 void UartTap::report_line_error(const Slot& s, const UartCharacter& c) {
-  using Kind = LineErrorEvent::Kind;
-  const Kind kind = c.is_break                          ? Kind::line_break
-                    : c.framing_error && c.parity_error ? Kind::framing_and_parity
-                    : c.framing_error                   ? Kind::framing
-                                                        : Kind::parity;
+  using Kind = LineErrorKind;
+  const Kind kind = c.is_break                          ? Kind::Break
+                    : c.framing_error && c.parity_error ? Kind::FramingAndParity
+                    : c.framing_error                   ? Kind::Framing
+                                                        : Kind::Parity;
   const double rate = sample_rate_;
-  events_.line_error(EventContext{s.tapped.channel.name, true, true, nullptr},
-                     LineErrorEvent{static_cast<double>(c.start) / rate,
-                                    static_cast<double>(c.end - c.start) / rate,
-                                    static_cast<std::uint8_t>(c.value), kind});
+  s.tapped.bus->line_error(SessionLineError{
+      static_cast<double>(c.start) / rate, static_cast<double>(c.end - c.start) / rate,
+      static_cast<std::uint8_t>(c.value), kind, side_direction(s.tapped)});
 }
 
 void UartTap::feed_bus(Slot& s, bool first) {
-  const EventContext context{s.tapped.channel.name, true, true, nullptr};
   for (const DriverGlitch& g : glitches_) {
-    ++s.report.driver_glitches;
     const UartCharacter& c = g.character;
-    events_.driver_glitch(context, DriverGlitchEvent{static_cast<double>(c.start) / sample_rate_,
-                                                     static_cast<std::uint8_t>(c.value),
-                                                     g.switch_on, c.framing_error});
+    s.tapped.bus->driver_glitch(SessionDriverGlitch{
+        static_cast<double>(c.start) / sample_rate_, static_cast<std::uint8_t>(c.value),
+        g.switch_on, c.framing_error, c.parity_error, side_direction(s.tapped)});
   }
   for (const UartCharacter& c : bus_characters_) {
     if (c.framing_error || c.parity_error) report_line_error(s, c);

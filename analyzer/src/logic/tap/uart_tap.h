@@ -37,10 +37,10 @@ struct TappedLine {
 
 class UartTap final : public LogicSink, private RunConsumer {
  public:
-  // Driver glitches go to `events` (the buses' other events come from the buses).
-  // `drivers`: DE channels whose releases are timed against the first channel's frames.
+  // Characters, line errors and driver glitches go to each channel's bus. `drivers`: DE
+  // channels whose releases are timed against the first channel's frames.
   UartTap(std::vector<TappedChannel> channels, std::vector<LogicChannel> drivers,
-          double sample_rate, EventWriter& events);
+          double sample_rate);
 
   void begin(const std::vector<LogicChannel>& channels, double sample_rate) override;
   void samples(std::span<const std::uint8_t> data, unsigned unitsize) override;
@@ -70,7 +70,6 @@ class UartTap final : public LogicSink, private RunConsumer {
   std::vector<Slot> slots_;
   double sample_rate_;
   EdgeScanner scanner_;
-  EventWriter& events_;
   TurnaroundWatch turnaround_;
   std::vector<DirectionMerge> pairs_;
   std::vector<DirectedCharacter> merged_;  // scratch

@@ -174,6 +174,18 @@ struct GapTally {
   std::uint64_t gaps_of_unknown_size = 0;
 };
 
+// LineErrorTally: what the UART reading a bus's line from its samples (a logic recording)
+// could not read cleanly: characters with a framing or a parity error (drivers' glitches among
+// them), breaks, and the bytes of drivers switching on or off.
+struct LineErrorTally {
+  std::uint64_t framing_errors = 0;
+  std::uint64_t parity_errors = 0;
+  std::uint64_t breaks = 0;
+  std::uint64_t driver_glitches = 0;
+
+  LineErrorTally& operator+=(const LineErrorTally& o);
+};
+
 // A bus whose poll cycles tell no second master still has one when this many requests went
 // out while another request's reply was due (TimingReport::requests_while_reply_due), which
 // one master never does: 0 on every bus of one master in the sample library and the real
@@ -217,6 +229,7 @@ struct BusCounters {
   std::uint64_t exceptions = 0;
   std::uint64_t gateway_timeouts = 0;  // exceptions 0x0B (EventCounts::gateway_timeouts)
   GapTally gaps;
+  LineErrorTally line_errors;  // a bus read from its line's samples (EventCounts::line_errors)
 
   BusCounters& operator+=(const BusCounters& o);
 };

@@ -142,6 +142,31 @@ struct SessionNoise {
   Direction direction = Direction::Unknown;
 };
 
+// LineErrorKind: why the UART could not read a character cleanly.
+enum class LineErrorKind : std::uint8_t { Framing, Parity, FramingAndParity, Break };
+
+// SessionLineError: a character the UART reading the bus's line from its samples could not
+// read cleanly (a stop bit read as space, a parity bit that does not hold) or a break. Such a
+// character still goes to its frame, whose check then fails; the event says which and why.
+struct SessionLineError {
+  double time = 0;  // its start bit's edge
+  double duration = 0;
+  std::uint8_t value = 0;  // none for a break
+  LineErrorKind kind = LineErrorKind::Framing;
+  Direction direction = Direction::Unknown;  // the side of a bus on two channels
+};
+
+// SessionDriverGlitch: a byte an RS485 driver put on the line as it switched on (right before
+// a frame) or off (right after one); kept out of the frames and of the noise.
+struct SessionDriverGlitch {
+  double time = 0;  // its start bit's edge
+  std::uint8_t value = 0;
+  bool switch_on = true;
+  bool framing_error = false;
+  bool parity_error = false;
+  Direction direction = Direction::Unknown;
+};
+
 // BusSessionSink: receives a session's events in bus order. All default to doing nothing.
 class BusSessionSink {
  public:
@@ -151,6 +176,8 @@ class BusSessionSink {
   virtual void on_noise(const SessionNoise&) {}
   virtual void on_gap(const SessionGap&) {}
   virtual void on_collision(const SessionCollision&) {}
+  virtual void on_line_error(const SessionLineError&) {}
+  virtual void on_driver_glitch(const SessionDriverGlitch&) {}
 };
 
 // BusSession: the core's whole pipeline for one half-duplex bus, with no I/O of its own.
@@ -194,6 +221,10 @@ class BusSession {
   // started talking, so its pending bytes are complete. Call it only when no data of that
   // direction is still on its way (e.g. no TCP segment missing).
   void end_turn(Direction direction);
+  // What the UART reading the bus's line saw besides its bytes (a logic recording): counted
+  // and handed on as every other event is.
+  void line_error(const SessionLineError& e);
+  void driver_glitch(const SessionDriverGlitch& g);
   // Capture data of `direction` was lost at `time`; reported as a gap.
   void data_lost(Direction direction, double time, std::optional<std::uint64_t> lost_bytes);
   // The byte stream restarts (a new TCP connection to the same gateway); nothing was lost.

@@ -31,6 +31,7 @@ struct EventCounts {
   std::uint64_t unanswered_after_loss = 0;
   std::uint64_t noise_bytes = 0;
   GapTally gaps;
+  LineErrorTally line_errors;
 
   EventCounts& operator+=(const EventCounts& o);
 };
@@ -47,6 +48,8 @@ class EventTally {
   void add(const SessionTimeout& t);
   void add(const SessionNoise& n) { counts_.noise_bytes += n.noise.bytes.size(); }
   void add(const SessionGap& g);
+  void add(const SessionLineError& e);
+  void add(const SessionDriverGlitch& g);
   // Adds the tally of another stream (the buses of a run).
   void merge(const EventTally& other);
 
