@@ -10,6 +10,26 @@
 
 namespace pvtap::analyzer {
 
+// One warning per outage.
+bool OutageWarnings::refused() {
+  if (starting_ || refusal_reported_) return false;
+  refusal_reported_ = true;
+  return true;
+}
+
+bool OutageWarnings::back() {
+  const bool reported = outage_reported_;
+  outage_reported_ = false;
+  refusal_reported_ = false;
+  return reported;
+}
+
+bool OutageWarnings::lost(bool own) {
+  if (own || starting_ || outage_reported_) return false;
+  outage_reported_ = true;
+  return true;
+}
+
 MqttClient::MqttClient(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 MqttClient::~MqttClient() = default;
 

@@ -7,7 +7,7 @@
 #include <optional>
 #include <string>
 
-#include "broker/mqtt_event_queue.h"
+#include "broker/mqtt_outbox.h"
 #include "broker/mqtt_url.h"
 
 namespace pvtap::analyzer {

@@ -1,4 +1,5 @@
-// MqttOutbox: handing messages to libmosquitto in order, within the in-flight bound.
+// MqttOutbox: handing messages to libmosquitto in order, within the in-flight bound; the
+// event queue dropping its oldest when full.
 #include "broker/mqtt_outbox.h"
 
 #include <mosquitto.h>
@@ -7,6 +8,18 @@
 #include "broker/sigpipe_blocked.h"
 
 namespace pvtap::analyzer {
+
+void MqttEventQueue::push(QueuedMessage message) {
+  if (bound_ == 0) {
+    ++dropped_;
+    return;
+  }
+  if (messages_.size() >= bound_) {
+    messages_.pop_front();
+    ++dropped_;
+  }
+  messages_.push_back(std::move(message));
+}
 
 bool MqttOutbox::send(const std::string& topic, const std::string& payload, int qos, bool retain) {
   int mid = 0;

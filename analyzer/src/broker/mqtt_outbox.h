@@ -1,17 +1,45 @@
 // MqttOutbox: what is on its way to the broker through libmosquitto, with the client's mutex
-// held: events waiting while it is away, and messages handed over but not yet acknowledged.
+// held: events waiting while it is away (MqttEventQueue, oldest first, in bounded memory), and
+// messages handed over but not yet acknowledged.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
+#include <deque>
 #include <string>
 #include <unordered_set>
-
-#include "broker/mqtt_event_queue.h"
 
 struct mosquitto;
 
 namespace pvtap::analyzer {
+
+// QueuedMessage: one message as it will be published.
+struct QueuedMessage {
+  std::string topic;
+  std::string payload;
+};
+
+// When full, the oldest event is dropped (and counted) to make room: an operator looking at a
+// degraded bus after an outage needs its latest events more than its first ones.
+class MqttEventQueue {
+ public:
+  static constexpr std::size_t kDefaultBound = 10000;
+
+  explicit MqttEventQueue(std::size_t bound = kDefaultBound) : bound_(bound) {}
+
+  void push(QueuedMessage message);
+  bool empty() const { return messages_.empty(); }
+  std::size_t size() const { return messages_.size(); }
+  std::size_t bound() const { return bound_; }
+  QueuedMessage& front() { return messages_.front(); }
+  void pop() { messages_.pop_front(); }
+  std::uint64_t dropped() const { return dropped_; }
+
+ private:
+  std::size_t bound_;
+  std::deque<QueuedMessage> messages_;
+  std::uint64_t dropped_ = 0;
+};
 
 // Events keep their order: one goes out directly only when nothing older waits, and the
 // queue drains on reconnection and as acknowledgements make room in flight.

@@ -3,7 +3,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "broker/mqtt_event_queue.h"
+#include "broker/mqtt_outbox.h"
 
 namespace pvtap::analyzer {
 

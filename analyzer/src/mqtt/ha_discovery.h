@@ -8,7 +8,7 @@
 #include <string_view>
 #include <vector>
 
-#include "broker/mqtt_event_queue.h"
+#include "broker/mqtt_outbox.h"
 #include "mqtt/mqtt_topics.h"
 #include "mqtt/station_table.h"
 

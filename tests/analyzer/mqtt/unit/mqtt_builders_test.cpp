@@ -1,7 +1,7 @@
 // The pure parts of --mqtt: URLs, topic levels, the event queue's bound, sensor classes.
 #include <gtest/gtest.h>
 
-#include "broker/mqtt_event_queue.h"
+#include "broker/mqtt_outbox.h"
 #include "broker/mqtt_url.h"
 #include "mqtt/bus_health.h"
 #include "mqtt/ha_discovery.h"
