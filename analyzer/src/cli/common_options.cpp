@@ -8,9 +8,7 @@
 #include <vector>
 
 #include "cli/exit_status.h"
-#include "cli/map_file.h"
-#include "cli/station_map_argument.h"
-#include "cli/user_map_folder.h"
+#include "cli/map_files.h"
 #include "pvtap/registers/register_decoder.h"
 #include "pvtap/registers/register_map.h"
 

@@ -1,5 +1,5 @@
 // read_register_map_file: the analyzer reads a map file and the core parses its text.
-#include "cli/map_file.h"
+#include "cli/map_files.h"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // read_station_map_argument: which --map values give a map to stations, and which stations.
-#include "cli/station_map_argument.h"
+#include "cli/map_files.h"
 
 #include <gtest/gtest.h>
 

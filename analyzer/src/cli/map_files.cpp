@@ -1,9 +1,54 @@
-#include "cli/station_map_argument.h"
+// Register map files on the command line: reading, finding, and naming their stations.
+#include "cli/map_files.h"
 
+#include <algorithm>
+#include <cerrno>
 #include <charconv>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <utility>
 
 namespace pvtap::analyzer {
+
+RegisterMapResult read_register_map_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    // The system's reason (no such file, permission denied), not a word on the map.
+    MapDiagnostic d{path, 0, 0, std::string("cannot open the file: ") + std::strerror(errno)};
+    return RegisterMapResult::failure({std::move(d)});
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  return load_register_map(text.str(), path);
+}
+
+namespace fs = std::filesystem;
+
+fs::path user_map_folder() {
+  // The XDG rule: an empty or relative XDG_CONFIG_HOME is ignored.
+  const char* config = std::getenv("XDG_CONFIG_HOME");
+  if (config != nullptr && fs::path(config).is_absolute()) return fs::path(config) / "pvtap/maps";
+  const char* home = std::getenv("HOME");
+  if (home != nullptr && *home != '\0') return fs::path(home) / ".config/pvtap/maps";
+  return {};
+}
+
+std::vector<std::string> user_map_files(const fs::path& folder) {
+  std::vector<std::string> files;
+  std::error_code ec;
+  if (folder.empty() || !fs::is_directory(folder, ec)) return files;
+  for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+    if (it->path().extension() == ".toml" && it->is_regular_file(ec)) {
+      files.push_back(it->path().string());
+    }
+  }
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
 namespace {
 
 bool is_plain_file(std::string_view value, std::size_t equals) {
