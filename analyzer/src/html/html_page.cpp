@@ -7,7 +7,6 @@
 #include "html/html_report.h"
 #include "html/html_sections.h"
 #include "html/html_text.h"
-#include "html/html_timing_section.h"
 
 namespace pvtap::analyzer {
 namespace {

@@ -1,11 +1,11 @@
 // The bus timing section: the text report's timing lines with a chart container per judged
 // bus (silence-chart-N, N counting the judged buses as the chart data lists them).
-#include "html/html_timing_section.h"
+#include "html/html_sections.h"
 
 #include <cstdio>
 
 #include "formatting/number_text.h"
-#include "html/html_silence_data.h"
+#include "html/html_chart_data.h"
 #include "html/html_text.h"
 #include "report/report_line.h"
 
