@@ -249,6 +249,7 @@ def synthetic(checks, args):
     checks.equal("synthetic: t1.5 violations", bus["timing"]["t15_violations"], 1)
     checks.equal("synthetic: timed by", bus["timing"].get("timed_by"), "logic analyzer at 1 MS/s")
     line_errors(checks, args)
+    two_channel_line_errors(checks, args)
 
 
 def line_errors(checks, args):
@@ -283,6 +284,53 @@ def line_errors(checks, args):
     event_lines = [l.split("  line")[1].split() for l in text.splitlines() if "  TX  line  " in l]
     checks.equal("line errors: text lines", event_lines,
                  [["00", "parity"], ["03", "framing"], ["break"]])
+
+
+def write_vcd_pair(path, first, second, end):
+    """A two-wire VCD at 1 us, TX then RX, both idling low: `first` and `second` are their
+    edges, (time, level) after the idle level."""
+    changes = sorted([(t, level, "!") for t, level in first] +
+                     [(t, level, '"') for t, level in second])
+    with open(path, "w") as f:
+        f.write("$timescale 1 us $end\n$scope module t $end\n")
+        f.write('$var wire 1 ! TX $end\n$var wire 1 " RX $end\n')
+        f.write("$upscope $end\n$enddefinitions $end\n")
+        f.write('#0\n0!\n0"\n')
+        for time, level, wire in changes:
+            f.write(f"#{time}\n{level}{wire}\n")
+        f.write(f'#{end}\n0!\n0"\n')
+
+
+def two_channel_line_errors(checks, args):
+    """A master's TX and RX recorded apart, one bus named TX,RX: the line errors of its replies
+    are events of that bus, counted on it, whichever channel they came on."""
+    tx, rx = Line(19200), Line(19200)
+
+    def together(ahead, behind):
+        behind.hold(True, (ahead.t - behind.t) / behind.bit)
+
+    tx.idle(10)
+    together(tx, rx)
+    damaged = {2: {3: "parity"}, 4: {1: "framing"}}
+    for i in range(6):
+        tx.frame(crc16([0x11, 0x03, 0x00, 0x20 + i, 0x00, 0x02]))
+        tx.idle(5)
+        together(tx, rx)
+        rx.frame(crc16([0x11, 0x03, 0x04, 0x00, i, 0x12, 0x34]), damage=damaged.get(i))
+        rx.idle(500)
+        together(rx, tx)
+    path = os.path.join(args.scratch, "tx_rx_line_errors.vcd")
+    write_vcd_pair(path, tx.edges, rx.edges, round(tx.t))
+    result = audit(args.pvtap, "--format", "jsonl", path)
+    events = [json.loads(l) for l in result.stdout.splitlines() if '"type":"line_error"' in l]
+    checks.equal("two channels: line error events (kind, bus)",
+                 [(e["error"], e["bus"]) for e in events],
+                 [("parity", "TX,RX"), ("framing", "TX,RX")])
+    s = summary(result) or {"buses": [{}]}
+    checks.equal("two channels: one bus", [b.get("bus") for b in s["buses"]], ["TX,RX"])
+    line = s["buses"][0].get("line", {})
+    checks.equal("two channels: its counts",
+                 (line.get("parity_errors"), line.get("framing_errors")), (1, 1))
 
 
 def bad_inputs(checks, args):
