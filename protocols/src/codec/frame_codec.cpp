@@ -1,8 +1,8 @@
 #include "pvtap/codec/frame_codec.h"
 
-#include "codec/ascii_codec.h"
 #include "codec/hex_digits.h"
 #include "codec/rtu_codec.h"
+#include "dialects/ascii/ascii_codec.h"
 #include "pvtap/codec/function_codes.h"
 
 namespace pvtap {

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "codec/ascii_codec.h"
+#include "dialects/ascii/ascii_codec.h"
 
 namespace pvtap {
 

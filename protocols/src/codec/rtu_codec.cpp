@@ -1,7 +1,9 @@
 #include "codec/rtu_codec.h"
 
-#include "codec/modbus_codec.h"
 #include "codec/wire_fields.h"
+#include "dialects/hybrid/hybrid_codec.h"
+#include "dialects/modbus/gsl_codec.h"
+#include "dialects/modbus/modbus_codec.h"
 #include "pvtap/codec/checksums.h"
 #include "pvtap/codec/function_codes.h"
 
@@ -9,110 +11,6 @@ namespace pvtap::detail {
 namespace {
 
 constexpr std::size_t kCrcLength = 2;
-constexpr std::size_t kDeviceNumberLength = 4;
-
-// addr fc n data[n] crc, with n checked against the frame length.
-std::optional<std::span<const std::uint8_t>> counted_body(std::span<const std::uint8_t> b,
-                                                          Frame& f) {
-  if (b.size() < 5) return std::nullopt;
-  const std::size_t n = b[2];
-  if (b.size() != 5 + n) return std::nullopt;
-  f.byte_count = b[2];
-  return b.subspan(3, n);
-}
-
-// The parsers below fill in the frame they are given: passing a Frame by value copies its
-// disengaged optionals, which g++ 14 reports as a read of uninitialized memory.
-ParseStatus parse_hybrid_request(std::span<const std::uint8_t> b, Frame& f) {
-  if (b.size() != kFixedRequestLength) return fail("Hybrid request is not 8 bytes");
-  f.start = be16(b, 2);
-  if (f.function == fc::kHybridWriteParameter) {
-    f.words.push_back(be16(b, 4));
-  } else if (fc::is_hybrid_range_request(f.function)) {
-    f.count = be16(b, 4);
-  } else {
-    return fail("not a Hybrid request function code");
-  }
-  return kParsed;
-}
-
-ParseStatus parse_hybrid_reply(std::span<const std::uint8_t> b, Frame& f) {
-  const auto body = counted_body(b, f);
-  if (!body) return fail("Hybrid reply length disagrees with its byte count");
-  if (body->size() < kDeviceNumberLength) return fail("Hybrid reply shorter than a device number");
-  const auto& d = *body;
-  f.device = DeviceNumber{d[0], static_cast<std::uint32_t>((d[1] << 16) | (d[2] << 8) | d[3])};
-  const auto rest = d.subspan(kDeviceNumberLength);
-  const bool fixed_echo = rest.size() == 4;
-  if (fixed_echo && f.function == fc::kHybridWriteParameter) {
-    f.start = be16(rest, 0);
-    f.words.push_back(be16(rest, 2));
-  } else if (fixed_echo &&
-             (f.function == fc::kHybridRestoreFactory || f.function == fc::kHybridError)) {
-    f.start = be16(rest, 0);
-    f.count = be16(rest, 2);
-  } else if (!read_words(rest, f.words)) {
-    return fail("Hybrid reply data is not whole 16-bit registers");
-  }
-  return kParsed;
-}
-
-ParseStatus parse_gsl_request(std::span<const std::uint8_t> b, Frame& f) {
-  if (f.function == fc::kGslWriteMultiple) {
-    if (b.size() < 9 || b.size() != 9u + b[6]) return fail("GSL 0x10 length disagrees with n");
-    f.start = be16(b, 2);
-    f.count = be16(b, 4);
-    f.byte_count = b[6];
-    if (!read_words(b.subspan(7, b[6]), f.words))
-      return fail("GSL 0x10 data is not whole registers");
-    return kParsed;
-  }
-  if (b.size() != kFixedRequestLength) return fail("GSL request is not 8 bytes");
-  f.start = be16(b, 2);
-  if (f.function == fc::kGslWriteSingle) {
-    f.words.push_back(be16(b, 4));
-  } else if (f.function == fc::kGslReadHolding || f.function == fc::kGslReadInput) {
-    f.count = be16(b, 4);
-  } else {
-    return fail("not a GSL request function code");
-  }
-  return kParsed;
-}
-
-ParseStatus parse_gsl_reply(std::span<const std::uint8_t> b, Frame& f) {
-  if (fc::is_gsl_exception(f.function)) {
-    if (b.size() != 5) return fail("GSL exception is not 5 bytes");
-    f.exception_code = b[2];
-    return kParsed;
-  }
-  if (f.function == fc::kGslReadHolding || f.function == fc::kGslReadInput) {
-    const auto body = counted_body(b, f);
-    if (!body) return fail("GSL reply length disagrees with its byte count");
-    if (!read_words(*body, f.words)) return fail("GSL reply data is not whole registers");
-    return kParsed;
-  }
-  if (b.size() != kFixedRequestLength) return fail("GSL write reply is not 8 bytes");
-  f.start = be16(b, 2);
-  if (f.function == fc::kGslWriteSingle) {
-    f.words.push_back(be16(b, 4));
-  } else if (f.function == fc::kGslWriteMultiple) {
-    f.count = be16(b, 4);
-  } else {
-    return fail("not a GSL reply function code");
-  }
-  return kParsed;
-}
-
-void encode_hybrid_reply_body(const Frame& f, std::vector<std::uint8_t>& body) {
-  const auto& d = *f.device;
-  body.push_back(d.type_code);
-  body.push_back(static_cast<std::uint8_t>(d.serial >> 16));
-  body.push_back(static_cast<std::uint8_t>(d.serial >> 8));
-  body.push_back(static_cast<std::uint8_t>(d.serial));
-  if (f.start) put16(body, *f.start);
-  if (f.count) put16(body, *f.count);
-  for (auto w : f.words) put16(body, w);
-}
 
 bool encode_body(const Frame& f, std::vector<std::uint8_t>& out) {
   const bool request = f.role == Role::Request;

@@ -3,6 +3,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string_view>
 #include <vector>
@@ -40,6 +41,16 @@ inline bool read_words(std::span<const std::uint8_t> data, WordList& words) {
     if (!words.push_back(be16(data, i))) return false;
   }
   return true;
+}
+
+// addr fc n data[n] crc, with n checked against the frame length.
+inline std::optional<std::span<const std::uint8_t>> counted_body(std::span<const std::uint8_t> b,
+                                                                 Frame& f) {
+  if (b.size() < 5) return std::nullopt;
+  const std::size_t n = b[2];
+  if (b.size() != 5 + n) return std::nullopt;
+  f.byte_count = b[2];
+  return b.subspan(3, n);
 }
 
 }  // namespace pvtap::detail

@@ -1,6 +1,6 @@
 #include "pvtap/framing/framing_probe.h"
 
-#include "framing/ascii_candidates.h"
+#include "dialects/ascii/ascii_candidates.h"
 #include "framing/rtu_candidates.h"
 
 namespace pvtap {

@@ -8,72 +8,10 @@
 namespace pvtap::detail {
 namespace {
 
-constexpr unsigned kMaxReadCount = 125;  // a reply must fit its data in one byte count
-
 using Reader = CandidateReader;
-
-void hybrid_request(Reader& r, std::uint8_t f) {
-  if (f == fc::kHybridError) return;
-  if (r.strict && fc::is_hybrid_range_request(f) && r.has(5)) {
-    const unsigned count = r.word(4);
-    if (count == 0 || count > kMaxReadCount) return;
-  }
-  r.add(kFixedRequestLength, Role::Request);
-}
-
-// Every reply carries the 4-byte device number and then whole registers; write echoes,
-// restore confirmations and error replies always carry exactly two words after it.
-void hybrid_response(Reader& r, std::uint8_t f) {
-  if (r.strict && r.b[0] == fc::kHybridBroadcast) return;
-  if (!r.has(2)) return;
-  const std::size_t n = r.b[2];
-  const bool fixed =
-      f == fc::kHybridWriteParameter || f == fc::kHybridRestoreFactory || f == fc::kHybridError;
-  if (r.strict && (n < 4 || n % 2 != 0 || (fixed && n != 8))) return;
-  r.add(5 + n, Role::Response);
-}
-
-void gsl_request(Reader& r, std::uint8_t f) {
-  if (fc::is_gsl_exception(f)) return;
-  if (f == fc::kGslWriteMultiple) {
-    if (!r.has(6)) return;
-    const unsigned count = r.word(4);
-    if (r.strict && (count == 0 || count > 123 || r.b[6] != 2 * count)) return;
-    r.add(9 + std::size_t{r.b[6]}, Role::Request);
-    return;
-  }
-  if (r.strict && f != fc::kGslWriteSingle && r.has(5)) {
-    const unsigned count = r.word(4);
-    if (count == 0 || count > kMaxReadCount) return;
-  }
-  r.add(kFixedRequestLength, Role::Request);
-}
 
 bool is_write(std::uint8_t f) {
   return f == fc::kGslWriteSingle || f == fc::kGslWriteMultiple;
-}
-
-// Exception codes defined by Modbus (the seed uses 1, 2, 3 and 6).
-constexpr std::uint8_t kMaxExceptionCode = 0x0B;
-
-void gsl_response(Reader& r, std::uint8_t f) {
-  if (fc::is_gsl_exception(f)) {
-    if (r.strict && r.has(2) && (r.b[2] == 0 || r.b[2] > kMaxExceptionCode)) return;
-    r.add(5, Role::Response);
-  } else if (f == fc::kGslReadHolding || f == fc::kGslReadInput) {
-    if (!r.has(2)) return;
-    const std::size_t n = r.b[2];
-    if (r.strict && (n == 0 || n % 2 != 0)) return;
-    r.add(5 + n, Role::Response);
-  } else if (f == fc::kGslWriteMultiple) {
-    if (r.strict && r.has(5)) {
-      const unsigned count = r.word(4);
-      if (count == 0 || count > 123) return;
-    }
-    r.add(kFixedRequestLength, Role::Response);
-  } else {
-    r.add(kFixedRequestLength, Role::Response);
-  }
 }
 
 }  // namespace
@@ -95,8 +33,8 @@ void add_rtu_candidates(std::span<const std::uint8_t> b, RoleHint hint, DialectS
   const bool responses = hint != RoleHint::Request;
   if (dialects.contains(Dialect::Hybrid) && fc::is_hybrid_function(f) && !(strict && b[0] == 0)) {
     Reader r{b, Dialect::Hybrid, strict, out};
-    if (requests) hybrid_request(r, f);
-    if (responses) hybrid_response(r, f);
+    if (requests) add_hybrid_request(r, f);
+    if (responses) add_hybrid_response(r, f);
   }
   if (strict && b[0] > fc::kLastModbusStation) return;
   // The codes GSL shares with Modbus are read once, as GSL when GSL is asked for: which of
@@ -107,9 +45,9 @@ void add_rtu_candidates(std::span<const std::uint8_t> b, RoleHint hint, DialectS
     Reader r{b, d, strict, out};
     const bool broadcast = b[0] == fc::kModbusBroadcast;
     if (requests && (!strict || !broadcast || (broadcast_allowed && is_write(f)))) {
-      gsl_request(r, f);
+      add_gsl_request(r, f);
     }
-    if (responses && !(strict && broadcast)) gsl_response(r, f);
+    if (responses && !(strict && broadcast)) add_gsl_response(r, f);
     return;
   }
   if (!dialects.contains(Dialect::Modbus) || !fc::is_modbus_function(f)) return;

@@ -1,7 +1,7 @@
-#include "framing/ascii_candidates.h"
+#include "dialects/ascii/ascii_candidates.h"
 
-#include "codec/ascii_codec.h"
 #include "codec/hex_digits.h"
+#include "dialects/ascii/ascii_codec.h"
 #include "pvtap/codec/function_codes.h"
 
 namespace pvtap::detail {

@@ -1,4 +1,4 @@
-#include "codec/ascii_codec.h"
+#include "dialects/ascii/ascii_codec.h"
 
 #include "codec/hex_digits.h"
 #include "codec/wire_fields.h"

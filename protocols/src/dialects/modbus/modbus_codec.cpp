@@ -1,4 +1,4 @@
-#include "codec/modbus_codec.h"
+#include "dialects/modbus/modbus_codec.h"
 
 #include "codec/wire_fields.h"
 
