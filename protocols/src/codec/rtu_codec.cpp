@@ -84,6 +84,18 @@ ParseStatus parse_rtu(std::span<const std::uint8_t> b, Dialect dialect, Role rol
   return role == Role::Request ? parse_modbus_request(b, f) : parse_modbus_reply(b, f);
 }
 
+void read_rtu_header(std::span<const std::uint8_t> b, Frame& out) {
+  if (b.size() <= 1) return;
+  out.station = b[0];
+  out.function = b[1];
+}
+
+// The CRC's low byte first.
+void rtu_check_wire_bytes(std::uint16_t expected, std::vector<std::uint8_t>& out) {
+  out.push_back(static_cast<std::uint8_t>(expected & 0xFFu));
+  out.push_back(static_cast<std::uint8_t>(expected >> 8));
+}
+
 FrameCheck verify_rtu_check(std::span<const std::uint8_t> b) {
   FrameCheck c;
   if (b.size() < kCrcLength + 1) return c;

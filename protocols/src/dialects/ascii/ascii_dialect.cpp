@@ -1,0 +1,46 @@
+// The ASCII dialect's record in the table of dialects (PROTOCOLS.md section 1).
+#include "codec/hex_digits.h"
+#include "dialects/ascii/ascii_codec.h"
+#include "dialects/dialect_module.h"
+#include "pvtap/codec/function_codes.h"
+
+namespace pvtap::embedded {
+extern const unsigned char map_ascii[];
+extern const std::size_t map_ascii_size;
+}  // namespace pvtap::embedded
+
+namespace pvtap::detail {
+namespace {
+
+// ENQ/ACK, the station as two hex digits, the command character.
+void read_ascii_header(std::span<const std::uint8_t> bytes, Frame& out) {
+  if (bytes.size() <= 3) return;
+  out.station = static_cast<std::uint8_t>(read_hex(bytes.subspan(1, 2)).value_or(0));
+  out.function = bytes[3];
+}
+
+// Four lowercase hex digits, the most significant first.
+void ascii_check_wire_bytes(std::uint16_t expected, std::vector<std::uint8_t>& out) {
+  out.insert(out.end(), {hex_char(expected >> 12u), hex_char(expected >> 8u),
+                         hex_char(expected >> 4u), hex_char(expected)});
+}
+
+}  // namespace
+
+extern const DialectModule kAsciiDialect{
+    .dialect = Dialect::Ascii,
+    .parse = parse_ascii,
+    .read_header = read_ascii_header,
+    .verify_check = verify_ascii_check,
+    .check_wire_bytes = ascii_check_wire_bytes,
+    .encode = encode_ascii,
+    .function_name = [](std::uint8_t f) -> std::string_view {
+      return f == fc::kAsciiRead ? "read" : "unknown";
+    },
+    .exception_name = [](std::uint8_t code) { return fc::exception_name(code); },
+    .builtin_map_text = []() -> std::string_view {
+      return {reinterpret_cast<const char*>(embedded::map_ascii), embedded::map_ascii_size};
+    },
+};
+
+}  // namespace pvtap::detail

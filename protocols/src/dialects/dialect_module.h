@@ -1,0 +1,38 @@
+// What the generic core asks of a wire dialect, one record per dialect in one table (private).
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "pvtap/codec/dialect.h"
+#include "pvtap/codec/frame.h"
+#include "pvtap/codec/frame_codec.h"
+
+namespace pvtap::detail {
+
+// DialectModule: the facts of one dialect that code outside dialects/ needs, as functions the
+// dialect's folder defines. Codec, names and maps ask dialect_module(d) instead of switching on
+// the dialect, so a dialect is its folder and one line of dialect_table.cpp.
+struct DialectModule {
+  Dialect dialect;
+  // A whole frame's bytes (check included) read into `out`; why not, or empty.
+  std::string_view (*parse)(std::span<const std::uint8_t> bytes, Role role, Frame& out);
+  // The station and function by their position alone (frame_header in frame_codec.h).
+  void (*read_header)(std::span<const std::uint8_t> bytes, Frame& out);
+  FrameCheck (*verify_check)(std::span<const std::uint8_t> bytes);
+  // The check as the wire carries `expected`, appended to `out`.
+  void (*check_wire_bytes)(std::uint16_t expected, std::vector<std::uint8_t>& out);
+  // Appends the frame with its check; false, appending nothing, when its fields do not fit.
+  bool (*encode)(const Frame& frame, std::vector<std::uint8_t>& out);
+  std::string_view (*function_name)(std::uint8_t function);
+  std::string_view (*exception_name)(std::uint8_t code);
+  // The built-in register map (TOML text), empty when the dialect's devices bring their own.
+  std::string_view (*builtin_map_text)();
+};
+
+// The module of `d` (dialect_table.cpp); its `dialect` is `d`.
+const DialectModule& dialect_module(Dialect d);
+
+}  // namespace pvtap::detail

@@ -1,0 +1,52 @@
+// The Hybrid V2.2 dialect's record in the table of dialects (PROTOCOLS.md section 2).
+#include "codec/rtu_codec.h"
+#include "dialects/dialect_module.h"
+#include "pvtap/codec/function_codes.h"
+
+namespace pvtap::embedded {
+extern const unsigned char map_hybrid[];
+extern const std::size_t map_hybrid_size;
+}  // namespace pvtap::embedded
+
+namespace pvtap::detail {
+namespace {
+
+std::string_view hybrid_function_name(std::uint8_t f) {
+  switch (f) {
+    case fc::kHybridDeviceInfo:
+      return "device information";
+    case fc::kHybridRunningData:
+      return "read running data";
+    case fc::kHybridSettings:
+      return "read settings";
+    case fc::kHybridManufacturer:
+      return "read manufacturer parameters";
+    case fc::kHybridWriteParameter:
+      return "write parameter";
+    case fc::kHybridRestoreFactory:
+      return "restore factory settings";
+    case fc::kHybridError:
+      return "error reply";
+    default:
+      return "unknown";
+  }
+}
+
+}  // namespace
+
+extern const DialectModule kHybridDialect{
+    .dialect = Dialect::Hybrid,
+    .parse = [](std::span<const std::uint8_t> bytes, Role role,
+                Frame& out) { return parse_rtu(bytes, Dialect::Hybrid, role, out); },
+    .read_header = read_rtu_header,
+    .verify_check = verify_rtu_check,
+    .check_wire_bytes = rtu_check_wire_bytes,
+    .encode = encode_rtu,
+    .function_name = hybrid_function_name,
+    .exception_name = [](std::uint8_t code) { return fc::exception_name(code); },
+    .builtin_map_text = []() -> std::string_view {
+      return {reinterpret_cast<const char*>(embedded::map_hybrid), embedded::map_hybrid_size};
+    },
+};
+
+}  // namespace pvtap::detail

@@ -1,0 +1,139 @@
+// The GSL and plain Modbus dialects' records in the table of dialects (PROTOCOLS.md sections
+// 3 and 6): one wire, two readings of its registers (GSL is Modbus RTU with KSTAR's map).
+#include "codec/rtu_codec.h"
+#include "dialects/dialect_module.h"
+#include "pvtap/codec/function_codes.h"
+
+namespace pvtap::embedded {
+extern const unsigned char map_gsl[];
+extern const std::size_t map_gsl_size;
+}  // namespace pvtap::embedded
+
+namespace pvtap::fc {
+namespace {
+
+// The seed's names for the GSL codes (kept: reports and the plugin have always shown them).
+std::string_view gsl_function_name(std::uint8_t f) {
+  switch (f) {
+    case kGslReadHolding:
+      return "read holding registers";
+    case kGslReadInput:
+      return "read input registers";
+    case kGslWriteSingle:
+      return "write single register";
+    case kGslWriteMultiple:
+      return "write multiple registers";
+    default:
+      return {};
+  }
+}
+
+std::string_view modbus_function_name(std::uint8_t f) {
+  switch (f) {
+    case kReadCoils:
+      return "read coils";
+    case kReadDiscreteInputs:
+      return "read discrete inputs";
+    case kWriteSingleCoil:
+      return "write single coil";
+    case kReadExceptionStatus:
+      return "read exception status";
+    case kDiagnostics:
+      return "diagnostics";
+    case kCommEventCounter:
+      return "get comm event counter";
+    case kCommEventLog:
+      return "get comm event log";
+    case kWriteMultipleCoils:
+      return "write multiple coils";
+    case kReportServerId:
+      return "report server ID";
+    case kReadFileRecord:
+      return "read file record";
+    case kWriteFileRecord:
+      return "write file record";
+    case kMaskWriteRegister:
+      return "mask write register";
+    case kReadWriteMultiple:
+      return "read/write multiple registers";
+    case kReadFifoQueue:
+      return "read FIFO queue";
+    case kEncapsulatedInterface:
+      return "encapsulated interface (device identification)";
+    default:
+      break;
+  }
+  if (is_user_defined_function(f)) return "user-defined function";
+  return "unknown";
+}
+
+// GSL and Modbus name a code alike: the seed's names for GSL's codes, the specification's
+// for the others.
+std::string_view modbus_family_function_name(std::uint8_t f) {
+  if (is_gsl_exception(f)) return "exception";
+  const std::string_view gsl = gsl_function_name(f);
+  if (!gsl.empty()) return gsl;
+  return modbus_function_name(f);
+}
+
+// The Modbus Application Protocol's names of the exception codes.
+std::string_view modbus_exception_name(std::uint8_t code) {
+  switch (code) {
+    case 0x01:
+      return "illegal function";
+    case 0x02:
+      return "illegal data address";
+    case 0x03:
+      return "illegal data value";
+    case 0x04:
+      return "server device failure";
+    case 0x05:
+      return "acknowledge";
+    case 0x06:
+      return "server device busy";
+    case 0x08:
+      return "memory parity error";
+    case 0x0A:
+      return "gateway path unavailable";
+    case 0x0B:
+      return "gateway target device failed to respond";
+    default:
+      return "undocumented exception code";
+  }
+}
+
+}  // namespace
+}  // namespace pvtap::fc
+
+namespace pvtap::detail {
+
+extern const DialectModule kGslDialect{
+    .dialect = Dialect::Gsl,
+    .parse = [](std::span<const std::uint8_t> bytes, Role role,
+                Frame& out) { return parse_rtu(bytes, Dialect::Gsl, role, out); },
+    .read_header = read_rtu_header,
+    .verify_check = verify_rtu_check,
+    .check_wire_bytes = rtu_check_wire_bytes,
+    .encode = encode_rtu,
+    .function_name = fc::modbus_family_function_name,
+    .exception_name = [](std::uint8_t code) { return fc::exception_name(code); },
+    .builtin_map_text = []() -> std::string_view {
+      return {reinterpret_cast<const char*>(embedded::map_gsl), embedded::map_gsl_size};
+    },
+};
+
+// Plain Modbus devices bring their own map (--map STATION=FILE).
+extern const DialectModule kModbusDialect{
+    .dialect = Dialect::Modbus,
+    .parse = [](std::span<const std::uint8_t> bytes, Role role,
+                Frame& out) { return parse_rtu(bytes, Dialect::Modbus, role, out); },
+    .read_header = read_rtu_header,
+    .verify_check = verify_rtu_check,
+    .check_wire_bytes = rtu_check_wire_bytes,
+    .encode = encode_rtu,
+    .function_name = fc::modbus_family_function_name,
+    .exception_name = fc::modbus_exception_name,
+    .builtin_map_text = []() -> std::string_view { return {}; },
+};
+
+}  // namespace pvtap::detail
