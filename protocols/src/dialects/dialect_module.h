@@ -1,6 +1,8 @@
 // What the generic core asks of a wire dialect, one record per dialect in one table (private).
 #pragma once
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <string_view>
@@ -32,7 +34,12 @@ struct DialectModule {
   std::string_view (*builtin_map_text)();
 };
 
-// The module of `d` (dialect_table.cpp); its `dialect` is `d`.
-const DialectModule& dialect_module(Dialect d);
+// The records in the enum's order (dialect_table.cpp).
+extern const std::array<const DialectModule*, kDialectCount> kDialectTable;
+
+// The module of `d`; its `dialect` is `d`. Inline: the codec asks it once per frame.
+inline const DialectModule& dialect_module(Dialect d) {
+  return *kDialectTable[static_cast<std::size_t>(d)];
+}
 
 }  // namespace pvtap::detail

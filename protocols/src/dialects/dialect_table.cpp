@@ -12,20 +12,12 @@ extern const DialectModule kHybridDialect;
 extern const DialectModule kGslDialect;
 extern const DialectModule kModbusDialect;
 
-namespace {
-
 // In the order of the Dialect enum (the unit test checks each record's own dialect).
-const std::array<const DialectModule*, kDialectCount> kDialects{
+const std::array<const DialectModule*, kDialectCount> kDialectTable{
     &kAsciiDialect,
     &kHybridDialect,
     &kGslDialect,
     &kModbusDialect,
 };
-
-}  // namespace
-
-const DialectModule& dialect_module(Dialect d) {
-  return *kDialects[static_cast<std::size_t>(d)];
-}
 
 }  // namespace pvtap::detail

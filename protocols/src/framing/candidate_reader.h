@@ -43,12 +43,8 @@ struct CandidateReader {
 // A read reply must fit its data in one byte count.
 inline constexpr unsigned kMaxReadCount = 125;
 
-// The readings of each RTU dialect's codes (dialects/*/…_candidates.cpp): Hybrid's, GSL's
-// (which plain Modbus shares) and the public Modbus codes GSL does not use.
-void add_hybrid_request(CandidateReader& r, std::uint8_t f);
-void add_hybrid_response(CandidateReader& r, std::uint8_t f);
-void add_gsl_request(CandidateReader& r, std::uint8_t f);
-void add_gsl_response(CandidateReader& r, std::uint8_t f);
+// The readings of the public Modbus codes GSL does not use (dialects/modbus/
+// modbus_candidates.cpp; Hybrid's and GSL's are inline in their folders' headers).
 void add_modbus_request(CandidateReader& r, std::uint8_t f);
 void add_modbus_response(CandidateReader& r, std::uint8_t f);
 

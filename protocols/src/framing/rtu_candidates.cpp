@@ -1,6 +1,8 @@
 #include "framing/rtu_candidates.h"
 
 #include "codec/wire_fields.h"
+#include "dialects/hybrid/hybrid_candidates.h"
+#include "dialects/modbus/gsl_candidates.h"
 #include "framing/candidate_reader.h"
 
 #include "pvtap/codec/function_codes.h"

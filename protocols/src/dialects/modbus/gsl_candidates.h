@@ -1,17 +1,19 @@
-// Length rules of GSL's function codes, which plain Modbus shares (PROTOCOLS.md section 3).
+// Length rules of GSL's function codes, which plain Modbus shares (PROTOCOLS.md section 3),
+// inline: they run at every position a hunt tries (private).
+#pragma once
+
+#include <cstdint>
+
 #include "codec/wire_fields.h"
 #include "framing/candidate_reader.h"
 #include "pvtap/codec/function_codes.h"
 
 namespace pvtap::detail {
-namespace {
 
 // Exception codes defined by Modbus (the seed uses 1, 2, 3 and 6).
-constexpr std::uint8_t kMaxExceptionCode = 0x0B;
+inline constexpr std::uint8_t kMaxExceptionCode = 0x0B;
 
-}  // namespace
-
-void add_gsl_request(CandidateReader& r, std::uint8_t f) {
+inline void add_gsl_request(CandidateReader& r, std::uint8_t f) {
   if (fc::is_gsl_exception(f)) return;
   if (f == fc::kGslWriteMultiple) {
     if (!r.has(6)) return;
@@ -27,7 +29,7 @@ void add_gsl_request(CandidateReader& r, std::uint8_t f) {
   r.add(kFixedRequestLength, Role::Request);
 }
 
-void add_gsl_response(CandidateReader& r, std::uint8_t f) {
+inline void add_gsl_response(CandidateReader& r, std::uint8_t f) {
   if (fc::is_gsl_exception(f)) {
     if (r.strict && r.has(2) && (r.b[2] == 0 || r.b[2] > kMaxExceptionCode)) return;
     r.add(5, Role::Response);
