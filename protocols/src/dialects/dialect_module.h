@@ -11,6 +11,7 @@
 #include "pvtap/codec/dialect.h"
 #include "pvtap/codec/frame.h"
 #include "pvtap/codec/frame_codec.h"
+#include "pvtap/matching/reply_rules.h"
 
 namespace pvtap::detail {
 
@@ -32,6 +33,22 @@ struct DialectModule {
   std::string_view (*exception_name)(std::uint8_t code);
   // The built-in register map (TOML text), empty when the dialect's devices bring their own.
   std::string_view (*builtin_map_text)();
+
+  // Matching (matching/reply_rules.cpp). The dialect a reply of this one may answer a
+  // request of: its own, GSL for plain Modbus (a station's label may be settled only after
+  // its first request).
+  Dialect reply_family;
+  // A reply's kind by its function: an error reply, an exception or data.
+  ReplyKind (*reply_kind)(std::uint8_t function);
+  // Whether a gateway's exception answers a request of this dialect that it could not forward.
+  bool answered_by_gateway_exception;
+  // Whether a reply must repeat its request's start address (ASCII).
+  bool reply_repeats_start;
+  // Whether the normal reply of `function` repeats its request unchanged.
+  bool (*reply_is_echo)(std::uint8_t function);
+  // The length a normal reply to `request` should have, against the one `reply` has.
+  std::optional<CountComparison> (*compare_reply_count)(const FrameSummary& request,
+                                                        const FrameSummary& reply);
 };
 
 // The records in the enum's order (dialect_table.cpp).

@@ -29,6 +29,9 @@ TEST(DialectTable, EachDialectHasItsOwnCompleteRecord) {
     EXPECT_NE(m.function_name, nullptr);
     EXPECT_NE(m.exception_name, nullptr);
     EXPECT_NE(m.builtin_map_text, nullptr);
+    EXPECT_NE(m.reply_kind, nullptr);
+    EXPECT_NE(m.reply_is_echo, nullptr);
+    EXPECT_NE(m.compare_reply_count, nullptr);
   }
 }
 

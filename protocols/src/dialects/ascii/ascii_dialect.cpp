@@ -25,6 +25,13 @@ void ascii_check_wire_bytes(std::uint16_t expected, std::vector<std::uint8_t>& o
                          hex_char(expected >> 4u), hex_char(expected)});
 }
 
+// Words in the reply = the count of the request.
+std::optional<CountComparison> compare_ascii(const FrameSummary& request,
+                                             const FrameSummary& reply) {
+  if (!request.count) return std::nullopt;
+  return CountComparison{unsigned{*request.count}, unsigned{reply.word_count}, CountUnit::Words};
+}
+
 }  // namespace
 
 extern const DialectModule kAsciiDialect{
@@ -41,6 +48,12 @@ extern const DialectModule kAsciiDialect{
     .builtin_map_text = []() -> std::string_view {
       return {reinterpret_cast<const char*>(embedded::map_ascii), embedded::map_ascii_size};
     },
+    .reply_family = Dialect::Ascii,
+    .reply_kind = [](std::uint8_t) { return ReplyKind::Normal; },
+    .answered_by_gateway_exception = false,
+    .reply_repeats_start = true,
+    .reply_is_echo = [](std::uint8_t) { return false; },
+    .compare_reply_count = compare_ascii,
 };
 
 }  // namespace pvtap::detail

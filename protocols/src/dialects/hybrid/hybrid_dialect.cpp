@@ -32,6 +32,28 @@ std::string_view hybrid_function_name(std::uint8_t f) {
   }
 }
 
+// n = 4 + 2 x count for the reads, 8 for a write's echo and a restore's confirmation.
+std::optional<CountComparison> compare_hybrid(const FrameSummary& request,
+                                              const FrameSummary& reply) {
+  if (!reply.byte_count) return std::nullopt;
+  const unsigned found = *reply.byte_count;
+  if (fc::is_hybrid_read(request.function)) {
+    if (!request.count) return std::nullopt;
+    return CountComparison{4u + 2u * unsigned{*request.count}, found, CountUnit::Bytes};
+  }
+  // The seed's table fixes n = 8 for both; 4 + 2*count would wrongly flag every 0x1F reply.
+  if (request.function == fc::kHybridWriteParameter ||
+      request.function == fc::kHybridRestoreFactory) {
+    return CountComparison{8u, found, CountUnit::Bytes};
+  }
+  return std::nullopt;
+}
+
+// Function 0xFF answers any pending Hybrid request.
+ReplyKind hybrid_reply_kind(std::uint8_t f) {
+  return f == fc::kHybridError ? ReplyKind::HybridError : ReplyKind::Normal;
+}
+
 }  // namespace
 
 extern const DialectModule kHybridDialect{
@@ -47,6 +69,13 @@ extern const DialectModule kHybridDialect{
     .builtin_map_text = []() -> std::string_view {
       return {reinterpret_cast<const char*>(embedded::map_hybrid), embedded::map_hybrid_size};
     },
+    .reply_family = Dialect::Hybrid,
+    .reply_kind = hybrid_reply_kind,
+    // A gateway answers a Hybrid request it could not forward with a Modbus exception.
+    .answered_by_gateway_exception = true,
+    .reply_repeats_start = false,
+    .reply_is_echo = [](std::uint8_t) { return false; },
+    .compare_reply_count = compare_hybrid,
 };
 
 }  // namespace pvtap::detail

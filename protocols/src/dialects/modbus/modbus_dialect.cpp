@@ -106,6 +106,39 @@ std::string_view modbus_exception_name(std::uint8_t code) {
 }  // namespace pvtap::fc
 
 namespace pvtap::detail {
+namespace {
+
+// GSL and plain Modbus: the reads whose reply carries a byte count the request fixes.
+std::optional<CountComparison> compare_modbus(const FrameSummary& request,
+                                              const FrameSummary& reply) {
+  if (!request.count || !reply.byte_count) return std::nullopt;
+  const unsigned qty = *request.count;
+  const unsigned found = *reply.byte_count;
+  switch (request.function) {
+    case fc::kGslReadHolding:
+    case fc::kGslReadInput:
+    case fc::kReadWriteMultiple:
+      return CountComparison{2u * qty, found, CountUnit::Bytes};
+    case fc::kReadCoils:
+    case fc::kReadDiscreteInputs:
+      return CountComparison{(qty + 7u) / 8u, found, CountUnit::Bytes};
+    default:
+      return std::nullopt;
+  }
+}
+
+// The functions whose normal reply repeats the request unchanged.
+bool is_echoed(std::uint8_t f) {
+  return f == fc::kGslWriteSingle || f == fc::kWriteSingleCoil || f == fc::kDiagnostics ||
+         f == fc::kMaskWriteRegister || f == fc::kWriteFileRecord;
+}
+
+// fc|0x80 answers fc.
+ReplyKind modbus_reply_kind(std::uint8_t f) {
+  return fc::is_gsl_exception(f) ? ReplyKind::GslException : ReplyKind::Normal;
+}
+
+}  // namespace
 
 extern const DialectModule kGslDialect{
     .dialect = Dialect::Gsl,
@@ -120,6 +153,12 @@ extern const DialectModule kGslDialect{
     .builtin_map_text = []() -> std::string_view {
       return {reinterpret_cast<const char*>(embedded::map_gsl), embedded::map_gsl_size};
     },
+    .reply_family = Dialect::Gsl,
+    .reply_kind = modbus_reply_kind,
+    .answered_by_gateway_exception = false,
+    .reply_repeats_start = false,
+    .reply_is_echo = is_echoed,
+    .compare_reply_count = compare_modbus,
 };
 
 // Plain Modbus devices bring their own map (--map STATION=FILE).
@@ -134,6 +173,12 @@ extern const DialectModule kModbusDialect{
     .function_name = fc::modbus_family_function_name,
     .exception_name = fc::modbus_exception_name,
     .builtin_map_text = []() -> std::string_view { return {}; },
+    .reply_family = Dialect::Gsl,
+    .reply_kind = modbus_reply_kind,
+    .answered_by_gateway_exception = false,
+    .reply_repeats_start = false,
+    .reply_is_echo = is_echoed,
+    .compare_reply_count = compare_modbus,
 };
 
 }  // namespace pvtap::detail
