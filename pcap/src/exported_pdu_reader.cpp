@@ -95,7 +95,7 @@ std::optional<RunFacts> run_facts(std::span<const std::uint8_t> v) {
 
 std::uint8_t dialect_bits(DialectSet dialects) {
   std::uint8_t bits = dialects.prefers_modbus() ? 0x80 : 0;
-  for (const Dialect d : {Dialect::Ascii, Dialect::Hybrid, Dialect::Gsl, Dialect::Modbus}) {
+  for (const Dialect d : kAllDialects) {
     if (dialects.contains(d)) bits |= static_cast<std::uint8_t>(1u << static_cast<unsigned>(d));
   }
   return bits;
@@ -103,7 +103,7 @@ std::uint8_t dialect_bits(DialectSet dialects) {
 
 DialectSet dialects_of_bits(std::uint8_t bits) {
   DialectSet set = DialectSet::none();
-  for (const Dialect d : {Dialect::Ascii, Dialect::Hybrid, Dialect::Gsl, Dialect::Modbus}) {
+  for (const Dialect d : kAllDialects) {
     if ((bits & (1u << static_cast<unsigned>(d))) != 0) set = set.with(d);
   }
   if (set == DialectSet::none()) return DialectSet::all();

@@ -15,13 +15,6 @@
 namespace pvtap::analyzer {
 namespace {
 
-std::optional<Dialect> dialect_named(std::string_view name) {
-  for (Dialect d : {Dialect::Ascii, Dialect::Hybrid, Dialect::Gsl, Dialect::Modbus}) {
-    if (name == to_string(d)) return d;
-  }
-  return std::nullopt;
-}
-
 // "auto", or a comma-separated list of dialect names ("gsl,modbus").
 std::optional<DialectSet> dialects_named(std::string_view names) {
   if (names == "auto") return DialectSet::all();

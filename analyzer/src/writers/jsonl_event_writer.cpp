@@ -28,7 +28,7 @@ std::string_view direction_key(Direction d) {
 class JsonlEventWriter : public EventWriter {
  public:
   explicit JsonlEventWriter(OutputStream& out) : out_(out) {
-    for (const Dialect d : {Dialect::Ascii, Dialect::Hybrid, Dialect::Gsl, Dialect::Modbus}) {
+    for (const Dialect d : kAllDialects) {
       for (const Role r : {Role::Request, Role::Response}) {
         JsonWriter head = JsonWriter::more_members(frame_heads_[head_index(d, r)]);
         head.field_plain("dialect", to_string(d));

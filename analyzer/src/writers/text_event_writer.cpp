@@ -1,4 +1,5 @@
 // One readable line per frame, timeout, noise run and gap.
+#include <cctype>
 #include <string>
 #include <vector>
 
@@ -176,7 +177,9 @@ class TextEventWriter : public EventWriter {
       o += "  ok";
       return;
     }
-    o += f.dialect == Dialect::Ascii ? "  BAD CHECKSUM (expected " : "  BAD CRC (expected ";
+    o += "  BAD ";
+    for (const char c : check_name(f.dialect)) o += static_cast<char>(std::toupper(c));
+    o += " (expected ";
     append_spaced_hex(o, check_wire_bytes(f.dialect, f.check.expected));
     o += ')';
   }

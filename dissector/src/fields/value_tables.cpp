@@ -31,13 +31,13 @@ std::string function_text(Dialect d, std::uint8_t f) {
 }  // namespace
 
 const value_string* dialect_names() {
-  static const value_string names[] = {
-      {static_cast<guint32>(Dialect::Ascii), "ASCII"},
-      {static_cast<guint32>(Dialect::Hybrid), "Hybrid V2.2"},
-      {static_cast<guint32>(Dialect::Gsl), "GSL (Modbus RTU)"},
-      {static_cast<guint32>(Dialect::Modbus), "Modbus RTU"},
-      {0, nullptr},
-  };
+  static const value_string* names = [] {
+    std::vector<std::pair<std::uint32_t, std::string>> entries;
+    for (const Dialect d : kAllDialects) {
+      entries.emplace_back(static_cast<std::uint32_t>(d), std::string(dialect_title(d)));
+    }
+    return persist_value_strings(entries);
+  }();
   return names;
 }
 

@@ -15,8 +15,7 @@ std::optional<RegisterDecoder> g_decoder;
 void configure_register_decoder(DecoderOptions options) {
   RegisterDecoder decoder(options);
   // Field ids are keyed by the entries of the effective maps, so decode with exactly those.
-  for (Dialect d : {Dialect::Ascii, Dialect::Hybrid, Dialect::Gsl, Dialect::Modbus})
-    decoder.use_map(d, effective_map(d));
+  for (Dialect d : kAllDialects) decoder.use_map(d, effective_map(d));
   // A station's own map has no fields of its own: its values show in the generic map fields.
   use_station_maps(decoder);
   // Assigned in place: the bus sessions hold the decoder by reference.

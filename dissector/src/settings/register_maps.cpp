@@ -71,7 +71,7 @@ void load_user_map(const fs::path& file) {
 }  // namespace
 
 void load_register_maps() {
-  for (Dialect d : {Dialect::Ascii, Dialect::Hybrid, Dialect::Gsl, Dialect::Modbus}) {
+  for (Dialect d : kAllDialects) {
     slot_of(d) = builtin_register_map(d);
   }
   try {

@@ -20,6 +20,8 @@ namespace pvtap::detail {
 // the dialect, so a dialect is its folder and one line of dialect_table.cpp.
 struct DialectModule {
   Dialect dialect;
+  std::string_view title;       // dialect_title()
+  std::string_view check_name;  // check_name()
   // A whole frame's bytes (check included) read into `out`; why not, or empty.
   std::string_view (*parse)(std::span<const std::uint8_t> bytes, Role role, Frame& out);
   // The station and function by their position alone (frame_header in frame_codec.h).

@@ -21,3 +21,15 @@ const std::array<const DialectModule*, kDialectCount> kDialectTable{
 };
 
 }  // namespace pvtap::detail
+
+namespace pvtap {
+
+std::string_view dialect_title(Dialect d) {
+  return detail::dialect_module(d).title;
+}
+
+std::string_view check_name(Dialect d) {
+  return detail::dialect_module(d).check_name;
+}
+
+}  // namespace pvtap

@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cstddef>
+#include <set>
+#include <string_view>
 
 #include "pvtap/codec/frame_codec.h"
 #include "pvtap/codec/function_codes.h"
@@ -71,6 +73,19 @@ TEST(DialectTable, OnlyPlainModbusShipsWithoutABuiltInMap) {
     const Dialect d = nth(i);
     EXPECT_EQ(dialect_module(d).builtin_map_text().empty(), d == Dialect::Modbus) << to_string(d);
   }
+}
+
+// Each dialect is found again by the name to_string gives it, and has a title of its own.
+TEST(DialectTable, NamesAndTitlesTellTheDialectsApart) {
+  std::set<std::string_view> titles;
+  for (const Dialect d : kAllDialects) {
+    EXPECT_EQ(dialect_named(to_string(d)), d);
+    EXPECT_FALSE(dialect_title(d).empty());
+    EXPECT_TRUE(titles.insert(dialect_title(d)).second) << dialect_title(d);
+    EXPECT_FALSE(check_name(d).empty());
+  }
+  EXPECT_EQ(dialect_named("rtu"), std::nullopt);
+  EXPECT_EQ(check_name(Dialect::Ascii), "checksum");
 }
 
 }  // namespace

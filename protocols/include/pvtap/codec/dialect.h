@@ -1,8 +1,10 @@
 // Wire dialects, frame roles and direction hints shared by every part of the core.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string_view>
 
 namespace pvtap {
@@ -72,6 +74,25 @@ constexpr std::string_view to_string(Dialect d) {
   }
   return "?";
 }
+
+// Every dialect, in the enum's order: code that treats each dialect alike iterates this and
+// names none (protocols/src/dialects/ holds what is particular to each).
+inline constexpr std::array<Dialect, kDialectCount> kAllDialects{Dialect::Ascii, Dialect::Hybrid,
+                                                                 Dialect::Gsl, Dialect::Modbus};
+
+// The dialect `name` spells as to_string does ("gsl"), or nullopt.
+constexpr std::optional<Dialect> dialect_named(std::string_view name) {
+  for (const Dialect d : kAllDialects) {
+    if (to_string(d) == name) return d;
+  }
+  return std::nullopt;
+}
+
+// A dialect's name for people ("Hybrid V2.2", "GSL (Modbus RTU)").
+std::string_view dialect_title(Dialect d);
+
+// What a dialect's frames end with, as a sentence names it: "CRC" or "checksum".
+std::string_view check_name(Dialect d);
 
 constexpr std::string_view to_string(Role r) {
   return r == Role::Request ? "request" : "response";

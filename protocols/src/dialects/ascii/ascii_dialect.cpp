@@ -36,6 +36,8 @@ std::optional<CountComparison> compare_ascii(const FrameSummary& request,
 
 extern const DialectModule kAsciiDialect{
     .dialect = Dialect::Ascii,
+    .title = "ASCII",
+    .check_name = "checksum",
     .parse = parse_ascii,
     .read_header = read_ascii_header,
     .verify_check = verify_ascii_check,

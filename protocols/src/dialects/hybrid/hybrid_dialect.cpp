@@ -58,6 +58,8 @@ ReplyKind hybrid_reply_kind(std::uint8_t f) {
 
 extern const DialectModule kHybridDialect{
     .dialect = Dialect::Hybrid,
+    .title = "Hybrid V2.2",
+    .check_name = "CRC",
     .parse = [](std::span<const std::uint8_t> bytes, Role role,
                 Frame& out) { return parse_rtu(bytes, Dialect::Hybrid, role, out); },
     .read_header = read_rtu_header,

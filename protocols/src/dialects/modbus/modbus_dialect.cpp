@@ -142,6 +142,8 @@ ReplyKind modbus_reply_kind(std::uint8_t f) {
 
 extern const DialectModule kGslDialect{
     .dialect = Dialect::Gsl,
+    .title = "GSL (Modbus RTU)",
+    .check_name = "CRC",
     .parse = [](std::span<const std::uint8_t> bytes, Role role,
                 Frame& out) { return parse_rtu(bytes, Dialect::Gsl, role, out); },
     .read_header = read_rtu_header,
@@ -164,6 +166,8 @@ extern const DialectModule kGslDialect{
 // Plain Modbus devices bring their own map (--map STATION=FILE).
 extern const DialectModule kModbusDialect{
     .dialect = Dialect::Modbus,
+    .title = "Modbus RTU",
+    .check_name = "CRC",
     .parse = [](std::span<const std::uint8_t> bytes, Role role,
                 Frame& out) { return parse_rtu(bytes, Dialect::Modbus, role, out); },
     .read_header = read_rtu_header,
