@@ -40,7 +40,7 @@ void add_rtu_candidates(std::span<const std::uint8_t> b, RoleHint hint, DialectS
   }
   if (strict && b[0] > fc::kLastModbusStation) return;
   // The codes GSL shares with Modbus are read once, as GSL when GSL is asked for: which of
-  // the two a station speaks is the session's decision (station_dialects.h).
+  // the two a station speaks is the session's decision (dialects/modbus/station_dialects.h).
   const bool gsl_code = fc::is_gsl_function(f);
   if (gsl_code && dialects.modbus_family()) {
     const Dialect d = dialects.contains(Dialect::Gsl) ? Dialect::Gsl : Dialect::Modbus;

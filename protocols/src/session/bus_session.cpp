@@ -5,6 +5,7 @@
 #include <limits>
 #include <vector>
 
+#include "dialects/modbus/station_dialects.h"
 #include "pvtap/codec/checksums.h"
 #include "pvtap/codec/function_codes.h"
 #include "pvtap/framing/framing_probe.h"
@@ -17,7 +18,6 @@
 #include "session/collision_tally.h"
 #include "session/reply_values.h"
 #include "session/session_times.h"
-#include "session/station_dialects.h"
 
 namespace pvtap {
 namespace {

@@ -12,12 +12,12 @@
 #include <span>
 #include <vector>
 
+#include "dialects/modbus/station_dialects.h"
 #include "pvtap/statistics/bus_timing.h"
 #include "session/bus_tally.h"
 #include "session/collision_tally.h"
 #include "session/reply_values.h"
 #include "session/session_times.h"
-#include "session/station_dialects.h"
 
 namespace pvtap {
 

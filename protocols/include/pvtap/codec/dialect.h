@@ -11,7 +11,7 @@ namespace pvtap {
 
 // Dialect: one of the wire dialects of PROTOCOLS.md. GSL and Modbus share every rule of the
 // wire (GSL is Modbus RTU with KSTAR's registers); they differ in the map that names a
-// station's registers (station_dialects.h says which a station is).
+// station's registers (dialects/modbus/station_dialects.h says which a station is).
 enum class Dialect : std::uint8_t { Ascii = 0, Hybrid = 1, Gsl = 2, Modbus = 3 };
 
 inline constexpr std::size_t kDialectCount = 4;

@@ -187,8 +187,9 @@ constexpr bool rtu_function_known(std::uint8_t f, DialectSet dialects = DialectS
 }
 
 // The RTU dialect a function code names when nothing else is known: Hybrid for its codes
-// (0x11 0x16 0x17 0x18 included: the station's history decides those, station_dialects.h),
-// GSL for the seed's codes, plain Modbus for the other public codes; nullopt if none.
+// (0x11 0x16 0x17 0x18 included: the station's history decides those,
+// dialects/modbus/station_dialects.h), GSL for the seed's codes, plain Modbus for the other public
+// codes; nullopt if none.
 constexpr std::optional<Dialect> rtu_dialect_of(std::uint8_t f) {
   if (is_hybrid_function(f)) return Dialect::Hybrid;
   if (is_gsl_function(f)) return Dialect::Gsl;

@@ -1,4 +1,4 @@
-#include "session/station_dialects.h"
+#include "dialects/modbus/station_dialects.h"
 
 #include <algorithm>
 #include <iterator>
