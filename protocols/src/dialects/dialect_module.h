@@ -12,6 +12,7 @@
 #include "pvtap/codec/frame.h"
 #include "pvtap/codec/frame_codec.h"
 #include "pvtap/matching/reply_rules.h"
+#include "pvtap/registers/register_decoder.h"
 
 namespace pvtap::detail {
 
@@ -51,6 +52,15 @@ struct DialectModule {
   // The length a normal reply to `request` should have, against the one `reply` has.
   std::optional<CountComparison> (*compare_reply_count)(const FrameSummary& request,
                                                         const FrameSummary& reply);
+
+  // Whether the seed writes register IDs as decimal numbers (GSL: 1050), which --gsl-ids may
+  // read as the digits of a hex wire address (0x1050): registers/register_addressing.cpp and
+  // the address's text (register_map.cpp).
+  bool decimal_register_ids;
+  // Values (registers/register_decoder.cpp): appends the register values `frame` carries;
+  // `request` is a reply's matching request, or null.
+  DecodeReport (*decode_values)(const RegisterDecoder& decoder, const Frame& frame,
+                                const Frame* request, std::vector<DecodedValue>& out);
 };
 
 // The records in the enum's order (dialect_table.cpp).

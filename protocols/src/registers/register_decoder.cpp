@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "dialects/dialect_module.h"
 #include "pvtap/codec/function_codes.h"
 #include "registers/register_entry_rules.h"
 #include "registers/register_value_conversion.h"
+#include "registers/value_placement.h"
 
 namespace pvtap {
 namespace {
@@ -19,20 +21,18 @@ struct Block {
   std::span<const std::uint16_t> words;
   ValueOrigin origin;
   unsigned step;
+  // Only IDs read as hex (GSL's) map addresses; for every other block the wire address is the
+  // written one, without a call per word.
+  bool identity;
 
   std::uint32_t wire_of(std::size_t index) const {
     return wire_start + static_cast<std::uint32_t>(index) * step;
   }
-  // Only GSL with hex IDs maps addresses; for every other block the wire address is the
-  // written one, without a call per word.
-  bool identity() const {
-    return dialect != Dialect::Gsl || options.gsl_ids == GslIdReading::Decimal;
-  }
   std::optional<std::uint16_t> written_of(std::uint16_t wire) const {
-    return identity() ? wire : written_address_of(dialect, wire, options.gsl_ids);
+    return identity ? wire : written_address_of(dialect, wire, options.gsl_ids);
   }
   std::optional<std::uint16_t> wire_of_written(std::uint16_t written) const {
-    return identity() ? written : wire_address_of(dialect, written, options.gsl_ids);
+    return identity ? written : wire_address_of(dialect, written, options.gsl_ids);
   }
 };
 
@@ -94,47 +94,12 @@ std::size_t append_value(const Block& b, std::size_t index, std::vector<DecodedV
   return present;
 }
 
-// The seed's default start of each Hybrid read, used when the request is missing.
-std::optional<std::uint16_t> hybrid_default_start(std::uint8_t function) {
-  switch (function) {
-    case fc::kHybridDeviceInfo:
-      return 0x1060;
-    case fc::kHybridRunningData:
-      return 0x1000;
-    case fc::kHybridSettings:
-      return 0x1024;
-    case fc::kHybridManufacturer:
-      return 0x104B;
-    default:
-      return std::nullopt;
-  }
-}
-
-bool is_request_for(const Frame* request, const Frame& reply) {
-  return request != nullptr && request->dialect == reply.dialect &&
-         request->role == Role::Request && request->function == reply.function &&
-         request->start.has_value();
-}
-
-void note_request_fit(DecodeReport& report, const Frame& reply, const Frame* request) {
-  const bool usable = is_request_for(request, reply);
-  report.request_unusable = request != nullptr && !usable;
-  report.count_mismatch =
-      usable && request->count.has_value() && *request->count != reply.words.size();
-}
-
-DecodeReport nothing(ValueOrigin origin, DecodeStatus status = DecodeStatus::NoRegisterData) {
-  DecodeReport report;
-  report.status = status;
-  report.origin = origin;
-  return report;
-}
-
-std::span<const std::uint16_t> first_word(const Frame& frame) {
-  return frame.words.span().first(std::min<std::size_t>(1, frame.words.size()));
-}
-
 }  // namespace
+
+DecodeReport RegisterDecoder::decode(const Frame& frame, const Frame* request,
+                                     std::vector<DecodedValue>& out) const {
+  return detail::dialect_module(frame.dialect).decode_values(*this, frame, request, out);
+}
 
 RegisterDecoder::RegisterDecoder(DecoderOptions options)
     : learned_(std::make_shared<SunSpecStations>()), options_(options) {}
@@ -157,7 +122,7 @@ void RegisterDecoder::use_station_map(std::uint8_t station, const RegisterMap& m
 void RegisterDecoder::learn(const Frame& reply, const Frame* request) const {
   if (!options_.sunspec || reply.role != Role::Response || station_map_of_[reply.station] != 0 ||
       (reply.function != fc::kGslReadHolding && reply.function != fc::kReadWriteMultiple) ||
-      !is_request_for(request, reply) || !modbus_family(reply.dialect)) {
+      !detail::is_request_for(request, reply) || !modbus_family(reply.dialect)) {
     return;
   }
   learned_->learn(reply.station, *request->start, reply.words.span());
@@ -198,7 +163,9 @@ namespace {
 std::size_t decode_with(const RegisterMap& map, Dialect d, const DecoderOptions& options,
                         std::uint16_t wire_start, std::span<const std::uint16_t> words,
                         ValueOrigin origin, std::vector<DecodedValue>& out) {
-  const Block block{d, map, options, wire_start, words, origin, address_step(d)};
+  const bool identity =
+      !detail::dialect_module(d).decimal_register_ids || options.gsl_ids == GslIdReading::Decimal;
+  const Block block{d, map, options, wire_start, words, origin, address_step(d), identity};
   const std::size_t before = out.size();
   for (std::size_t i = 0; i < words.size();) i += append_value(block, i, out);
   return out.size() - before;
@@ -210,23 +177,6 @@ std::size_t RegisterDecoder::decode_block(Dialect d, std::uint16_t wire_start,
                                           std::span<const std::uint16_t> words, ValueOrigin origin,
                                           std::vector<DecodedValue>& out) const {
   return place(map(d), d, wire_start, words, origin, out).count;
-}
-
-DecodedValue RegisterDecoder::decode_device_number(const DeviceNumber& device) const {
-  const RegisterDef* def = map(Dialect::Hybrid).find_kind(RegisterKind::DeviceNumber);
-  const std::array<std::uint16_t, 2> words{
-      static_cast<std::uint16_t>((unsigned{device.type_code} << 8) |
-                                 ((device.serial >> 16) & 0xFFu)),
-      static_cast<std::uint16_t>(device.serial & 0xFFFFu)};
-  DecodedValue v;
-  v.def = def;
-  v.origin = ValueOrigin::DeviceHeader;
-  v.address = def != nullptr ? def->address : std::uint16_t{0};
-  v.wire_address = v.address;
-  v.words_present = 2;
-  detail::convert_device_number(def, words, v);
-  if (def == nullptr) v.add(ValueWarning::NotInMap);
-  return v;
 }
 
 DecodeReport RegisterDecoder::place(Dialect d, std::uint16_t start,
@@ -244,90 +194,6 @@ DecodeReport RegisterDecoder::place(const RegisterMap& m, Dialect d, std::uint16
   report.start = start;
   report.first = out.size();
   report.count = decode_with(m, d, options_, start, words, origin, out);
-  return report;
-}
-
-DecodeReport RegisterDecoder::decode(const Frame& frame, const Frame* request,
-                                     std::vector<DecodedValue>& out) const {
-  switch (frame.dialect) {
-    case Dialect::Ascii:
-      return decode_ascii(frame, request, out);
-    case Dialect::Hybrid:
-      return decode_hybrid(frame, request, out);
-    case Dialect::Gsl:
-    case Dialect::Modbus:
-      return decode_gsl(frame, request, out);
-  }
-  return nothing(ValueOrigin::ReadReply);
-}
-
-DecodeReport RegisterDecoder::decode_ascii(const Frame& frame, const Frame* request,
-                                           std::vector<DecodedValue>& out) const {
-  if (frame.role != Role::Response || !frame.start) return nothing(ValueOrigin::ReadReply);
-  DecodeReport report =
-      place(Dialect::Ascii, *frame.start, frame.words.span(), ValueOrigin::ReadReply, out);
-  note_request_fit(report, frame, request);
-  return report;
-}
-
-DecodeReport RegisterDecoder::decode_hybrid(const Frame& frame, const Frame* request,
-                                            std::vector<DecodedValue>& out) const {
-  const bool write = frame.function == fc::kHybridWriteParameter;
-  if (frame.role == Role::Request) {
-    if (!write || !frame.start || frame.words.empty()) return nothing(ValueOrigin::WriteRequest);
-    return place(Dialect::Hybrid, *frame.start, first_word(frame), ValueOrigin::WriteRequest, out);
-  }
-  if (write) {
-    // A write echo of the wrong length keeps no register field: its words cannot be placed.
-    if (!frame.start) return nothing(ValueOrigin::WriteReply, DecodeStatus::StartUnknown);
-    return place(Dialect::Hybrid, *frame.start, first_word(frame), ValueOrigin::WriteReply, out);
-  }
-  const std::optional<std::uint16_t> default_start = hybrid_default_start(frame.function);
-  if (!default_start) return nothing(ValueOrigin::ReadReply);
-  const bool usable = is_request_for(request, frame);
-  const std::uint16_t start = usable ? *request->start : *default_start;
-  DecodeReport report =
-      place(Dialect::Hybrid, start, frame.words.span(), ValueOrigin::ReadReply, out);
-  report.start_assumed = !usable;
-  note_request_fit(report, frame, request);
-  return report;
-}
-
-// GSL and plain Modbus: register reads and writes; other functions carry no register values.
-DecodeReport RegisterDecoder::decode_gsl(const Frame& frame, const Frame* request,
-                                         std::vector<DecodedValue>& out) const {
-  learn(frame, request);
-  const RegisterMap* own = station_map(frame.station);
-  const RegisterMap& m = own != nullptr ? *own : map(frame.dialect);
-  const Dialect d = own != nullptr ? own->dialect() : frame.dialect;
-  if (frame.role == Role::Request) {
-    if (!frame.start || frame.words.empty()) return nothing(ValueOrigin::WriteRequest);
-    if (frame.function == fc::kGslWriteSingle) {
-      return place(m, d, *frame.start, first_word(frame), ValueOrigin::WriteRequest, out);
-    }
-    if (frame.function == fc::kGslWriteMultiple ||
-        (frame.function == fc::kReadWriteMultiple && frame.write_start)) {
-      const std::uint16_t at =
-          frame.function == fc::kReadWriteMultiple ? *frame.write_start : *frame.start;
-      return place(m, d, at, frame.words.span(), ValueOrigin::WriteRequest, out);
-    }
-    return nothing(ValueOrigin::WriteRequest);
-  }
-  if (frame.function == fc::kGslWriteSingle && frame.start && !frame.words.empty()) {
-    return place(m, d, *frame.start, first_word(frame), ValueOrigin::WriteReply, out);
-  }
-  const bool read = frame.function == fc::kGslReadHolding || frame.function == fc::kGslReadInput ||
-                    frame.function == fc::kReadWriteMultiple;
-  if (!read) return nothing(ValueOrigin::ReadReply);
-  if (!is_request_for(request, frame)) {
-    DecodeReport report = nothing(ValueOrigin::ReadReply, DecodeStatus::StartUnknown);
-    report.request_unusable = request != nullptr;
-    return report;
-  }
-  DecodeReport report =
-      place(m, d, *request->start, frame.words.span(), ValueOrigin::ReadReply, out);
-  note_request_fit(report, frame, request);
-  apply_scale_factors(m, frame.station, report, out);
   return report;
 }
 

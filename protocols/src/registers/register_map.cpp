@@ -4,6 +4,7 @@
 #include <array>
 #include <charconv>
 
+#include "dialects/dialect_module.h"
 #include "registers/register_map_data.h"
 
 namespace pvtap {
@@ -59,7 +60,7 @@ RegisterAddressText format_register_address(Dialect d, std::uint16_t written_add
   RegisterAddressText out;
   char* first = out.chars.data();
   char* last = first + out.chars.size();
-  if (d == Dialect::Gsl) {
+  if (detail::dialect_module(d).decimal_register_ids) {
     out.length = static_cast<std::uint8_t>(std::to_chars(first, last, written_address).ptr - first);
     return out;
   }

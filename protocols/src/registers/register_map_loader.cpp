@@ -13,13 +13,6 @@ namespace {
 using detail::column_of;
 using detail::line_of;
 
-std::optional<Dialect> dialect_from_string(std::string_view text) {
-  for (Dialect d : {Dialect::Ascii, Dialect::Hybrid, Dialect::Gsl, Dialect::Modbus}) {
-    if (to_string(d) == text) return d;
-  }
-  return std::nullopt;
-}
-
 // MapFileReader: the settings and [enums] are read before any [[register]], wherever the file
 // puts them: an entry's `last` depends on the dialect, and its `values` may name an enum.
 class MapFileReader {
@@ -129,7 +122,7 @@ class MapFileReader {
   void read_dialect(const toml::node& node, detail::MapHeaderSpec& header) {
     const auto* s = nodes_.expect_string(node, "dialect");
     if (s == nullptr) return;
-    if (auto d = dialect_from_string(s->get())) {
+    if (auto d = dialect_named(s->get())) {
       header.dialect = *d;
       dialect_ = *d;
       dialect_known_ = true;

@@ -221,22 +221,17 @@ class RegisterDecoder {
   // The Hybrid device number of a reply header (type code text from table H5).
   DecodedValue decode_device_number(const DeviceNumber& device) const;
 
- private:
-  DecodeReport decode_ascii(const Frame& frame, const Frame* request,
-                            std::vector<DecodedValue>& out) const;
-  DecodeReport decode_hybrid(const Frame& frame, const Frame* request,
-                             std::vector<DecodedValue>& out) const;
-  DecodeReport decode_gsl(const Frame& frame, const Frame* request,
-                          std::vector<DecodedValue>& out) const;
+  // For each dialect's value rules (protocols/src/dialects): appends the values of `words`
+  // at wire address `start` by `d`'s map (or `map`), and applies a station's scale factors.
   DecodeReport place(Dialect d, std::uint16_t start, std::span<const std::uint16_t> words,
                      ValueOrigin origin, std::vector<DecodedValue>& out) const;
   DecodeReport place(const RegisterMap& map, Dialect d, std::uint16_t start,
                      std::span<const std::uint16_t> words, ValueOrigin origin,
                      std::vector<DecodedValue>& out) const;
-
   void apply_scale_factors(const RegisterMap& m, std::uint8_t station, const DecodeReport& report,
                            std::vector<DecodedValue>& out) const;
 
+ private:
   std::array<std::optional<RegisterMap>, kDialectCount> own_maps_;  // replacing the built-in
   std::shared_ptr<SunSpecStations> learned_;  // what the traffic taught; not part of the value
   std::vector<RegisterMap> station_maps_;

@@ -3,6 +3,7 @@
 #include "dialects/ascii/ascii_codec.h"
 #include "dialects/dialect_module.h"
 #include "pvtap/codec/function_codes.h"
+#include "registers/value_placement.h"
 
 namespace pvtap::embedded {
 extern const unsigned char map_ascii[];
@@ -32,6 +33,16 @@ std::optional<CountComparison> compare_ascii(const FrameSummary& request,
   return CountComparison{unsigned{*request.count}, unsigned{reply.word_count}, CountUnit::Words};
 }
 
+// A read reply's words sit at the start it repeats from its request.
+DecodeReport ascii_values(const RegisterDecoder& decoder, const Frame& frame, const Frame* request,
+                          std::vector<DecodedValue>& out) {
+  if (frame.role != Role::Response || !frame.start) return nothing(ValueOrigin::ReadReply);
+  DecodeReport report =
+      decoder.place(Dialect::Ascii, *frame.start, frame.words.span(), ValueOrigin::ReadReply, out);
+  note_request_fit(report, frame, request);
+  return report;
+}
+
 }  // namespace
 
 extern const DialectModule kAsciiDialect{
@@ -56,6 +67,8 @@ extern const DialectModule kAsciiDialect{
     .reply_repeats_start = true,
     .reply_is_echo = [](std::uint8_t) { return false; },
     .compare_reply_count = compare_ascii,
+    .decimal_register_ids = false,
+    .decode_values = ascii_values,
 };
 
 }  // namespace pvtap::detail

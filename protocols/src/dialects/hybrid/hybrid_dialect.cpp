@@ -2,6 +2,8 @@
 #include "codec/rtu_codec.h"
 #include "dialects/dialect_module.h"
 #include "pvtap/codec/function_codes.h"
+#include "registers/register_value_conversion.h"
+#include "registers/value_placement.h"
 
 namespace pvtap::embedded {
 extern const unsigned char map_hybrid[];
@@ -54,6 +56,48 @@ ReplyKind hybrid_reply_kind(std::uint8_t f) {
   return f == fc::kHybridError ? ReplyKind::HybridError : ReplyKind::Normal;
 }
 
+// The seed's default start of each Hybrid read, used when the request is missing.
+std::optional<std::uint16_t> hybrid_default_start(std::uint8_t function) {
+  switch (function) {
+    case fc::kHybridDeviceInfo:
+      return 0x1060;
+    case fc::kHybridRunningData:
+      return 0x1000;
+    case fc::kHybridSettings:
+      return 0x1024;
+    case fc::kHybridManufacturer:
+      return 0x104B;
+    default:
+      return std::nullopt;
+  }
+}
+
+// A write's word at its start; a read reply's at its request's start, or the seed's default.
+DecodeReport hybrid_values(const RegisterDecoder& decoder, const Frame& frame, const Frame* request,
+                           std::vector<DecodedValue>& out) {
+  const bool write = frame.function == fc::kHybridWriteParameter;
+  if (frame.role == Role::Request) {
+    if (!write || !frame.start || frame.words.empty()) return nothing(ValueOrigin::WriteRequest);
+    return decoder.place(Dialect::Hybrid, *frame.start, first_word(frame),
+                         ValueOrigin::WriteRequest, out);
+  }
+  if (write) {
+    // A write echo of the wrong length keeps no register field: its words cannot be placed.
+    if (!frame.start) return nothing(ValueOrigin::WriteReply, DecodeStatus::StartUnknown);
+    return decoder.place(Dialect::Hybrid, *frame.start, first_word(frame), ValueOrigin::WriteReply,
+                         out);
+  }
+  const std::optional<std::uint16_t> default_start = hybrid_default_start(frame.function);
+  if (!default_start) return nothing(ValueOrigin::ReadReply);
+  const bool usable = is_request_for(request, frame);
+  const std::uint16_t start = usable ? *request->start : *default_start;
+  DecodeReport report =
+      decoder.place(Dialect::Hybrid, start, frame.words.span(), ValueOrigin::ReadReply, out);
+  report.start_assumed = !usable;
+  note_request_fit(report, frame, request);
+  return report;
+}
+
 }  // namespace
 
 extern const DialectModule kHybridDialect{
@@ -78,6 +122,30 @@ extern const DialectModule kHybridDialect{
     .reply_repeats_start = false,
     .reply_is_echo = [](std::uint8_t) { return false; },
     .compare_reply_count = compare_hybrid,
+    .decimal_register_ids = false,
+    .decode_values = hybrid_values,
 };
 
 }  // namespace pvtap::detail
+
+namespace pvtap {
+
+// The device number every Hybrid reply opens with, read by the Hybrid map's entry for it.
+DecodedValue RegisterDecoder::decode_device_number(const DeviceNumber& device) const {
+  const RegisterDef* def = map(Dialect::Hybrid).find_kind(RegisterKind::DeviceNumber);
+  const std::array<std::uint16_t, 2> words{
+      static_cast<std::uint16_t>((unsigned{device.type_code} << 8) |
+                                 ((device.serial >> 16) & 0xFFu)),
+      static_cast<std::uint16_t>(device.serial & 0xFFFFu)};
+  DecodedValue v;
+  v.def = def;
+  v.origin = ValueOrigin::DeviceHeader;
+  v.address = def != nullptr ? def->address : std::uint16_t{0};
+  v.wire_address = v.address;
+  v.words_present = 2;
+  detail::convert_device_number(def, words, v);
+  if (def == nullptr) v.add(ValueWarning::NotInMap);
+  return v;
+}
+
+}  // namespace pvtap

@@ -3,6 +3,7 @@
 #include "codec/rtu_codec.h"
 #include "dialects/dialect_module.h"
 #include "pvtap/codec/function_codes.h"
+#include "registers/value_placement.h"
 
 namespace pvtap::embedded {
 extern const unsigned char map_gsl[];
@@ -133,6 +134,44 @@ bool is_echoed(std::uint8_t f) {
          f == fc::kMaskWriteRegister || f == fc::kWriteFileRecord;
 }
 
+// GSL and plain Modbus: register reads and writes; other functions carry no register values.
+DecodeReport modbus_family_values(const RegisterDecoder& decoder, const Frame& frame,
+                                  const Frame* request, std::vector<DecodedValue>& out) {
+  decoder.learn(frame, request);
+  const RegisterMap* own = decoder.station_map(frame.station);
+  const RegisterMap& m = own != nullptr ? *own : decoder.map(frame.dialect);
+  const Dialect d = own != nullptr ? own->dialect() : frame.dialect;
+  if (frame.role == Role::Request) {
+    if (!frame.start || frame.words.empty()) return nothing(ValueOrigin::WriteRequest);
+    if (frame.function == fc::kGslWriteSingle) {
+      return decoder.place(m, d, *frame.start, first_word(frame), ValueOrigin::WriteRequest, out);
+    }
+    if (frame.function == fc::kGslWriteMultiple ||
+        (frame.function == fc::kReadWriteMultiple && frame.write_start)) {
+      const std::uint16_t at =
+          frame.function == fc::kReadWriteMultiple ? *frame.write_start : *frame.start;
+      return decoder.place(m, d, at, frame.words.span(), ValueOrigin::WriteRequest, out);
+    }
+    return nothing(ValueOrigin::WriteRequest);
+  }
+  if (frame.function == fc::kGslWriteSingle && frame.start && !frame.words.empty()) {
+    return decoder.place(m, d, *frame.start, first_word(frame), ValueOrigin::WriteReply, out);
+  }
+  const bool read = frame.function == fc::kGslReadHolding || frame.function == fc::kGslReadInput ||
+                    frame.function == fc::kReadWriteMultiple;
+  if (!read) return nothing(ValueOrigin::ReadReply);
+  if (!is_request_for(request, frame)) {
+    DecodeReport report = nothing(ValueOrigin::ReadReply, DecodeStatus::StartUnknown);
+    report.request_unusable = request != nullptr;
+    return report;
+  }
+  DecodeReport report =
+      decoder.place(m, d, *request->start, frame.words.span(), ValueOrigin::ReadReply, out);
+  note_request_fit(report, frame, request);
+  decoder.apply_scale_factors(m, frame.station, report, out);
+  return report;
+}
+
 // fc|0x80 answers fc.
 ReplyKind modbus_reply_kind(std::uint8_t f) {
   return fc::is_gsl_exception(f) ? ReplyKind::GslException : ReplyKind::Normal;
@@ -161,6 +200,8 @@ extern const DialectModule kGslDialect{
     .reply_repeats_start = false,
     .reply_is_echo = is_echoed,
     .compare_reply_count = compare_modbus,
+    .decimal_register_ids = true,
+    .decode_values = modbus_family_values,
 };
 
 // Plain Modbus devices bring their own map (--map STATION=FILE).
@@ -183,6 +224,8 @@ extern const DialectModule kModbusDialect{
     .reply_repeats_start = false,
     .reply_is_echo = is_echoed,
     .compare_reply_count = compare_modbus,
+    .decimal_register_ids = false,
+    .decode_values = modbus_family_values,
 };
 
 }  // namespace pvtap::detail
