@@ -85,8 +85,8 @@ void exception_list(std::string& o, const BusReport& b, bool first) {
   o += "<ul>";
   for (const ExceptionTally& e : b.exception_codes) {
     std::string line;
-    if (e.dialect == Dialect::Hybrid) {
-      line = "hybrid error reply (0xFF)";
+    if (const std::string_view whole = error_reply_name(e.dialect); !whole.empty()) {
+      line = whole;
     } else {
       line = std::string(to_string(e.dialect)) + " exception ";
       append_hex_byte(line, e.code);

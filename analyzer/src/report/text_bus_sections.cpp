@@ -167,8 +167,8 @@ void findings(const AuditReport& r, const BusFindings& bus, std::string& o) {
   }
   o += report_line("exceptions and error replies: %llu", u(b.exceptions));
   for (const ExceptionTally& e : b.exception_codes) {
-    if (e.dialect == Dialect::Hybrid) {
-      o += report_line("  hybrid error reply (0xFF): %llu", u(e.count));
+    if (const std::string_view whole = error_reply_name(e.dialect); !whole.empty()) {
+      o += report_line("  %s: %llu", std::string(whole).c_str(), u(e.count));
     } else {
       o += report_line("  %s exception 0x%02X (%s): %llu",
                        std::string(to_string(e.dialect)).c_str(), e.code,

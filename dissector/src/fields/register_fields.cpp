@@ -11,6 +11,7 @@
 #include "fields/field_list.h"
 #include "fields/register_field_type.h"
 #include "fields/value_tables.h"
+#include "protocol/inverter_protocol.h"
 #include "settings/register_maps.h"
 
 namespace pvtap::dissector {
@@ -31,18 +32,20 @@ const std::set<std::string_view> kReservedAsciiKeys = {
     "byte_count",       "device",     "exception_code", "word",          "checksum",      "noise",
     "unknown_function", "request_in", "response_in",    "response_time", "expected_count"};
 
+bool shows_several(DialectSet dialects) {
+  unsigned n = 0;
+  for (const Dialect d : kAllDialects) n += dialects.contains(d) ? 1u : 0u;
+  return n > 1;
+}
+
+// A protocol that shows several dialects gives each its segment ("invrtu.gsl."); one that shows
+// a single dialect needs none, but a key that would shadow one of its common fields goes under
+// "register." ("invascii.register.word").
 std::string field_prefix(Dialect d, std::string_view key) {
-  switch (d) {
-    case Dialect::Hybrid:
-      return "invrtu.hybrid.";
-    case Dialect::Gsl:
-      return "invrtu.gsl.";
-    case Dialect::Modbus:
-      return "invrtu.modbus.";
-    case Dialect::Ascii:
-      break;
-  }
-  return kReservedAsciiKeys.contains(key) ? "invascii.register." : "invascii.";
+  const InverterProtocol& p = protocol_of(d);
+  const std::string protocol = std::string(p.filter_name) + ".";
+  if (shows_several(p.dialects)) return protocol + std::string(to_string(d)) + ".";
+  return kReservedAsciiKeys.contains(key) ? protocol + "register." : protocol;
 }
 
 // The type the tree description gives the entry's item.

@@ -3,6 +3,15 @@
 namespace pvtap::dissector {
 namespace {
 
+// The dialects whose frames are RTU frames, or those whose are not.
+DialectSet framed_so(bool rtu) {
+  DialectSet set = DialectSet::none();
+  for (const Dialect d : kAllDialects) {
+    if (rtu_framed(d) == rtu) set = set.with(d);
+  }
+  return set;
+}
+
 InverterProtocol g_rtu{
     .name = "Inverter RTU protocol",
     .short_name = "invRTU",
@@ -10,7 +19,7 @@ InverterProtocol g_rtu{
     .check_name = "CRC",
     .check_key = "crc",
     .check_word = "CRC",
-    .dialects = DialectSet::none().with(Dialect::Hybrid).with(Dialect::Gsl).with(Dialect::Modbus),
+    .dialects = framed_so(true),
 };
 
 InverterProtocol g_ascii{
@@ -20,7 +29,7 @@ InverterProtocol g_ascii{
     .check_name = "Checksum",
     .check_key = "checksum",
     .check_word = "checksum",
-    .dialects = DialectSet::only(Dialect::Ascii),
+    .dialects = framed_so(false),
 };
 
 }  // namespace
@@ -34,7 +43,7 @@ InverterProtocol& ascii_protocol() {
 }
 
 InverterProtocol& protocol_of(Dialect d) {
-  return d == Dialect::Ascii ? g_ascii : g_rtu;
+  return rtu_framed(d) ? g_rtu : g_ascii;
 }
 
 }  // namespace pvtap::dissector

@@ -110,18 +110,8 @@ void add_objects(Builder& b, const ModbusPlan& m) {
   }
 }
 
-const char* dialect_text(Dialect d) {
-  switch (d) {
-    case Dialect::Ascii:
-      return "ASCII";
-    case Dialect::Hybrid:
-      return "Hybrid";
-    case Dialect::Gsl:
-      return "GSL";
-    case Dialect::Modbus:
-      return "plain Modbus";
-  }
-  return "?";
+std::string dialect_text(Dialect d) {
+  return std::string(dialect_short_title(d));
 }
 
 void add_quantity_problem(Builder& b, const FrameRecord& r) {

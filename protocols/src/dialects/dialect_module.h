@@ -21,8 +21,11 @@ namespace pvtap::detail {
 // the dialect, so a dialect is its folder and one line of dialect_table.cpp.
 struct DialectModule {
   Dialect dialect;
-  std::string_view title;       // dialect_title()
-  std::string_view check_name;  // check_name()
+  std::string_view title;             // dialect_title()
+  std::string_view short_title;       // dialect_short_title()
+  std::string_view check_name;        // check_name()
+  std::string_view error_reply_name;  // error_reply_name()
+  bool rtu_framed;                    // rtu_framed()
   // A whole frame's bytes (check included) read into `out`; why not, or empty.
   std::string_view (*parse)(std::span<const std::uint8_t> bytes, Role role, Frame& out);
   // The station and function by their position alone (frame_header in frame_codec.h).

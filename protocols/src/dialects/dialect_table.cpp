@@ -28,8 +28,20 @@ std::string_view dialect_title(Dialect d) {
   return detail::dialect_module(d).title;
 }
 
+std::string_view dialect_short_title(Dialect d) {
+  return detail::dialect_module(d).short_title;
+}
+
 std::string_view check_name(Dialect d) {
   return detail::dialect_module(d).check_name;
+}
+
+std::string_view error_reply_name(Dialect d) {
+  return detail::dialect_module(d).error_reply_name;
+}
+
+bool rtu_framed(Dialect d) {
+  return detail::dialect_module(d).rtu_framed;
 }
 
 }  // namespace pvtap

@@ -91,8 +91,19 @@ constexpr std::optional<Dialect> dialect_named(std::string_view name) {
 // A dialect's name for people ("Hybrid V2.2", "GSL (Modbus RTU)").
 std::string_view dialect_title(Dialect d);
 
+// Its name inside a sentence ("GSL until this frame, now plain Modbus").
+std::string_view dialect_short_title(Dialect d);
+
 // What a dialect's frames end with, as a sentence names it: "CRC" or "checksum".
 std::string_view check_name(Dialect d);
+
+// A dialect whose error reply carries no exception code names it whole ("hybrid error reply
+// (0xFF)"); empty for a dialect whose exceptions carry their code.
+std::string_view error_reply_name(Dialect d);
+
+// Whether a dialect's frames are RTU frames (station, function, body, CRC), which one
+// Wireshark protocol shows, or frames of their own (ASCII).
+bool rtu_framed(Dialect d);
 
 constexpr std::string_view to_string(Role r) {
   return r == Role::Request ? "request" : "response";

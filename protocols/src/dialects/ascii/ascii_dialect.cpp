@@ -48,7 +48,10 @@ DecodeReport ascii_values(const RegisterDecoder& decoder, const Frame& frame, co
 extern const DialectModule kAsciiDialect{
     .dialect = Dialect::Ascii,
     .title = "ASCII",
+    .short_title = "ASCII",
     .check_name = "checksum",
+    .error_reply_name = "",
+    .rtu_framed = false,
     .parse = parse_ascii,
     .read_header = read_ascii_header,
     .verify_check = verify_ascii_check,

@@ -103,7 +103,10 @@ DecodeReport hybrid_values(const RegisterDecoder& decoder, const Frame& frame, c
 extern const DialectModule kHybridDialect{
     .dialect = Dialect::Hybrid,
     .title = "Hybrid V2.2",
+    .short_title = "Hybrid",
     .check_name = "CRC",
+    .error_reply_name = "hybrid error reply (0xFF)",
+    .rtu_framed = true,
     .parse = [](std::span<const std::uint8_t> bytes, Role role,
                 Frame& out) { return parse_rtu(bytes, Dialect::Hybrid, role, out); },
     .read_header = read_rtu_header,

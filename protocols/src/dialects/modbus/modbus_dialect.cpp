@@ -182,7 +182,10 @@ ReplyKind modbus_reply_kind(std::uint8_t f) {
 extern const DialectModule kGslDialect{
     .dialect = Dialect::Gsl,
     .title = "GSL (Modbus RTU)",
+    .short_title = "GSL",
     .check_name = "CRC",
+    .error_reply_name = "",
+    .rtu_framed = true,
     .parse = [](std::span<const std::uint8_t> bytes, Role role,
                 Frame& out) { return parse_rtu(bytes, Dialect::Gsl, role, out); },
     .read_header = read_rtu_header,
@@ -208,7 +211,10 @@ extern const DialectModule kGslDialect{
 extern const DialectModule kModbusDialect{
     .dialect = Dialect::Modbus,
     .title = "Modbus RTU",
+    .short_title = "plain Modbus",
     .check_name = "CRC",
+    .error_reply_name = "",
+    .rtu_framed = true,
     .parse = [](std::span<const std::uint8_t> bytes, Role role,
                 Frame& out) { return parse_rtu(bytes, Dialect::Modbus, role, out); },
     .read_header = read_rtu_header,
