@@ -14,7 +14,7 @@ std::string start_address_text(const AuditSettings& settings, Dialect d,
   if (!wire_start) return "-";
   const std::optional<std::uint16_t> written = written_address_of(d, *wire_start, settings.gsl_ids);
   return std::string(written ? format_register_address(d, *written).view()
-                             : format_register_address(Dialect::Hybrid, *wire_start).view());
+                             : format_wire_address(*wire_start).view());
 }
 
 std::string block_start_text(const AuditSettings& settings, const PollBlock& b) {

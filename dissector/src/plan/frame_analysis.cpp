@@ -29,7 +29,7 @@ std::string start_text(Dialect d, std::uint16_t wire, GslIdReading ids) {
   const auto written = written_address_of(d, wire, ids);
   if (!written) return hex4(wire);
   const std::string text(format_register_address(d, *written).view());
-  return d == Dialect::Gsl ? hex4(wire) + " (ID " + text + ")" : text;
+  return decimal_register_ids(d) ? hex4(wire) + " (ID " + text + ")" : text;
 }
 
 void plan_header(const Frame& f, std::size_t length, const AnalysisContext& ctx, FramePlan& plan) {

@@ -141,7 +141,7 @@ void show_timeout(const FrameRecord& request, tvbuff_t* tvb, packet_info* pinfo,
 
 void show_collision(const SessionCollision& collision, tvbuff_t* tvb, packet_info* pinfo,
                     proto_tree* tree) {
-  InverterProtocol& p = protocol_of(Dialect::Gsl);
+  InverterProtocol& p = rtu_protocol();
   add_info(pinfo, p, "collision");
   const double now = nstime_to_sec(&pinfo->abs_ts);
   proto_tree_add_expert_format(

@@ -40,6 +40,10 @@ std::string_view error_reply_name(Dialect d) {
   return detail::dialect_module(d).error_reply_name;
 }
 
+bool decimal_register_ids(Dialect d) {
+  return detail::dialect_module(d).decimal_register_ids;
+}
+
 bool rtu_framed(Dialect d) {
   return detail::dialect_module(d).rtu_framed;
 }

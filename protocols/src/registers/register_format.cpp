@@ -184,7 +184,7 @@ std::string format_value(const DecodedValue& v) {
 
 RegisterAddressText format_value_address(const DecodedValue& v, Dialect d) {
   const bool hex_wire = v.has(ValueWarning::NoWrittenAddress);
-  return format_register_address(hex_wire ? Dialect::Hybrid : d, v.address);
+  return hex_wire ? format_wire_address(v.address) : format_register_address(d, v.address);
 }
 
 std::string_view describe(ValueWarning w) {

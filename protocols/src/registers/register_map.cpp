@@ -57,18 +57,21 @@ std::string_view RegisterDef::bit_name(unsigned index) const {
 }
 
 RegisterAddressText format_register_address(Dialect d, std::uint16_t written_address) {
+  if (!detail::dialect_module(d).decimal_register_ids) return format_wire_address(written_address);
   RegisterAddressText out;
   char* first = out.chars.data();
-  char* last = first + out.chars.size();
-  if (detail::dialect_module(d).decimal_register_ids) {
-    out.length = static_cast<std::uint8_t>(std::to_chars(first, last, written_address).ptr - first);
-    return out;
-  }
+  out.length = static_cast<std::uint8_t>(
+      std::to_chars(first, first + out.chars.size(), written_address).ptr - first);
+  return out;
+}
+
+RegisterAddressText format_wire_address(std::uint16_t wire_address) {
   static constexpr char kDigits[] = "0123456789ABCDEF";
+  RegisterAddressText out;
   out.chars[0] = '0';
   out.chars[1] = 'x';
   for (unsigned i = 0; i < 4; ++i) {
-    out.chars[2 + i] = kDigits[(static_cast<unsigned>(written_address) >> (12 - 4 * i)) & 0xFu];
+    out.chars[2 + i] = kDigits[(static_cast<unsigned>(wire_address) >> (12 - 4 * i)) & 0xFu];
   }
   out.length = 6;
   return out;

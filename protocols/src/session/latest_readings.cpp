@@ -248,7 +248,7 @@ std::map<std::uint8_t, StationReadings> LatestReadings::decode(
       continue;
     }
     decoder.decode(b->reply, asked, values);
-    if (b->reply.dialect == Dialect::Hybrid && b->reply.device) {
+    if (b->reply.device) {
       values.push_back(decoder.decode_device_number(*b->reply.device));
     }
     for (const DecodedValue& v : values) {

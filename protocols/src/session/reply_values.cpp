@@ -43,8 +43,8 @@ void ReplyValues::take(SessionFrame& out, const Frame& frame, const FrameMatch& 
 
 void ReplyValues::decode(SessionFrame& out, const Frame& frame, const Frame* request) {
   values_.clear();
-  // The device number heads every Hybrid reply, so it comes first.
-  if (frame.dialect == Dialect::Hybrid && frame.role == Role::Response && frame.device) {
+  // The device number heads every reply that carries one (Hybrid's), so it comes first.
+  if (frame.role == Role::Response && frame.device) {
     values_.push_back(decoder_.decode_device_number(*frame.device));
   }
   out.decode = decoder_.decode(frame, request, values_);

@@ -1,24 +1,17 @@
 #include "pvtap/statistics/bus_gap_statistics.h"
 
 namespace pvtap {
-namespace {
-
-// The silent-interval rules are Modbus RTU's; ASCII frames are delimited by ENQ/ACK..EOT.
-bool is_rtu(Dialect d) {
-  return d != Dialect::Ascii;
-}
-
-}  // namespace
 
 void BusGapStatistics::add_frame(const FrameTiming& frame) {
-  if (is_rtu(frame.dialect)) {
+  // The silent-interval rules are Modbus RTU's; ASCII frames are delimited by ENQ/ACK..EOT.
+  if (rtu_framed(frame.dialect)) {
     inner_silences_.add(frame.max_internal_gap);
     if (frame.max_internal_gap > timing_.t15) record(inner_gap_t15_, frame.id);
   }
   if (previous_) {
     const double gap = frame.start_time - previous_->end_time;
     gaps_.add(gap);
-    if (is_rtu(frame.dialect) && is_rtu(previous_->dialect)) {
+    if (rtu_framed(frame.dialect) && rtu_framed(previous_->dialect)) {
       frame_silences_.add(gap);
       if (gap < timing_.t35) record(spacing_t35_, frame.id);
     }

@@ -101,6 +101,10 @@ std::string_view check_name(Dialect d);
 // (0xFF)"); empty for a dialect whose exceptions carry their code.
 std::string_view error_reply_name(Dialect d);
 
+// Whether the seed of a dialect writes register IDs as decimal numbers (GSL: 1050 for the
+// wire's 0x1050 when read as hex).
+bool decimal_register_ids(Dialect d);
+
 // Whether a dialect's frames are RTU frames (station, function, body, CRC), which one
 // Wireshark protocol shows, or frames of their own (ASCII).
 bool rtu_framed(Dialect d);

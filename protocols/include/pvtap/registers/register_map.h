@@ -133,6 +133,8 @@ struct RegisterAddressText {
 
 // "0x1006" (Hybrid), "0x0020" (ASCII, four hex digits), "1056" (GSL, the written ID).
 RegisterAddressText format_register_address(Dialect d, std::uint16_t written_address);
+// "0x1050": a wire address, four hex digits, whatever the dialect.
+RegisterAddressText format_wire_address(std::uint16_t wire_address);
 
 // RegisterMap: the registers of one dialect, sorted by address. Cheap to copy (shared).
 class RegisterMap {
