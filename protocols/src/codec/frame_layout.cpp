@@ -1,5 +1,6 @@
 #include "pvtap/codec/frame_layout.h"
 
+#include "dialects/dialect_module.h"
 #include "pvtap/codec/function_codes.h"
 
 namespace pvtap {
@@ -134,11 +135,13 @@ FieldSpan FrameLayout::word_span(std::size_t index, std::size_t n) const {
 }
 
 FrameLayout header_layout(Dialect dialect, std::size_t length) {
-  return dialect == Dialect::Ascii ? ascii_header_layout(length) : rtu_header_layout(length);
+  return detail::dialect_module(dialect).rtu_framed ? rtu_header_layout(length)
+                                                    : ascii_header_layout(length);
 }
 
 FrameLayout frame_layout(const Frame& frame, std::size_t length) {
-  return frame.dialect == Dialect::Ascii ? ascii_layout(frame, length) : rtu_layout(frame, length);
+  return detail::dialect_module(frame.dialect).rtu_framed ? rtu_layout(frame, length)
+                                                          : ascii_layout(frame, length);
 }
 
 }  // namespace pvtap

@@ -2,8 +2,6 @@
 
 #include "codec/wire_fields.h"
 #include "dialects/hybrid/hybrid_codec.h"
-#include "dialects/modbus/gsl_codec.h"
-#include "dialects/modbus/modbus_codec.h"
 #include "pvtap/codec/checksums.h"
 #include "pvtap/codec/function_codes.h"
 
@@ -12,7 +10,9 @@ namespace {
 
 constexpr std::size_t kCrcLength = 2;
 
-bool encode_body(const Frame& f, std::vector<std::uint8_t>& out) {
+}  // namespace
+
+bool encode_rtu_fields(const Frame& f, std::vector<std::uint8_t>& out) {
   const bool request = f.role == Role::Request;
   if (fc::is_gsl_exception(f.function) && modbus_family(f.dialect)) {
     if (request || !f.exception_code) return false;
@@ -41,49 +41,6 @@ bool encode_body(const Frame& f, std::vector<std::uint8_t>& out) {
   return true;
 }
 
-}  // namespace
-
-namespace {
-
-// A gateway's own exception (0x0A, 0x0B) answers whatever it forwarded, a function of another
-// dialect included (a Hybrid read through a Modbus/TCP gateway): station, fc|0x80, code, CRC.
-bool gateway_exception(std::span<const std::uint8_t> b, Dialect dialect, Role role) {
-  return modbus_family(dialect) && role == Role::Response && b.size() == 5 &&
-         fc::is_gsl_exception(b[1]) &&
-         (b[2] == fc::kGatewayPathUnavailable || b[2] == fc::kGatewayTargetNoResponse);
-}
-
-// A user-defined code of plain Modbus (PROTOCOLS.md section 6): no public layout, so its
-// bytes are kept as they came; the framing finds such a frame only between pinned ends.
-bool user_defined(Dialect dialect, std::uint8_t function) {
-  return dialect == Dialect::Modbus && fc::is_user_defined_function(function);
-}
-
-}  // namespace
-
-ParseStatus parse_rtu(std::span<const std::uint8_t> b, Dialect dialect, Role role, Frame& f) {
-  if (b.size() < 4) return fail("RTU frame shorter than 4 bytes");
-  f = make_frame(dialect, role, b[0], b[1]);
-  if (!fc::dialect_has_function(dialect, f.function) && !gateway_exception(b, dialect, role) &&
-      !user_defined(dialect, f.function)) {
-    // A code no dialect defines (Modbus/TCP carries any code whole) says so, not "another".
-    return fail(fc::detail::kFunctionKinds.of[f.function] == 0
-                    ? "function code without a public layout"
-                    : "function code of another dialect");
-  }
-  if (dialect == Dialect::Hybrid) {
-    return role == Role::Request ? parse_hybrid_request(b, f) : parse_hybrid_reply(b, f);
-  }
-  if (fc::is_gsl_function(f.function)) {
-    return role == Role::Request ? parse_gsl_request(b, f) : parse_gsl_reply(b, f);
-  }
-  if (fc::is_gsl_exception(f.function)) {
-    if (role == Role::Request) return fail("an exception is never a request");
-    return parse_gsl_reply(b, f);
-  }
-  return role == Role::Request ? parse_modbus_request(b, f) : parse_modbus_reply(b, f);
-}
-
 void read_rtu_header(std::span<const std::uint8_t> b, Frame& out) {
   if (b.size() <= 1) return;
   out.station = b[0];
@@ -105,23 +62,17 @@ FrameCheck verify_rtu_check(std::span<const std::uint8_t> b) {
   return c;
 }
 
-bool encode_rtu(const Frame& f, std::vector<std::uint8_t>& out) {
-  if (!fc::dialect_has_function(f.dialect, f.function) && !user_defined(f.dialect, f.function)) {
-    return false;
-  }
-  const std::size_t begin = out.size();
-  out.push_back(f.station);
-  out.push_back(f.function);
-  const bool plain_modbus = f.dialect != Dialect::Hybrid && !fc::is_gsl_function(f.function) &&
-                            !fc::is_gsl_exception(f.function);
-  if (!(plain_modbus ? encode_modbus_body(f, out) : encode_body(f, out))) {
-    out.resize(begin);
-    return false;
-  }
+bool append_crc(std::size_t begin, std::vector<std::uint8_t>& out) {
   const auto crc = Crc16Modbus::compute(std::span(out).subspan(begin));
   out.push_back(static_cast<std::uint8_t>(crc & 0xFFu));
   out.push_back(static_cast<std::uint8_t>(crc >> 8));
   return true;
+}
+
+std::string_view unknown_function(std::uint8_t function) {
+  // A code no dialect defines (Modbus/TCP carries any code whole) says so, not "another".
+  return fc::detail::kFunctionKinds.of[function] == 0 ? "function code without a public layout"
+                                                      : "function code of another dialect";
 }
 
 }  // namespace pvtap::detail

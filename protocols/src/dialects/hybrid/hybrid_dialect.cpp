@@ -1,6 +1,7 @@
 // The Hybrid V2.2 dialect's record in the table of dialects (PROTOCOLS.md section 2).
 #include "codec/rtu_codec.h"
 #include "dialects/dialect_module.h"
+#include "dialects/hybrid/hybrid_codec.h"
 #include "pvtap/codec/function_codes.h"
 #include "registers/register_value_conversion.h"
 #include "registers/value_placement.h"
@@ -12,6 +13,18 @@ extern const std::size_t map_hybrid_size;
 
 namespace pvtap::detail {
 namespace {
+
+bool carries_hybrid(std::span<const std::uint8_t>, Role, std::uint8_t function) {
+  return fc::is_hybrid_function(function);
+}
+
+bool writes_hybrid(std::uint8_t function) {
+  return fc::is_hybrid_function(function);
+}
+
+ParseStatus parse_hybrid_body(std::span<const std::uint8_t> bytes, Role role, Frame& f) {
+  return role == Role::Request ? parse_hybrid_request(bytes, f) : parse_hybrid_reply(bytes, f);
+}
 
 std::string_view hybrid_function_name(std::uint8_t f) {
   switch (f) {
@@ -107,12 +120,14 @@ extern const DialectModule kHybridDialect{
     .check_name = "CRC",
     .error_reply_name = "hybrid error reply (0xFF)",
     .rtu_framed = true,
-    .parse = [](std::span<const std::uint8_t> bytes, Role role,
-                Frame& out) { return parse_rtu(bytes, Dialect::Hybrid, role, out); },
+    .parse =
+        [](std::span<const std::uint8_t> bytes, Role role, Frame& out) {
+          return parse_rtu<carries_hybrid, parse_hybrid_body>(bytes, Dialect::Hybrid, role, out);
+        },
     .read_header = read_rtu_header,
     .verify_check = verify_rtu_check,
     .check_wire_bytes = rtu_check_wire_bytes,
-    .encode = encode_rtu,
+    .encode = encode_rtu<writes_hybrid, encode_rtu_fields>,
     .function_name = hybrid_function_name,
     .exception_name = [](std::uint8_t code) { return fc::exception_name(code); },
     .builtin_map_text = []() -> std::string_view {

@@ -2,6 +2,8 @@
 // 3 and 6): one wire, two readings of its registers (GSL is Modbus RTU with KSTAR's map).
 #include "codec/rtu_codec.h"
 #include "dialects/dialect_module.h"
+#include "dialects/modbus/gsl_codec.h"
+#include "dialects/modbus/modbus_codec.h"
 #include "pvtap/codec/function_codes.h"
 #include "registers/value_placement.h"
 
@@ -109,6 +111,49 @@ std::string_view modbus_exception_name(std::uint8_t code) {
 namespace pvtap::detail {
 namespace {
 
+// A gateway's own exception (0x0A, 0x0B) answers whatever it forwarded, a function of another
+// dialect included (a Hybrid read through a Modbus/TCP gateway): station, fc|0x80, code, CRC.
+bool gateway_exception(std::span<const std::uint8_t> b, Role role) {
+  return role == Role::Response && b.size() == 5 && fc::is_gsl_exception(b[1]) &&
+         (b[2] == fc::kGatewayPathUnavailable || b[2] == fc::kGatewayTargetNoResponse);
+}
+
+bool carries_gsl(std::span<const std::uint8_t> b, Role role, std::uint8_t function) {
+  return fc::is_gsl_function(function) || gateway_exception(b, role);
+}
+
+bool writes_gsl(std::uint8_t function) {
+  return fc::is_gsl_function(function);
+}
+
+// A user-defined code of plain Modbus (PROTOCOLS.md section 6) has no public layout, so its
+// bytes are kept as they came; the framing finds such a frame only between pinned ends.
+bool carries_modbus(std::span<const std::uint8_t> b, Role role, std::uint8_t function) {
+  return fc::is_modbus_function(function) || gateway_exception(b, role) ||
+         fc::is_user_defined_function(function);
+}
+
+bool writes_modbus(std::uint8_t function) {
+  return fc::is_modbus_function(function) || fc::is_user_defined_function(function);
+}
+
+// GSL's codes by GSL's rules, which plain Modbus shares; the other public codes by Modbus's.
+ParseStatus parse_modbus_family_body(std::span<const std::uint8_t> b, Role role, Frame& f) {
+  if (fc::is_gsl_function(f.function)) {
+    return role == Role::Request ? parse_gsl_request(b, f) : parse_gsl_reply(b, f);
+  }
+  if (fc::is_gsl_exception(f.function)) {
+    if (role == Role::Request) return fail("an exception is never a request");
+    return parse_gsl_reply(b, f);
+  }
+  return role == Role::Request ? parse_modbus_request(b, f) : parse_modbus_reply(b, f);
+}
+
+bool encode_modbus_family_body(const Frame& f, std::vector<std::uint8_t>& out) {
+  const bool plain_modbus = !fc::is_gsl_function(f.function) && !fc::is_gsl_exception(f.function);
+  return plain_modbus ? encode_modbus_body(f, out) : encode_rtu_fields(f, out);
+}
+
 // GSL and plain Modbus: the reads whose reply carries a byte count the request fixes.
 std::optional<CountComparison> compare_modbus(const FrameSummary& request,
                                               const FrameSummary& reply) {
@@ -186,12 +231,14 @@ extern const DialectModule kGslDialect{
     .check_name = "CRC",
     .error_reply_name = "",
     .rtu_framed = true,
-    .parse = [](std::span<const std::uint8_t> bytes, Role role,
-                Frame& out) { return parse_rtu(bytes, Dialect::Gsl, role, out); },
+    .parse =
+        [](std::span<const std::uint8_t> bytes, Role role, Frame& out) {
+          return parse_rtu<carries_gsl, parse_modbus_family_body>(bytes, Dialect::Gsl, role, out);
+        },
     .read_header = read_rtu_header,
     .verify_check = verify_rtu_check,
     .check_wire_bytes = rtu_check_wire_bytes,
-    .encode = encode_rtu,
+    .encode = encode_rtu<writes_gsl, encode_modbus_family_body>,
     .function_name = fc::modbus_family_function_name,
     .exception_name = [](std::uint8_t code) { return fc::exception_name(code); },
     .builtin_map_text = []() -> std::string_view {
@@ -215,12 +262,15 @@ extern const DialectModule kModbusDialect{
     .check_name = "CRC",
     .error_reply_name = "",
     .rtu_framed = true,
-    .parse = [](std::span<const std::uint8_t> bytes, Role role,
-                Frame& out) { return parse_rtu(bytes, Dialect::Modbus, role, out); },
+    .parse =
+        [](std::span<const std::uint8_t> bytes, Role role, Frame& out) {
+          return parse_rtu<carries_modbus, parse_modbus_family_body>(bytes, Dialect::Modbus, role,
+                                                                     out);
+        },
     .read_header = read_rtu_header,
     .verify_check = verify_rtu_check,
     .check_wire_bytes = rtu_check_wire_bytes,
-    .encode = encode_rtu,
+    .encode = encode_rtu<writes_modbus, encode_modbus_family_body>,
     .function_name = fc::modbus_family_function_name,
     .exception_name = fc::modbus_exception_name,
     .builtin_map_text = []() -> std::string_view { return {}; },
