@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <optional>
 
+#include "dialects/dialect_module.h"
 #include "framing/length_repair.h"
 #include "pvtap/codec/checksums.h"
 
@@ -47,7 +48,7 @@ StartAt start_at(const DecisionInput& in, std::size_t index) {
       s.incomplete = true;
       continue;
     }
-    if (c.dialect == Dialect::Ascii) s.delimited = true;
+    if (!detail::dialect_module(c.dialect).rtu_framed) s.delimited = true;
     if (!s.good && verify_check(rest.first(c.length), c.dialect).ok) s.good = true;
   }
   return s;
@@ -101,7 +102,7 @@ Evidence silence_rules_out(const DecisionInput& in, const FrameCandidate& c) {
 
 Evidence bad_frame_evidence(const DecisionInput& in, const FrameCandidate& c, bool pinned) {
   // ENQ/ACK ... EOT delimit an ASCII frame by themselves.
-  if (c.dialect == Dialect::Ascii) return Evidence::Yes;
+  if (!detail::dialect_module(c.dialect).rtu_framed) return Evidence::Yes;
   if (!pinned) return Evidence::No;
   if (c.needs_good_check && !verify_check(in.bytes.first(c.length), c.dialect).ok) {
     return Evidence::No;
@@ -177,7 +178,7 @@ class CandidateChecker {
   explicit CandidateChecker(std::span<const std::uint8_t> bytes) : bytes_(bytes) {}
 
   FrameCheck check(const FrameCandidate& c) {
-    if (c.dialect == Dialect::Ascii || c.length < 2) {
+    if (!detail::dialect_module(c.dialect).rtu_framed || c.length < 2) {
       return verify_check(bytes_.first(c.length), c.dialect);
     }
     const std::size_t body = c.length - 2;

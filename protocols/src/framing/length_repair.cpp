@@ -3,6 +3,7 @@
 #include <array>
 #include <cstdint>
 
+#include "dialects/dialect_module.h"
 #include "pvtap/codec/checksums.h"
 #include "pvtap/codec/function_codes.h"
 
@@ -41,7 +42,7 @@ std::optional<FrameCandidate> spanning_reading(std::span<const std::uint8_t> byt
   const CandidateList cands = frame_candidates(bytes, hint, dialects, Plausibility::Ignore);
   for (std::size_t i = 0; i < cands.size; ++i) {
     const FrameCandidate& c = cands.items[i];
-    if (c.dialect != Dialect::Ascii && c.length == bytes.size()) return c;
+    if (detail::dialect_module(c.dialect).rtu_framed && c.length == bytes.size()) return c;
   }
   return std::nullopt;
 }
@@ -91,7 +92,8 @@ std::optional<FrameCandidate> lying_count_reading(std::span<const std::uint8_t> 
   const CandidateList cands = frame_candidates(frame, hint, dialects, Plausibility::Ignore);
   for (std::size_t i = 0; i < cands.size; ++i) {
     const FrameCandidate& c = cands.items[i];
-    if (c.dialect == Dialect::Ascii || c.role != Role::Request || c.length == frame.size()) {
+    if (!detail::dialect_module(c.dialect).rtu_framed || c.role != Role::Request ||
+        c.length == frame.size()) {
       continue;
     }
     return FrameCandidate{frame.size(), c.dialect, c.role, true};

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "dialects/dialect_module.h"
 #include "pvtap/codec/function_codes.h"
 #include "pvtap/matching/reply_rules.h"
 #include "pvtap/matching/request_rules.h"
@@ -176,9 +177,9 @@ bool TransactionMatcher::try_answer(const ObservedFrame& in, FrameMatch& out) {
   }
   if (in.check_ok) return false;
   Slot* only = slots_.only_pending();
-  const bool ascii = in.frame.dialect == Dialect::Ascii;
+  const bool rtu = detail::dialect_module(in.frame.dialect).rtu_framed;
   if (only == nullptr || slots_.is_broadcast(*only) ||
-      (only->request.frame.dialect == Dialect::Ascii) != ascii) {
+      detail::dialect_module(only->request.frame.dialect).rtu_framed != rtu) {
     return false;
   }
   complete(*only, in, out);

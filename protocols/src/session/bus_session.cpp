@@ -5,6 +5,7 @@
 #include <limits>
 #include <vector>
 
+#include "dialects/dialect_module.h"
 #include "dialects/modbus/station_dialects.h"
 #include "pvtap/codec/checksums.h"
 #include "pvtap/codec/function_codes.h"
@@ -234,7 +235,8 @@ Dialect BusSession::Impl::reply_dialect(std::span<const std::uint8_t> wire, Role
   std::optional<Dialect> first;
   for (std::size_t i = 0; i < readings.size; ++i) {
     const FrameCandidate& c = readings.items[i];
-    if (c.length != wire.size() || c.role != role || c.dialect == Dialect::Ascii) continue;
+    if (c.length != wire.size() || c.role != role || !detail::dialect_module(c.dialect).rtu_framed)
+      continue;
     if (asked && same_dialect(c.dialect, *asked)) return c.dialect;
     if (!first) first = c.dialect;
   }
