@@ -36,10 +36,12 @@ void register_protocols() {
   load_register_maps();
   register_protocol(rtu_protocol());
   register_protocol(ascii_protocol());
-  register_register_fields(rtu_protocol().proto, Dialect::Hybrid);
-  register_register_fields(rtu_protocol().proto, Dialect::Gsl);
-  register_register_fields(rtu_protocol().proto, Dialect::Modbus);
-  register_register_fields(ascii_protocol().proto, Dialect::Ascii);
+  // The RTU protocol's dialects first, in the order their fields have always had.
+  for (const bool rtu : {true, false}) {
+    for (const Dialect d : kAllDialects) {
+      if (rtu_framed(d) == rtu) register_register_fields(protocol_of(d).proto, d);
+    }
+  }
   register_record_dissector();
   register_mbap_protocol();
   register_serial_link_types();
