@@ -340,6 +340,10 @@ def check_tls(args):
     check_sniff.play_truth(pty, truth)
     bad.check(sniffer.stop() == 0, f"exit status {sniffer.proc.returncode}: {sniffer.stderr()}")
     pty.close()
+    # The site goes offline last, after every value: until it has arrived, the broker may still
+    # be delivering the last values to the subscriber.
+    bad.check(sub.wait_for(lambda m: sub.latest().get(f"{prefix}/status") == "offline"),
+              "status not offline after the sniffer stopped")
     latest = sub.latest()
     stations = latest_jsonl_values(sniffer.events())
     for station, (values, ts) in sorted(stations.items()):
