@@ -164,21 +164,6 @@ constexpr bool is_modbus_function(std::uint8_t f) {
   return (detail::kFunctionKinds.of[f] & detail::kModbusKind) != 0;
 }
 
-// Whether frames of dialect `d` may carry function code `f`.
-constexpr bool dialect_has_function(Dialect d, std::uint8_t f) {
-  switch (d) {
-    case Dialect::Ascii:
-      return f == kAsciiRead;
-    case Dialect::Hybrid:
-      return is_hybrid_function(f);
-    case Dialect::Gsl:
-      return is_gsl_function(f);
-    case Dialect::Modbus:
-      return is_modbus_function(f);
-  }
-  return false;
-}
-
 // Whether any RTU dialect of `dialects` frames function code `f` by a length rule.
 constexpr bool rtu_function_known(std::uint8_t f, DialectSet dialects = DialectSet::all()) {
   return (dialects.contains(Dialect::Hybrid) && is_hybrid_function(f)) ||
