@@ -22,6 +22,16 @@ constexpr auto kDigitPairs = [] {
   return pairs;
 }();
 
+// "00" .. "ff": a byte's two hex digits in one store.
+constexpr auto kHexPairs = [] {
+  std::array<char, 512> pairs{};
+  for (std::size_t i = 0; i < 256; ++i) {
+    pairs[2 * i] = kHexDigits[i >> 4];
+    pairs[2 * i + 1] = kHexDigits[i & 0xF];
+  }
+  return pairs;
+}();
+
 // Writes `value` in decimal so that it ends just before `end`, with a decimal point
 // `decimals` (0..9) digits from the right and at least one digit before the point; returns
 // where the text starts. The caller appends it at once: one append per number.
@@ -169,8 +179,8 @@ void append_hex(std::string& out, std::span<const std::uint8_t> bytes) {
   out.resize(at + 2 * bytes.size());
   char* p = out.data() + at;
   for (const std::uint8_t b : bytes) {
-    *p++ = kHexDigits[b >> 4];
-    *p++ = kHexDigits[b & 0xF];
+    std::memcpy(p, &kHexPairs[2 * b], 2);
+    p += 2;
   }
 }
 

@@ -41,7 +41,7 @@ void append_state_json(std::string& out, const StationState& s, std::string_view
   w.begin_object();
   for (const auto& [key, held] : s.values) {
     w.key_text(key);
-    values.write(w, held.value, s.dialect);
+    values.write(w, held.value, s.dialect, s.address);
   }
   w.end_object();
   write_bus(w, bus);

@@ -136,10 +136,8 @@ void write_value_tail(JsonWriter& w, const DecodedValue& v) {
   w.end_object();
 }
 
-void write_kept_value_json(std::string& out, std::string_view head, std::string_view unit_member,
-                           const DecodedValue& v) {
-  // The kept parts and the reading appended whole; a writer only for what follows the unit.
-  out += head;
+void write_value_rest(std::string& out, std::string_view unit_member, const DecodedValue& v) {
+  // The reading and the kept unit appended whole; a writer only for what follows the unit.
   switch (reading_kind(v)) {
     case ReadingKind::Number:
       append_value_number(out, v);

@@ -16,10 +16,9 @@ void write_value_head(JsonWriter& w, const DecodedValue& v, Dialect d);
 void write_value_reading(JsonWriter& w, const DecodedValue& v);
 void write_value_unit(JsonWriter& w, const DecodedValue& v);
 void write_value_tail(JsonWriter& w, const DecodedValue& v);
-// The whole object from the kept head and unit member (`,"unit":"V"` or empty), for
-// ValueJsonCache; `out` is where the value goes (JsonWriter::value_out()).
-void write_kept_value_json(std::string& out, std::string_view head, std::string_view unit_member,
-                           const DecodedValue& v);
+// What follows a kept head: the reading, the kept unit member (`,"unit":"V"` or empty) and
+// the tail, for ValueJsonCache; the head is in `out` already.
+void write_value_rest(std::string& out, std::string_view unit_member, const DecodedValue& v);
 
 // A station's newest value; one no map names with its function and table:
 // {"register":"0x0836","name":null,"function":3,"table":"holding","key":"reg_0x0836",

@@ -54,7 +54,8 @@ class JsonlEventWriter : public EventWriter {
     w.field_hex("raw", f.bytes);
     if (f.latency) w.field_fixed("latency_ms", *f.latency * 1e3, 3);
     w.begin_array("values");
-    for (const DecodedValue& v : f.values) values_.write(w, v, f.dialect);
+    const std::uint8_t station = f.frame != nullptr ? f.frame->station : 0;
+    for (const DecodedValue& v : f.values) values_.write(w, v, f.dialect, station);
     w.end_array();
     {
       // A writer of its own for the contents: `w` is not handed on, so stays in registers.
