@@ -75,7 +75,7 @@ class MapFileReader {
     const auto* t = node->as_table();
     const toml::array* models = t != nullptr ? (*t)["models"].as_array() : nullptr;
     const std::optional<std::int64_t> base =
-        t != nullptr ? (*t)["base"].value<std::int64_t>() : std::nullopt;
+        t != nullptr ? (*t)["base"].value_exact<std::int64_t>() : std::nullopt;
     if (t == nullptr || models == nullptr || !base || *base < 0 || *base > 0xFFFD ||
         dialect_ != Dialect::Modbus) {
       nodes_.fail(node->source(),
@@ -88,9 +88,10 @@ class MapFileReader {
     chain.ended = (*t)["ended"].value_or(false);
     for (const toml::node& m : *models) {
       const toml::array* pair = m.as_array();
-      const auto id = pair && pair->size() == 2 ? (*pair)[0].value<std::int64_t>() : std::nullopt;
+      const auto id =
+          pair && pair->size() == 2 ? (*pair)[0].value_exact<std::int64_t>() : std::nullopt;
       const auto length =
-          pair && pair->size() == 2 ? (*pair)[1].value<std::int64_t>() : std::nullopt;
+          pair && pair->size() == 2 ? (*pair)[1].value_exact<std::int64_t>() : std::nullopt;
       if (!id || !length || *id < 0 || *id >= 0xFFFF || *length < 0 || *length > 0xFFFF ||
           !chain.append(static_cast<std::uint16_t>(*id), static_cast<std::uint16_t>(*length))) {
         nodes_.fail(m.source(),

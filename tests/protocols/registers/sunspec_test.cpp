@@ -218,6 +218,11 @@ TEST(SunSpecMapFile, RejectsWhatIsNoChain) {
            std::string_view("dialect = \"modbus\"\n[sunspec]\nbase = 40000\nmodels = [[1]]\n"),
            std::string_view("dialect = \"modbus\"\n[sunspec]\nbase = 65000\n"
                             "models = [[1, 66], [103, 60000]]\n"),
+           // Numbers that are not integers: a float beyond int64 was converted unchecked.
+           std::string_view(
+               "dialect = \"modbus\"\n[sunspec]\nbase = 40000\nmodels = [[1, 1e33]]\n"),
+           std::string_view(
+               "dialect = \"modbus\"\n[sunspec]\nbase = 40000.0\nmodels = [[1, 66]]\n"),
        }) {
     const RegisterMapResult result = load_register_map(bad, "bad.toml");
     EXPECT_FALSE(result) << bad;
