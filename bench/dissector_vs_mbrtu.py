@@ -3,7 +3,8 @@
 
 Both verify the CRC. The capture (one TCP connection to a gateway on port 4001, one frame
 per segment, so that Modbus RTU over TCP can read it) is written by the plugin tests' own
-generator. Each figure is the best of --repeat runs; the target is ours <= 1.5 x theirs.
+generator. Each figure is the best of --repeat runs; the target is ours <= 1.1 x theirs
+(issue 39; it was 1.5 before).
 With --instructions each figure is instead tshark's instruction count under callgrind, which
 the machine's load does not move (about 50 times slower: use a few thousand pairs).
 
@@ -27,7 +28,7 @@ from pcap_writer import Pcap, TcpFlow  # noqa: E402
 import tshark_runner  # noqa: E402
 
 PORT = 4001
-TARGET = 1.5
+TARGET = 1.1
 OURS = ["-o", "invrtu.verify_crc:TRUE"]
 THEIRS = ["-d", "tcp.port==%d,mbrtu" % PORT, "-o", "mbrtu.crc_verification:TRUE"]
 
