@@ -17,7 +17,7 @@ namespace pvtap::analyzer {
 struct RegisterKey {
   std::string bus;
   std::uint8_t station = 0;
-  Dialect dialect = Dialect::Gsl;
+  Dialect dialect = kDefaultDialect;
   std::uint16_t address = 0;  // the written address of the value's first word
   friend auto operator<=>(const RegisterKey&, const RegisterKey&) = default;
 };

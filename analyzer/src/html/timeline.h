@@ -36,7 +36,7 @@ struct Mark {
   double time = 0;
   std::uint32_t lane = 0;
   MarkKind kind = MarkKind::Damaged;
-  Dialect dialect = Dialect::Gsl;
+  Dialect dialect = kDefaultDialect;
   bool has_function = false;
   std::uint8_t function = 0;
   bool is_request = false;
@@ -70,7 +70,7 @@ struct BusLoad {
 // ValueSeries: one register of one station, numeric readings only.
 struct ValueSeries {
   std::uint32_t lane = 0;
-  Dialect dialect = Dialect::Gsl;
+  Dialect dialect = kDefaultDialect;
   const RegisterDef* def = nullptr;  // points into the register map; null: an unmapped word
   std::uint16_t instance = 0;
   RegisterTable table = RegisterTable::Registers;  // of an unmapped word

@@ -44,7 +44,7 @@ struct PollBlock {
 // StationState: one station's held values and timing.
 struct StationState {
   std::uint8_t address = 0;
-  Dialect dialect = Dialect::Gsl;
+  Dialect dialect = kDefaultDialect;
   std::map<std::string, HeldValue, std::less<>> values;  // by value_key()
   std::map<std::pair<std::uint8_t, std::uint16_t>, PollBlock> blocks;
   double last_reply = 0;

@@ -35,7 +35,7 @@ struct BusEvent {
   Micros start = 0;  // first byte on the wire
   Micros end = 0;    // last byte on the wire
   std::vector<std::uint8_t> bytes;
-  Dialect dialect = Dialect::Gsl;
+  Dialect dialect = kDefaultDialect;
   Role role = Role::Request;  // noise: the slave side, where a gateway forwards it from
   std::uint8_t station = 0;
   std::uint8_t function = 0;

@@ -13,8 +13,8 @@ namespace pvtap::sim {
 
 struct SimConfig {
   std::uint64_t seed = 1;
-  std::vector<Dialect> dialects{Dialect::Gsl};  // station i speaks dialects[i % size]
-  unsigned inverters = 3;                       // 0: a bus of plain Modbus devices only
+  std::vector<Dialect> dialects{kDefaultDialect};  // station i speaks dialects[i % size]
+  unsigned inverters = 3;                          // 0: a bus of plain Modbus devices only
   std::uint8_t first_station = 1;
   Micros start = 1'782'036'000'000'000;  // 2026-06-21 10:00:00 UTC
   double duration_s = 60.0;

@@ -32,7 +32,7 @@ struct PlannedValue {
 struct FramePlan {
   bool parsed = false;
   const char* parse_error = nullptr;
-  Dialect dialect = Dialect::Gsl;
+  Dialect dialect = kDefaultDialect;
   Role role = Role::Request;
   std::uint8_t station = 0;
   std::uint8_t function = 0;

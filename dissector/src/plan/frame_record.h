@@ -21,7 +21,7 @@ struct FrameRecord {
   std::uint32_t packet = 0;        // the packet that shows the frame (0 until it is shown)
   std::uint32_t announced_in = 0;  // requests: the packet that showed their timeout (0: none)
   PacketTime time;                 // that packet's capture time
-  Dialect dialect = Dialect::Gsl;
+  Dialect dialect = kDefaultDialect;
   Role role = Role::Request;  // after the matcher's correction of GSL write echoes
   std::uint8_t station = 0;
   std::uint8_t function = 0;
@@ -52,7 +52,7 @@ struct FrameRecord {
   std::uint16_t quantity_min = 0;
   std::uint16_t quantity_max = 0;
   bool dialect_changed = false;  // its station spoke `previous_dialect` until this frame
-  Dialect previous_dialect = Dialect::Gsl;
+  Dialect previous_dialect = kDefaultDialect;
   const char* station_name = nullptr;   // what the station said of itself, as known at this frame
   FrameRecord* request = nullptr;       // replies: the request answered (or answered before)
   FrameRecord* response = nullptr;      // requests: the first reply

@@ -31,7 +31,7 @@ std::string row_name(Dialect d, std::uint8_t f) {
 // The dialect that owns a function code in this protocol.
 Dialect dialect_of(const InverterProtocol& p, std::uint8_t f) {
   if (!p.dialects.rtu()) return Dialect::Ascii;
-  return fc::rtu_dialect_of(f).value_or(Dialect::Gsl);
+  return fc::rtu_dialect_of(f).value_or(kDefaultDialect);
 }
 
 void init_table(register_srt_t* srt, GArray* srt_array) {

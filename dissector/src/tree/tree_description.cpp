@@ -264,7 +264,7 @@ TreeDescription describe_noise(const std::optional<UnknownFunctionFrame>& unknow
   try {
     Builder b(ctx);
     describe(b, unknown);
-    return b.finish(Dialect::Gsl);
+    return b.finish(kDefaultDialect);
   } catch (...) {
     return {};
   }

@@ -76,7 +76,7 @@ struct TreeItem {
 struct TreeDescription {
   const TreeItem* items = nullptr;
   std::size_t count = 0;
-  Dialect dialect = Dialect::Gsl;  // register fields are those of this dialect
+  Dialect dialect = kDefaultDialect;  // register fields are those of this dialect
 
   const TreeItem* begin() const { return items; }
   const TreeItem* end() const { return items + count; }

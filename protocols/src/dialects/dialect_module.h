@@ -60,6 +60,11 @@ struct DialectModule {
   // read as the digits of a hex wire address (0x1050): registers/register_addressing.cpp and
   // the address's text (register_map.cpp).
   bool decimal_register_ids;
+  // How far apart the addresses of neighbouring registers are (ASCII counts bytes: 2).
+  unsigned register_address_step;
+  // An address besides 0 that every station hears and one of them answers (Hybrid's 0xFF),
+  // or -1: the matcher keeps such a request apart from every station's own.
+  int answered_broadcast_station;
   // Values (registers/register_decoder.cpp): appends the register values `frame` carries;
   // `request` is a reply's matching request, or null.
   DecodeReport (*decode_values)(const RegisterDecoder& decoder, const Frame& frame,
@@ -72,6 +77,12 @@ extern const std::array<const DialectModule*, kDialectCount> kDialectTable;
 // The module of `d`; its `dialect` is `d`. Inline: the codec asks it once per frame.
 inline const DialectModule& dialect_module(Dialect d) {
   return *kDialectTable[static_cast<std::size_t>(d)];
+}
+
+// Whether `station` is an address besides 0 that every station of dialect `d` hears and one
+// of them answers (Hybrid's 0xFF). Inline: the matcher asks for every frame.
+inline bool answered_broadcast(Dialect d, std::uint8_t station) {
+  return dialect_module(d).answered_broadcast_station == int{station};
 }
 
 }  // namespace pvtap::detail

@@ -48,4 +48,8 @@ bool rtu_framed(Dialect d) {
   return detail::dialect_module(d).rtu_framed;
 }
 
+unsigned address_step(Dialect d) {
+  return detail::dialect_module(d).register_address_step;
+}
+
 }  // namespace pvtap

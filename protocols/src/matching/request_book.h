@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <memory>
 
+#include "dialects/dialect_module.h"
 #include "pvtap/codec/frame.h"
 #include "pvtap/codec/function_codes.h"
 
@@ -28,7 +29,7 @@ class RequestBook {
 
   // The slot the matcher keeps for requests like this one: the broadcast has its own.
   static std::size_t slot_of(Dialect d, std::uint8_t station) {
-    return d == Dialect::Hybrid && station == fc::kHybridBroadcast ? kBroadcastSlot : station;
+    return detail::answered_broadcast(d, station) ? kBroadcastSlot : station;
   }
 
   void remember(std::uint64_t id, const Frame& frame, double start, double end, bool check_ok) {

@@ -12,7 +12,7 @@ namespace pvtap {
 namespace {
 
 bool is_broadcast_request(const FrameSummary& f) {
-  return f.dialect == Dialect::Hybrid && f.station == fc::kHybridBroadcast;
+  return detail::answered_broadcast(f.dialect, f.station);
 }
 
 // A Modbus request to address 0 goes to every station and is never answered: a write, or,

@@ -78,7 +78,7 @@ RegisterAddressText format_wire_address(std::uint16_t wire_address) {
 }
 
 Dialect RegisterMap::dialect() const {
-  return data_ ? data_->dialect : Dialect::Gsl;
+  return data_ ? data_->dialect : kDefaultDialect;
 }
 MapMode RegisterMap::mode() const {
   return data_ ? data_->mode : MapMode::Replace;
@@ -157,7 +157,7 @@ std::optional<RegisterSlot> RegisterMap::locate(std::uint16_t address) const {
   if (index == Data::kNoSlot) return std::nullopt;
   const RegisterSlotEntry& entry = data_->slots[index];
   const RegisterDef& def = data_->defs[entry.def_index];
-  const unsigned step = address_step(data_->dialect);
+  const unsigned step = data_->step;
   const auto value_address = static_cast<std::uint16_t>(address - entry.word * step);
   return RegisterSlot{&def, entry.word, entry.instance, value_address};
 }

@@ -132,6 +132,7 @@ class MapLayout {
             const std::vector<const CoilSpec*>& coils)
       : data_(std::make_shared<RegisterMap::Data>()), specs_(std::move(specs)), coils_(coils) {
     data_->dialect = header.dialect;
+    data_->step = static_cast<std::uint16_t>(address_step(header.dialect));
     data_->mode = header.mode;
     data_->title = header.title;
     data_->source_name = header.source_name;

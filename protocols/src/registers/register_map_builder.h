@@ -62,7 +62,7 @@ struct CoilSpec {
 
 // MapHeaderSpec: the file-level settings of a map.
 struct MapHeaderSpec {
-  Dialect dialect = Dialect::Gsl;
+  Dialect dialect = kDefaultDialect;
   MapMode mode = MapMode::Replace;
   std::string title;
   std::string source_name;

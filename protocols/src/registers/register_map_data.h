@@ -21,7 +21,8 @@ struct RegisterSlotEntry {
 // Built once and never changed, so the string views of the entries stay valid; the deque
 // keeps every interned string where it was put.
 struct RegisterMap::Data {
-  Dialect dialect = Dialect::Gsl;
+  Dialect dialect = kDefaultDialect;
+  std::uint16_t step = 1;  // address_step(dialect), which locate() needs for every register
   MapMode mode = MapMode::Replace;
   std::string title;
   std::string source_name;

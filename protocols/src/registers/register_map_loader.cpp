@@ -182,7 +182,7 @@ class MapFileReader {
 
   detail::MapNodeReader nodes_;
   detail::EnumTables enums_;
-  Dialect dialect_ = Dialect::Gsl;
+  Dialect dialect_ = kDefaultDialect;
   bool dialect_known_ = false;
 };
 

@@ -1,5 +1,7 @@
 #include "pvtap/statistics/timing_statistics.h"
 
+#include "dialects/dialect_module.h"
+
 #include <algorithm>
 
 namespace pvtap {
@@ -12,7 +14,7 @@ bool same_block(const FrameTiming& a, const FrameTiming& b) {
 }
 
 bool broadcast(const FrameTiming& f) {
-  return f.station == 0 || (f.dialect == Dialect::Hybrid && f.station == 0xFF);
+  return f.station == 0 || detail::answered_broadcast(f.dialect, f.station);
 }
 
 }  // namespace

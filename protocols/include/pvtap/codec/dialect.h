@@ -16,6 +16,10 @@ enum class Dialect : std::uint8_t { Ascii = 0, Hybrid = 1, Gsl = 2, Modbus = 3 }
 
 inline constexpr std::size_t kDialectCount = 4;
 
+// What a frame of a code GSL shares with Modbus is read as unless told otherwise (PROTOCOLS.md
+// section 6), and so what a record holds until its dialect is known.
+inline constexpr Dialect kDefaultDialect = Dialect::Gsl;
+
 // Whether `d` is framed by the Modbus application protocol's rules (GSL or plain Modbus).
 constexpr bool modbus_family(Dialect d) {
   return d == Dialect::Gsl || d == Dialect::Modbus;

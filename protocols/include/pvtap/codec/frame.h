@@ -111,7 +111,7 @@ class ByteList {
 
 // FrameHeader: the fields a frame and its summary for the matcher share.
 struct FrameHeader {
-  Dialect dialect = Dialect::Gsl;
+  Dialect dialect = kDefaultDialect;
   Role role = Role::Request;
   std::uint8_t station = 0;
   std::uint8_t function = 0;  // as on the wire

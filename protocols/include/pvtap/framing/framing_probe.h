@@ -58,7 +58,7 @@ struct ProbeResult {
   Status status = Status::NoFrame;
   std::size_t length = 0;
   std::size_t more = 0;
-  Dialect dialect = Dialect::Gsl;
+  Dialect dialect = kDefaultDialect;
   Role role = Role::Request;
   FrameCheck check;
 };

@@ -26,7 +26,7 @@ struct FrameEvent {
   double start_time = 0.0;     // estimated start of the first byte
   double end_time = 0.0;       // estimated end of the last byte
   double max_inner_gap = 0.0;  // longest silence inside the frame (only with trusted timing)
-  Dialect dialect = Dialect::Gsl;
+  Dialect dialect = kDefaultDialect;
   Role role = Role::Request;
   FrameCheck check;
 };

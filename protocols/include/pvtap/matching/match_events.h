@@ -21,7 +21,7 @@ struct Transaction {
   std::uint64_t request_id = 0;
   std::uint64_t response_id = 0;
   double latency = 0;  // reply start_time - request end_time, seconds (may be < 0 on coarse clocks)
-  Dialect dialect = Dialect::Gsl;
+  Dialect dialect = kDefaultDialect;
   std::uint8_t station = 0;   // the answering station (its real address for a broadcast)
   std::uint8_t function = 0;  // the request's function code
   std::uint8_t reply_function = 0;
@@ -44,7 +44,7 @@ enum class TimeoutReason : std::uint8_t {
 // Timeout: a request that got no reply.
 struct Timeout {
   std::uint64_t request_id = 0;
-  Dialect dialect = Dialect::Gsl;
+  Dialect dialect = kDefaultDialect;
   std::uint8_t station = 0;  // 0xFF for a Hybrid broadcast that nobody answered
   std::uint8_t function = 0;
   TimeoutReason reason = TimeoutReason::NoReply;
@@ -58,7 +58,7 @@ struct Timeout {
 // UnsolicitedReply: a reply that no pending request of its station (or broadcast) expects.
 struct UnsolicitedReply {
   std::uint64_t response_id = 0;
-  Dialect dialect = Dialect::Gsl;
+  Dialect dialect = kDefaultDialect;
   std::uint8_t station = 0;
   std::uint8_t function = 0;
   bool check_ok = true;
@@ -75,7 +75,7 @@ struct UnsolicitedReply {
 struct DuplicateReply {
   std::uint64_t response_id = 0;
   std::uint64_t original_request_id = 0;
-  Dialect dialect = Dialect::Gsl;
+  Dialect dialect = kDefaultDialect;
   std::uint8_t station = 0;
   std::uint8_t function = 0;
   bool check_ok = true;
@@ -97,7 +97,7 @@ enum class CountUnit : std::uint8_t { Bytes = 0, Words = 1 };
 struct ByteCountMismatch {
   std::uint64_t request_id = 0;
   std::uint64_t response_id = 0;
-  Dialect dialect = Dialect::Gsl;
+  Dialect dialect = kDefaultDialect;
   std::uint8_t station = 0;
   std::uint8_t function = 0;
   unsigned expected = 0;

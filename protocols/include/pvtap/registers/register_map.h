@@ -119,10 +119,9 @@ struct RegisterSlot {
   std::uint16_t value_address = 0;  // address of the value's first word
 };
 
-// Addresses of consecutive words of one read: 2 apart in the ASCII dialect, else 1.
-constexpr unsigned address_step(Dialect d) {
-  return d == Dialect::Ascii ? 2u : 1u;
-}
+// Addresses of consecutive words of one read: 2 apart in the ASCII dialect, else 1 (each
+// dialect's record says).
+unsigned address_step(Dialect d);
 
 // RegisterAddressText: an address as the reference writes it, in a fixed buffer.
 struct RegisterAddressText {

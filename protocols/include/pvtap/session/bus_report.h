@@ -24,7 +24,7 @@ namespace pvtap {
 struct FrameExample {
   std::uint64_t id = 0;
   double time = 0;  // start of the frame
-  Dialect dialect = Dialect::Gsl;
+  Dialect dialect = kDefaultDialect;
   Role role = Role::Request;
   std::uint8_t station = 0;
   std::uint8_t function = 0;
@@ -41,7 +41,7 @@ struct TimeoutExample {
 // ExceptionTally: how often a station refused a request with one error form.
 //   GSL: code = the exception code; Hybrid: code = 0xFF (the 0xFF error reply).
 struct ExceptionTally {
-  Dialect dialect = Dialect::Gsl;
+  Dialect dialect = kDefaultDialect;
   std::uint8_t code = 0;
   std::uint64_t count = 0;
 };
@@ -85,7 +85,7 @@ UnmappedKey unmapped_key(RegisterTable t, std::uint16_t address);
 // map names has a null value.def and its raw word (a bit of coils and discrete inputs: 0 or 1);
 // `table` keeps such values of different address spaces apart.
 struct LatestValue {
-  Dialect dialect = Dialect::Gsl;
+  Dialect dialect = kDefaultDialect;
   RegisterTable table = RegisterTable::Registers;
   DecodedValue value;
   const CoilDef* coil = nullptr;  // a bit the map names ([[coil]], [[discrete_input]])

@@ -50,8 +50,8 @@ struct SessionFrame {
   Direction direction = Direction::Unknown;
   double start_time = 0;
   double end_time = 0;
-  Dialect dialect = Dialect::Gsl;  // GSL or plain Modbus as its station speaks
-                                   // (dialects/modbus/station_dialects.h)
+  Dialect dialect = kDefaultDialect;  // GSL or plain Modbus as its station speaks
+                                      // (dialects/modbus/station_dialects.h)
   // The dialect its station spoke until this frame, when this frame says it changed.
   std::optional<Dialect> dialect_changed_from;
   Role role = Role::Request;  // as corrected by the matcher (echoed writes)

@@ -12,7 +12,7 @@ namespace pvtap {
 // FrameTiming: one frame's place in time, as the reassembler estimated it.
 struct FrameTiming {
   std::uint64_t id = 0;
-  Dialect dialect = Dialect::Gsl;
+  Dialect dialect = kDefaultDialect;
   Role role = Role::Request;  // as corrected by the TransactionMatcher
   std::uint8_t station = 0;
   std::uint8_t function = 0;

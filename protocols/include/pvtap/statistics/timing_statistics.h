@@ -28,7 +28,7 @@ struct StationLatency {
 // a block write has both, a one-register write (GSL 0x06, Hybrid 0x18) a start only, a frame
 // of an unknown function neither. Absent is not 0: a read of 0 registers at 0 is its own block.
 struct PollBlock {
-  Dialect dialect = Dialect::Gsl;
+  Dialect dialect = kDefaultDialect;
   std::uint8_t station = 0;  // 0xFF for Hybrid broadcasts
   std::uint8_t function = 0;
   std::optional<std::uint16_t> start;  // wire address

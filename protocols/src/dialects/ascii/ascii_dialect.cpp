@@ -71,6 +71,8 @@ extern const DialectModule kAsciiDialect{
     .reply_is_echo = [](std::uint8_t) { return false; },
     .compare_reply_count = compare_ascii,
     .decimal_register_ids = false,
+    .register_address_step = 2,
+    .answered_broadcast_station = -1,
     .decode_values = ascii_values,
 };
 

@@ -141,6 +141,8 @@ extern const DialectModule kHybridDialect{
     .reply_is_echo = [](std::uint8_t) { return false; },
     .compare_reply_count = compare_hybrid,
     .decimal_register_ids = false,
+    .register_address_step = 1,
+    .answered_broadcast_station = fc::kHybridBroadcast,
     .decode_values = hybrid_values,
 };
 

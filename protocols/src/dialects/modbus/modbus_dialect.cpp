@@ -251,6 +251,8 @@ extern const DialectModule kGslDialect{
     .reply_is_echo = is_echoed,
     .compare_reply_count = compare_modbus,
     .decimal_register_ids = true,
+    .register_address_step = 1,
+    .answered_broadcast_station = -1,
     .decode_values = modbus_family_values,
 };
 
@@ -281,6 +283,8 @@ extern const DialectModule kModbusDialect{
     .reply_is_echo = is_echoed,
     .compare_reply_count = compare_modbus,
     .decimal_register_ids = false,
+    .register_address_step = 1,
+    .answered_broadcast_station = -1,
     .decode_values = modbus_family_values,
 };
 
