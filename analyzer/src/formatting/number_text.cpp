@@ -141,7 +141,14 @@ void append_clock(std::string& out, const std::tm& tm, long micros) {
 }  // namespace
 
 void append_uint(std::string& out, std::uint64_t value) {
-  append_scaled(out, value, 0);
+  // Stations, function codes and lengths are mostly one or two digits.
+  if (value < 10) {
+    out += static_cast<char>('0' + value);
+  } else if (value < 100) {
+    out.append(&kDigitPairs[2 * value], 2);
+  } else {
+    append_scaled(out, value, 0);
+  }
 }
 
 void append_int(std::string& out, std::int64_t value) {
