@@ -66,8 +66,7 @@ std::string finish_lan_options(LanOutputs& lan, const SimConfig& config, bool bu
   if (lan.v5.empty() && lan.mbap.empty()) return {};
   // The ground truth of such a run is the LAN's view (a reply the stick dropped is gone).
   if (bus_outputs) return "--v5 and --mbap are written alone (with --truth)";
-  if (std::find(config.dialects.begin(), config.dialects.end(), Dialect::Ascii) !=
-      config.dialects.end())
+  if (!std::all_of(config.dialects.begin(), config.dialects.end(), rtu_framed))
     return "--v5 and --mbap carry RTU frames: no ascii dialect";
   return fault_problem(config.faults, !lan.v5.empty());
 }

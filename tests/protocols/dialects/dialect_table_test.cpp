@@ -34,6 +34,9 @@ TEST(DialectTable, EachDialectHasItsOwnCompleteRecord) {
     EXPECT_NE(m.reply_kind, nullptr);
     EXPECT_NE(m.reply_is_echo, nullptr);
     EXPECT_NE(m.compare_reply_count, nullptr);
+    // A field left out of a record's designated initializers is zero: neither is.
+    EXPECT_GE(m.register_address_step, 1u);
+    EXPECT_NE(m.answered_broadcast_station, 0) << "0 is every dialect's unanswered broadcast";
   }
 }
 
