@@ -4,6 +4,7 @@
 #include <array>
 
 #include "bus/frame_shapes.h"
+#include "dialects/inverter_dialect.h"
 #include "faults/frame_damage.h"
 
 namespace pvtap::sim {
@@ -51,8 +52,11 @@ std::optional<FaultKind> BusMaster::pick_fault(Dialect d) {
     const auto kind = static_cast<FaultKind>(k);
     if (!config_.faults.drawn(kind)) continue;
     if (random_.percent(config_.faults[kind])) {
-      // The ASCII dialect's only error path is silence.
-      if (kind == FaultKind::ErrorReply && d == Dialect::Ascii) return FaultKind::Missing;
+      // A dialect without error replies (ASCII) has silence as its only error path.
+      const InverterDialect* inverter = inverter_dialect(d);
+      if (kind == FaultKind::ErrorReply && inverter != nullptr && inverter->errors_are_silence) {
+        return FaultKind::Missing;
+      }
       return kind;
     }
   }

@@ -1,5 +1,6 @@
 #include "bus/frame_shapes.h"
 
+#include "dialects/inverter_dialect.h"
 #include "pvtap/codec/frame_codec.h"
 #include "pvtap/codec/function_codes.h"
 
@@ -16,33 +17,19 @@ Frame read_reply(Dialect d, std::uint8_t station, const PollBlock& block, const 
                  DeviceNumber device) {
   Frame f = make_frame(d, Role::Response, station, block.function);
   f.words = words;
-  const auto data_bytes = static_cast<std::uint8_t>(2 * words.size());
-  switch (d) {
-    case Dialect::Ascii:
-      f.start = block.start;
-      break;
-    case Dialect::Hybrid:
-      // Every Hybrid reply starts with the 4-byte device number.
-      f.byte_count = static_cast<std::uint8_t>(4 + data_bytes);
-      f.device = device;
-      break;
-    case Dialect::Gsl:
-    case Dialect::Modbus:
-      f.byte_count = data_bytes;
-      break;
+  if (const InverterDialect* inverter = inverter_dialect(d)) {
+    inverter->shape_read_reply(f, block, device);
+  } else {
+    f.byte_count = static_cast<std::uint8_t>(2 * words.size());
   }
   return f;
 }
 
 Frame error_reply(Dialect d, std::uint8_t station, const PollBlock& block, DeviceNumber device,
                   std::uint8_t gsl_code) {
-  if (d == Dialect::Hybrid) {
-    Frame f = make_frame(d, Role::Response, station, fc::kHybridError);
-    f.byte_count = 8;
-    f.device = device;
-    f.start = 0x1000;
-    f.count = 0x00FF;
-    return f;
+  const InverterDialect* inverter = inverter_dialect(d);
+  if (inverter != nullptr && inverter->error_reply != nullptr) {
+    return inverter->error_reply(station, device);
   }
   Frame f = make_frame(d, Role::Response, station,
                        static_cast<std::uint8_t>(block.function | fc::kExceptionFlag));

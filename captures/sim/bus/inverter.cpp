@@ -1,7 +1,7 @@
 #include "bus/inverter.h"
 
 #include "bus/frame_shapes.h"
-#include "plant/plant_registers.h"
+#include "dialects/inverter_dialect.h"
 
 namespace pvtap::sim {
 namespace {
@@ -20,7 +20,7 @@ Inverter::Inverter(std::uint8_t station, Dialect dialect, std::uint64_t seed, Mi
 BusEvent Inverter::reply(const PollBlock& block, std::optional<FaultKind> fault, Micros request_end,
                          SimRandom& random) {
   plant_.advance(request_end);
-  fill_registers(plant_, image_, dialect_);
+  inverter_dialect(dialect_)->fill_registers(plant_, image_);
   PollBlock sent = block;
   if (fault == FaultKind::CountMismatch) sent.count = static_cast<std::uint16_t>(block.count - 1);
   Frame reply = fault == FaultKind::ErrorReply

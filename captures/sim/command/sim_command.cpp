@@ -5,15 +5,16 @@
 #include <iostream>
 
 #include "devices/test_suite_server.h"
+#include "dialects/inverter_dialect.h"
 
 namespace pvtap::sim {
 namespace {
 
-std::optional<Dialect> dialect_named(const std::string& name) {
-  if (name == "ascii") return Dialect::Ascii;
-  if (name == "hybrid") return Dialect::Hybrid;
-  if (name == "gsl") return Dialect::Gsl;
-  return std::nullopt;
+// A dialect a simulated inverter speaks, by its name.
+std::optional<Dialect> inverter_dialect_named(const std::string& name) {
+  const std::optional<Dialect> d = dialect_named(name);
+  if (!d || inverter_dialect(*d) == nullptr) return std::nullopt;
+  return d;
 }
 
 // "gsl" or "gsl,hybrid,ascii" (a mixed bus; stations take the dialects in turn).
@@ -22,7 +23,7 @@ std::string parse_dialects(const std::string& text, std::vector<Dialect>& out) {
   std::size_t from = 0;
   while (from <= text.size()) {
     const auto comma = std::min(text.find(',', from), text.size());
-    const auto d = dialect_named(text.substr(from, comma - from));
+    const auto d = inverter_dialect_named(text.substr(from, comma - from));
     if (!d) return "unknown dialect in '" + text + "' (ascii, hybrid, gsl)";
     out.push_back(*d);
     from = comma + 1;
@@ -163,13 +164,15 @@ std::optional<SimCommand> parse_sim_command(int argc, char** argv, int& exit_cod
   }
   c.faults = *plan;
   c.meter_low_first = meter_order == "low_first";
-  // The ASCII dialect's station field holds 0x00-0x1F.
-  const bool ascii =
-      std::find(c.dialects.begin(), c.dialects.end(), Dialect::Ascii) != c.dialects.end();
-  if (ascii && first_station + c.inverters - 1 > 0x1F) {
-    std::cerr << "pvtap-sim: ASCII stations go up to 31; lower --first-station or --inverters\n";
-    exit_code = 2;
-    return std::nullopt;
+  // A station field may hold fewer addresses than Modbus (ASCII's 0x00-0x1F).
+  for (const Dialect d : c.dialects) {
+    const unsigned last = inverter_dialect(d)->last_station;
+    if (first_station + c.inverters - 1 > last) {
+      std::cerr << "pvtap-sim: " << dialect_title(d) << " stations go up to " << last
+                << "; lower --first-station or --inverters\n";
+      exit_code = 2;
+      return std::nullopt;
+    }
   }
   error = station_problem(c, first_station);
   const SimOutputs& o = cmd.outputs;
