@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "bus/frame_shapes.h"
-#include "devices/modbus_frames.h"
+#include "dialects/modbus_frames.h"
 #include "pvtap/codec/function_codes.h"
 
 namespace pvtap::sim {

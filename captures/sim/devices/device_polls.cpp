@@ -7,9 +7,9 @@
 #include "devices/battery.h"
 #include "devices/energy_meter.h"
 #include "devices/io_module.h"
-#include "devices/modbus_frames.h"
 #include "devices/sunspec_inverter.h"
 #include "devices/test_suite_server.h"
+#include "dialects/modbus_frames.h"
 #include "pvtap/codec/function_codes.h"
 
 namespace pvtap::sim {
@@ -142,7 +142,7 @@ Micros BusMaster::poll_device(ModbusDevice& device, const Frame& request, Micros
       break;
   }
   const std::optional<FaultKind> fault =
-      placed(fitting(pick_fault(Dialect::Modbus), request, device));
+      placed(fitting(pick_fault(request.dialect), request, device));
   next_request_pins_ = false;
   device.answered(request, !fault);
   if (fault == FaultKind::CorruptRequest) return send_damaged_requests(request, at);

@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "bus/frame_shapes.h"
-#include "devices/modbus_frames.h"
+#include "dialects/modbus_frames.h"
 #include "plant/plant_model.h"
 #include "pvtap/codec/function_codes.h"
 #include "sim_random.h"
@@ -39,12 +39,8 @@ std::vector<Frame> IoModule::requests(unsigned round) const {
   } else if (round % 3 == 1) {
     out.push_back(write_single_register(s, kSetpoint, limit));
   } else {
-    Frame f = make_frame(Dialect::Modbus, Role::Request, s, fc::kGslWriteMultiple);
-    f.start = kSetpoint;
-    f.count = 2;
-    f.byte_count = 4;
-    f.words = WordList{limit, static_cast<std::uint16_t>(30 + round % 30)};
-    out.push_back(f);
+    out.push_back(write_multiple_registers(
+        s, kSetpoint, WordList{limit, static_cast<std::uint16_t>(30 + round % 30)}));
   }
   return out;
 }

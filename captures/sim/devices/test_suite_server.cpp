@@ -1,7 +1,7 @@
 #include "devices/test_suite_server.h"
 
 #include "bus/frame_shapes.h"
-#include "devices/modbus_frames.h"
+#include "dialects/modbus_frames.h"
 #include "pvtap/codec/function_codes.h"
 
 namespace pvtap::sim {
@@ -14,15 +14,6 @@ Frame read_write_request(std::uint8_t station, std::uint16_t read_start, std::ui
   f.write_count = static_cast<std::uint16_t>(words.size());
   f.words = words;
   f.byte_count = static_cast<std::uint8_t>(2 * words.size());
-  return f;
-}
-
-Frame write_registers(std::uint8_t station, std::uint16_t start, const WordList& words) {
-  Frame f = make_frame(Dialect::Modbus, Role::Request, station, fc::kGslWriteMultiple);
-  f.start = start;
-  f.count = static_cast<std::uint16_t>(words.size());
-  f.byte_count = static_cast<std::uint8_t>(2 * words.size());
-  f.words = words;
   return f;
 }
 
@@ -53,7 +44,7 @@ std::vector<Frame> TestSuiteServer::requests(unsigned round) const {
       modbus_read(s, fc::kGslReadHolding, 0, 4),
       read_write_request(s, 0, 4, 4, WordList{v, static_cast<std::uint16_t>(v + 1)}),
       write_single_register(s, 8, static_cast<std::uint16_t>(v + 2)),
-      write_registers(
+      write_multiple_registers(
           s, 10, WordList{static_cast<std::uint16_t>(v + 3), static_cast<std::uint16_t>(v + 4)}),
       write_single_coil(s, 0, round % 2 == 0),
   };
@@ -62,15 +53,15 @@ std::vector<Frame> TestSuiteServer::requests(unsigned round) const {
   if (round == 2) out.push_back(modbus_read(fc::kModbusBroadcast, fc::kGslReadHolding, 0, 2));
   if (round == 3) {
     // Three registers in a byte count of 4 with 4 bytes, then in a byte count of 0 with 6.
-    Frame mismatch = write_registers(s, 12, WordList{v, v});
+    Frame mismatch = write_multiple_registers(s, 12, WordList{v, v});
     mismatch.count = 3;
     out.push_back(mismatch);
-    Frame lying = write_registers(s, 12, WordList{v, v, v});
+    Frame lying = write_multiple_registers(s, 12, WordList{v, v, v});
     lying.byte_count = 0;
     out.push_back(lying);
   }
   // A user-defined function the server lacks, station and code alone.
-  if (round == 4) out.push_back(make_frame(Dialect::Modbus, Role::Request, s, kUserDefined));
+  if (round == 4) out.push_back(modbus_request(s, kUserDefined));
   return out;
 }
 

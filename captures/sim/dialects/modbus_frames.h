@@ -1,5 +1,6 @@
-// The plain Modbus requests and replies of the simulated meter and IO module, as typed core
-// Frames (their bytes always come from the core's encode_frame).
+// The plain Modbus requests and replies of the simulated devices (meter, IO module, battery,
+// SunSpec inverter, test server), as typed core Frames (their bytes always come from the
+// core's encode_frame): the simulator's part of the plain Modbus dialect.
 #pragma once
 
 #include <cstdint>
@@ -11,11 +12,13 @@
 
 namespace pvtap::sim {
 
-// Requests.
+// Requests. A request of `function` with its station alone (the fields are the caller's).
+Frame modbus_request(std::uint8_t station, std::uint8_t function);
 Frame modbus_read(std::uint8_t station, std::uint8_t function, std::uint16_t start,
                   std::uint16_t count);
 Frame write_single_coil(std::uint8_t station, std::uint16_t coil, bool on);
 Frame write_single_register(std::uint8_t station, std::uint16_t address, std::uint16_t value);
+Frame write_multiple_registers(std::uint8_t station, std::uint16_t start, const WordList& words);
 Frame write_multiple_coils(std::uint8_t station, std::uint16_t start,
                            const std::vector<bool>& states);
 // Diagnostics sub-function 0x0000, return query data: the reply echoes `data`.

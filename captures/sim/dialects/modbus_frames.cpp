@@ -1,4 +1,4 @@
-#include "devices/modbus_frames.h"
+#include "dialects/modbus_frames.h"
 
 #include <bit>
 
@@ -6,10 +6,6 @@
 
 namespace pvtap::sim {
 namespace {
-
-Frame request(std::uint8_t station, std::uint8_t function) {
-  return make_frame(Dialect::Modbus, Role::Request, station, function);
-}
 
 Frame reply_to(const Frame& request, std::uint8_t function) {
   return make_frame(Dialect::Modbus, Role::Response, request.station, function);
@@ -35,23 +31,36 @@ void push_object(ByteList& data, std::uint8_t id, std::string_view text) {
 
 }  // namespace
 
+Frame modbus_request(std::uint8_t station, std::uint8_t function) {
+  return make_frame(Dialect::Modbus, Role::Request, station, function);
+}
+
+Frame write_multiple_registers(std::uint8_t station, std::uint16_t start, const WordList& words) {
+  Frame f = modbus_request(station, fc::kGslWriteMultiple);
+  f.start = start;
+  f.count = static_cast<std::uint16_t>(words.size());
+  f.byte_count = static_cast<std::uint8_t>(2 * words.size());
+  f.words = words;
+  return f;
+}
+
 Frame modbus_read(std::uint8_t station, std::uint8_t function, std::uint16_t start,
                   std::uint16_t count) {
-  Frame f = request(station, function);
+  Frame f = modbus_request(station, function);
   f.start = start;
   f.count = count;
   return f;
 }
 
 Frame write_single_coil(std::uint8_t station, std::uint16_t coil, bool on) {
-  Frame f = request(station, fc::kWriteSingleCoil);
+  Frame f = modbus_request(station, fc::kWriteSingleCoil);
   f.start = coil;
   f.words.push_back(on ? 0xFF00 : 0x0000);
   return f;
 }
 
 Frame write_single_register(std::uint8_t station, std::uint16_t address, std::uint16_t value) {
-  Frame f = request(station, fc::kGslWriteSingle);
+  Frame f = modbus_request(station, fc::kGslWriteSingle);
   f.start = address;
   f.words.push_back(value);
   return f;
@@ -59,7 +68,7 @@ Frame write_single_register(std::uint8_t station, std::uint16_t address, std::ui
 
 Frame write_multiple_coils(std::uint8_t station, std::uint16_t start,
                            const std::vector<bool>& states) {
-  Frame f = request(station, fc::kWriteMultipleCoils);
+  Frame f = modbus_request(station, fc::kWriteMultipleCoils);
   f.start = start;
   f.count = static_cast<std::uint16_t>(states.size());
   f.data = packed(states);
@@ -68,20 +77,20 @@ Frame write_multiple_coils(std::uint8_t station, std::uint16_t start,
 }
 
 Frame return_query_data(std::uint8_t station, std::uint16_t data) {
-  Frame f = request(station, fc::kDiagnostics);
+  Frame f = modbus_request(station, fc::kDiagnostics);
   f.sub_function = 0x0000;
   f.words.push_back(data);
   return f;
 }
 
 Frame read_device_identification(std::uint8_t station) {
-  Frame f = request(station, fc::kEncapsulatedInterface);
+  Frame f = modbus_request(station, fc::kEncapsulatedInterface);
   f.data = ByteList{fc::kMeiDeviceIdentification, 0x01, 0x00};
   return f;
 }
 
 Frame report_server_id(std::uint8_t station) {
-  return request(station, fc::kReportServerId);
+  return modbus_request(station, fc::kReportServerId);
 }
 
 Frame echo_of(const Frame& request) {
