@@ -1,7 +1,7 @@
 #include "pvtap/framing/framing_probe.h"
 
 #include "dialects/ascii/ascii_candidates.h"
-#include "framing/rtu_candidates.h"
+#include "dialects/rtu_candidates.h"
 
 namespace pvtap {
 

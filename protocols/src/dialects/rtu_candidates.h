@@ -1,4 +1,5 @@
-// Structural readings of RTU frames at a position, from the function-code rules (private).
+// Structural readings of RTU frames at a position: the length rules of each RTU dialect
+// (Hybrid, GSL, plain Modbus) that a function code calls on (private).
 #pragma once
 
 #include <span>

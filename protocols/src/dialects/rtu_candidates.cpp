@@ -1,4 +1,4 @@
-#include "framing/rtu_candidates.h"
+#include "dialects/rtu_candidates.h"
 
 #include "codec/wire_fields.h"
 #include "dialects/hybrid/hybrid_candidates.h"
