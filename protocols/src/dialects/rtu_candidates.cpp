@@ -64,3 +64,14 @@ void add_rtu_candidates(std::span<const std::uint8_t> b, RoleHint hint, DialectS
 }
 
 }  // namespace pvtap::detail
+
+namespace pvtap::fc {
+
+std::optional<Dialect> rtu_dialect_of(std::uint8_t f) {
+  if (is_hybrid_function(f)) return Dialect::Hybrid;
+  if (is_gsl_function(f)) return Dialect::Gsl;
+  if (is_modbus_function(f)) return Dialect::Modbus;
+  return std::nullopt;
+}
+
+}  // namespace pvtap::fc

@@ -164,23 +164,11 @@ constexpr bool is_modbus_function(std::uint8_t f) {
   return (detail::kFunctionKinds.of[f] & detail::kModbusKind) != 0;
 }
 
-// Whether any RTU dialect of `dialects` frames function code `f` by a length rule.
-constexpr bool rtu_function_known(std::uint8_t f, DialectSet dialects = DialectSet::all()) {
-  return (dialects.contains(Dialect::Hybrid) && is_hybrid_function(f)) ||
-         (dialects.contains(Dialect::Gsl) && is_gsl_function(f)) ||
-         (dialects.contains(Dialect::Modbus) && is_modbus_function(f));
-}
-
 // The RTU dialect a function code names when nothing else is known: Hybrid for its codes
 // (0x11 0x16 0x17 0x18 included: the station's history decides those,
 // dialects/modbus/station_dialects.h), GSL for the seed's codes, plain Modbus for the other public
-// codes; nullopt if none.
-constexpr std::optional<Dialect> rtu_dialect_of(std::uint8_t f) {
-  if (is_hybrid_function(f)) return Dialect::Hybrid;
-  if (is_gsl_function(f)) return Dialect::Gsl;
-  if (is_modbus_function(f)) return Dialect::Modbus;
-  return std::nullopt;
-}
+// codes; nullopt if none. (dialects/rtu_candidates.cpp, beside the rules that frame them.)
+std::optional<Dialect> rtu_dialect_of(std::uint8_t f);
 
 // A short human name for a function code of a dialect ("read running data").
 std::string_view function_name(Dialect d, std::uint8_t f);
