@@ -24,8 +24,7 @@ std::optional<DialectSet> dialects_named(std::string_view names) {
     const auto d = dialect_named(names.substr(0, comma));
     if (!d) return std::nullopt;
     // "modbus,gsl": a shared code nothing else decides is plain Modbus (section 6's order).
-    if (*d == Dialect::Modbus && !set.contains(Dialect::Gsl)) set = set.preferring_modbus();
-    set = set.with(*d);
+    set = set.then(*d);
     names = comma == std::string_view::npos ? std::string_view{} : names.substr(comma + 1);
   }
   if (set == DialectSet::none()) return std::nullopt;

@@ -54,6 +54,12 @@ class DialectSet {
     return DialectSet(static_cast<std::uint8_t>(bits_ | kPreferModbus));
   }
   constexpr bool prefers_modbus() const { return (bits_ & kPreferModbus) != 0; }
+  // `d` added as the next of a list in its reader's order (--dialect modbus,gsl): of GSL and
+  // plain Modbus, the one named first takes a shared code nothing else decides.
+  constexpr DialectSet then(Dialect d) const {
+    const bool modbus_first = d == Dialect::Modbus && !contains(Dialect::Gsl);
+    return (modbus_first ? preferring_modbus() : *this).with(d);
+  }
   constexpr bool operator==(const DialectSet&) const = default;
 
  private:
