@@ -1,5 +1,6 @@
 // A simulated inverter of the ASCII dialect (PROTOCOLS.md section 1): single phase, read by
 // its start address, silent when it cannot answer.
+#include <array>
 #include <cmath>
 
 #include "dialects/inverter_dialect.h"

@@ -1,5 +1,6 @@
 // A simulated inverter of the GSL dialect (PROTOCOLS.md section 3): a three-phase KSTAR
 // inverter on Modbus RTU, answering with exceptions when it cannot.
+#include <array>
 #include <cmath>
 #include <utility>
 

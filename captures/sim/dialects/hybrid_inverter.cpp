@@ -1,5 +1,6 @@
 // A simulated inverter of the Hybrid dialect (PROTOCOLS.md section 2): a battery inverter whose
 // replies start with its device number and whose error reply is 0xFF.
+#include <array>
 #include <cmath>
 
 #include "dialects/inverter_dialect.h"

@@ -21,8 +21,8 @@ struct InverterDialect {
   // What a read reply carries besides its words (set already): a start, a byte count, a
   // device number.
   void (*shape_read_reply)(Frame& reply, const PollBlock& block, DeviceNumber device);
-  // Its error reply to `block`, or null when its errors are exception replies
-  // (function | 0x80 and a code).
+  // Its error reply, or null when its errors are exception replies to the request
+  // (function | 0x80 and a code, bus/frame_shapes.cpp).
   Frame (*error_reply)(std::uint8_t station, DeviceNumber device);
   // Whether a station that cannot answer stays silent: the dialect has no error reply.
   bool errors_are_silence;

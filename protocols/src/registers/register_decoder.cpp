@@ -33,7 +33,7 @@ struct Block {
   }
   // Whether the word of written address `written` is on the wire at `wire`. A bool, not the
   // optional wire address: an optional built and read back per word stalled the store
-  // forwarding (two narrow stores read as one word), a third of this file's time.
+  // forwarding (two narrow stores read as one word), 45 % of place()'s samples in perf.
   bool written_at(std::uint16_t written, std::uint32_t wire) const {
     if (identity) return written == wire;
     const std::optional<std::uint16_t> at = wire_address_of(dialect, written, options.gsl_ids);
