@@ -15,6 +15,12 @@ pvtap_root_apt_options() {
   esac
 }
 
+# Installs mmdebstrap when missing (on this machine, not in a root).
+pvtap_root_tools_ensure() {
+  command -v mmdebstrap >/dev/null ||
+    apt-get -o DPkg::Lock::Timeout=600 install -y -qq --no-install-recommends mmdebstrap </dev/null
+}
+
 # Makes $PVTAP_ROOTS_DIR/SUITE when it is missing or older than the maximum age. A new root
 # is made beside the old one and only replaces it once complete.
 pvtap_root_ensure() {
@@ -22,7 +28,7 @@ pvtap_root_ensure() {
   if [[ -f "$stamp" ]] && [[ -z "$(find "$stamp" -mtime +"$PVTAP_ROOT_MAX_AGE_DAYS")" ]]; then
     return 0
   fi
-  command -v mmdebstrap >/dev/null || apt-get install -y -qq --no-install-recommends mmdebstrap </dev/null
+  pvtap_root_tools_ensure
   echo "== releases: making the $suite root ($root)"
   mkdir -p "$PVTAP_ROOTS_DIR"
   rm -rf "$root.new"
