@@ -1,23 +1,8 @@
 #include "pvtap/framing/framing_probe.h"
 
-#include "dialects/ascii/ascii_candidates.h"
-#include "dialects/rtu_candidates.h"
+#include "dialects/dialect_module.h"
 
 namespace pvtap {
-
-CandidateList frame_candidates(std::span<const std::uint8_t> bytes, RoleHint hint,
-                               DialectSet dialects, Plausibility plausibility) {
-  CandidateList out;
-  if (bytes.empty()) {
-    out.need_header = 1;
-    return out;
-  }
-  if (dialects.contains(Dialect::Ascii) && detail::may_start_ascii(bytes[0])) {
-    detail::add_ascii_candidates(bytes, hint, out);
-  }
-  if (dialects.rtu()) detail::add_rtu_candidates(bytes, hint, dialects, plausibility, out);
-  return out;
-}
 
 ProbeResult probe_frame(std::span<const std::uint8_t> bytes, RoleHint hint, DialectSet dialects) {
   const CandidateList cands = frame_candidates(bytes, hint, dialects);
