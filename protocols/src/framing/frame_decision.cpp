@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "dialects/dialect_module.h"
+#include "dialects/modbus/modbus_user_defined.h"
 #include "framing/length_repair.h"
 #include "pvtap/codec/checksums.h"
 

@@ -101,19 +101,6 @@ std::optional<FrameCandidate> lying_count_reading(std::span<const std::uint8_t> 
   return std::nullopt;
 }
 
-std::optional<FrameCandidate> user_defined_reading(std::span<const std::uint8_t> frame,
-                                                   RoleHint hint, DialectSet dialects) {
-  constexpr std::size_t kShortest = 4;  // station, function, CRC: a code with no data
-  if (!dialects.contains(Dialect::Modbus) || frame.size() < kShortest ||
-      frame.size() > kMaxRtuFrameLength || frame[0] == fc::kModbusBroadcast ||
-      frame[0] > fc::kLastModbusStation || !fc::is_user_defined_function(frame[1]) ||
-      !crc_matches(frame)) {
-    return std::nullopt;
-  }
-  const Role role = hint == RoleHint::Response ? Role::Response : Role::Request;
-  return FrameCandidate{frame.size(), Dialect::Modbus, role, true};
-}
-
 std::optional<FrameCandidate> repaired_reading(std::span<const std::uint8_t> frame, RoleHint hint,
                                                DialectSet dialects) {
   if (!dialects.rtu() || frame.size() < kMinRtuFrameLength || frame.size() > kMaxRtuFrameLength) {

@@ -24,11 +24,4 @@ std::optional<FrameCandidate> repaired_reading(std::span<const std::uint8_t> fra
 // not hold: an RTU-shaped run from the slave's side is no request.
 std::optional<FrameCandidate> lying_count_reading(std::span<const std::uint8_t> frame,
                                                   RoleHint hint, DialectSet dialects);
-
-// The reading of `frame` (pinned as above) as a frame of a user-defined Modbus code (0x41-0x48,
-// 0x64-0x6E), which has no public length rule: a station 1-247 and a CRC that holds over the
-// span (PROTOCOLS.md section 6). A request unless its direction says it is a reply.
-std::optional<FrameCandidate> user_defined_reading(std::span<const std::uint8_t> frame,
-                                                   RoleHint hint, DialectSet dialects);
-
 }  // namespace pvtap::detail
