@@ -23,7 +23,7 @@ void describe_itself(FrameRecord& r, Direction d, std::span<const std::uint8_t> 
   r.station = rtu.empty() ? 0 : rtu[0];
   r.function = rtu.size() < 2 ? 0 : rtu[1];
   r.check_ok = rtu.size() >= 4 && Crc16Modbus::compute(rtu) == 0;
-  r.dialect = Dialect::Modbus;
+  r.dialect = kCarriedDialect;
   if (known[r.station] != 0) {
     r.dialect = static_cast<Dialect>(known[r.station] - 1);
     return;
@@ -33,7 +33,7 @@ void describe_itself(FrameRecord& r, Direction d, std::span<const std::uint8_t> 
       frame_candidates(rtu, hint, DialectSet::all(), Plausibility::Ignore);
   for (std::size_t i = 0; i < readings.size; ++i) {
     const FrameCandidate& c = readings.items[i];
-    if (c.length == rtu.size() && c.role == r.role && c.dialect != Dialect::Ascii) {
+    if (c.length == rtu.size() && c.role == r.role && rtu_framed(c.dialect)) {
       r.dialect = c.dialect;
       break;
     }

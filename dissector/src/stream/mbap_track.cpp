@@ -14,7 +14,7 @@ std::vector<std::unique_ptr<MbapTrack>> g_tracks;
 // What a frame says of itself before the session decides it: all a held request shows in a
 // first pass.
 void describe_itself(FrameRecord& r, Direction d, std::span<const std::uint8_t> frame) {
-  r.dialect = Dialect::Modbus;
+  r.dialect = kCarriedDialect;
   r.role = d == Direction::FromSlave ? Role::Response : Role::Request;
   r.station = frame.empty() ? 0 : frame[0];
   r.function = frame.size() < 2 ? 0 : frame[1];

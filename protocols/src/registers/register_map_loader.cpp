@@ -77,7 +77,7 @@ class MapFileReader {
     const std::optional<std::int64_t> base =
         t != nullptr ? (*t)["base"].value_exact<std::int64_t>() : std::nullopt;
     if (t == nullptr || models == nullptr || !base || *base < 0 || *base > 0xFFFD ||
-        dialect_ != Dialect::Modbus) {
+        dialect_ != kSunSpecDialect) {
       nodes_.fail(node->source(),
                   "[sunspec] belongs to a modbus map and holds base = 40000 and models = [[id, "
                   "length], ...]");

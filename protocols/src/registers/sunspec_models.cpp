@@ -310,7 +310,7 @@ RegisterMapResult sunspec_register_map(const SunSpecChain& chain, std::string_vi
       entries.add_model_header(end.address, "sunspec_end", "end of the models");
   }
   detail::MapHeaderSpec header;
-  header.dialect = Dialect::Modbus;
+  header.dialect = kSunSpecDialect;
   header.title = "SunSpec device";
   header.source_name = std::string(source_name);
   RegisterMapBuilder builder(std::move(header));

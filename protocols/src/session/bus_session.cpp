@@ -265,10 +265,7 @@ void BusSession::carried_frame(Direction direction, std::uint64_t offset,
   if (e.role == Role::Response) asked = m.asked_dialect(station);
   // Failing any reading, the Modbus family's, which names what is wrong with the frame.
   const DialectSet enabled = m.options.reassembler.dialects;
-  const Dialect fallback = enabled.contains(Dialect::Modbus) || !enabled.contains(Dialect::Gsl)
-                               ? Dialect::Modbus
-                               : Dialect::Gsl;
-  e.dialect = m.reply_dialect(m.carried_wire, e.role, asked, fallback);
+  e.dialect = m.reply_dialect(m.carried_wire, e.role, asked, enabled.carried_fallback());
   e.check = FrameCheck{true, 0, 0, true};
   ++m.carried.frames;
   m.carried.bytes_in += frame.size();

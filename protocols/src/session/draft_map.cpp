@@ -4,6 +4,8 @@
 #include <charconv>
 #include <vector>
 
+#include "pvtap/registers/register_map.h"
+
 namespace pvtap {
 namespace {
 
@@ -102,7 +104,7 @@ void sunspec_table(std::string& o, const SunSpecChain& chain) {
 
 std::string draft_register_map(const StationSummary& station, std::string_view source) {
   if (station.inferred.empty() && !station.sunspec) return {};
-  const Dialect dialect = station.sunspec ? Dialect::Modbus : station.inferred.front().dialect;
+  const Dialect dialect = station.sunspec ? kSunSpecDialect : station.inferred.front().dialect;
   std::string o;
   comment(o, "Draft register map of station " + std::to_string(station.station) +
                  ", written by pvtap audit --draft-map from " + std::string(source) + ".");
@@ -121,7 +123,7 @@ std::string draft_register_map(const StationSummary& station, std::string_view s
   o += quoted("station " + std::to_string(station.station) + " (draft)");
   // An inverter's draft lies over its dialect's built-in map, whose registers stay named; a
   // plain Modbus device has no built-in map to lie over.
-  o += dialect == Dialect::Modbus ? "\n" : "\nmode = \"extend\"\n";
+  o += builtin_register_map(dialect).empty() ? "\n" : "\nmode = \"extend\"\n";
   if (station.sunspec) sunspec_table(o, *station.sunspec);
   // A map does not tell holding and input registers apart: an address is written once.
   std::vector<bool> taken(0x10000, false);

@@ -57,7 +57,7 @@ class LatestReadings {
     BlockInference stats;
     std::vector<std::pair<std::uint16_t, std::uint16_t>> runs;  // unmapped: from, count
     std::uint8_t station = 0;
-    Dialect dialect = Dialect::Modbus;
+    Dialect dialect = kDefaultDialect;
     std::uint8_t function = 0;
     std::uint16_t start = 0;
   };

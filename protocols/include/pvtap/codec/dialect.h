@@ -20,6 +20,13 @@ inline constexpr std::size_t kDialectCount = 4;
 // section 6), and so what a record holds until its dialect is known.
 inline constexpr Dialect kDefaultDialect = Dialect::Gsl;
 
+// What a SunSpec device speaks (plain Modbus: its models are its map, read from the device).
+inline constexpr Dialect kSunSpecDialect = Dialect::Modbus;
+
+// What the frames a Modbus/TCP gateway or a logger stick carries are read as until the bus
+// session decides otherwise: plain Modbus, the protocol both carriers were made for.
+inline constexpr Dialect kCarriedDialect = Dialect::Modbus;
+
 // Whether `d` is framed by the Modbus application protocol's rules (GSL or plain Modbus).
 constexpr bool modbus_family(Dialect d) {
   return d == Dialect::Gsl || d == Dialect::Modbus;
@@ -54,6 +61,11 @@ class DialectSet {
     return DialectSet(static_cast<std::uint8_t>(bits_ | kPreferModbus));
   }
   constexpr bool prefers_modbus() const { return (bits_ & kPreferModbus) != 0; }
+  // What a carried frame that no reading fits is labelled, so that the Modbus family's rules
+  // name what is wrong with it: plain Modbus, or GSL when GSL is enabled and plain Modbus not.
+  constexpr Dialect carried_fallback() const {
+    return contains(Dialect::Modbus) || !contains(Dialect::Gsl) ? Dialect::Modbus : Dialect::Gsl;
+  }
   // `d` added as the next of a list in its reader's order (--dialect modbus,gsl): of GSL and
   // plain Modbus, the one named first takes a shared code nothing else decides.
   constexpr DialectSet then(Dialect d) const {

@@ -95,7 +95,7 @@ struct LatestValue {
 // InferredBlock: a polled block with words no map names, and what they probably hold
 // (register_inference.h), from every good reply to it.
 struct InferredBlock {
-  Dialect dialect = Dialect::Modbus;
+  Dialect dialect = kDefaultDialect;
   RegisterTable table = RegisterTable::Holding;
   std::uint8_t function = 0;  // of the replies
   std::uint16_t start = 0;    // wire address of the block's first word
