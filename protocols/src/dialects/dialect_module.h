@@ -65,6 +65,10 @@ struct DialectModule {
   // An address besides 0 that every station hears and one of them answers (Hybrid's 0xFF),
   // or -1: the matcher keeps such a request apart from every station's own.
   int answered_broadcast_station;
+  // Whether a reply read as this dialect may also read as a reply of the Modbus family
+  // (Hybrid's, PROTOCOLS.md section 6): the session reads such a reply to a station last asked
+  // in the Modbus family again by what it was asked.
+  bool reply_may_be_modbus_family;
   // Values (registers/register_decoder.cpp): appends the register values `frame` carries;
   // `request` is a reply's matching request, or null.
   DecodeReport (*decode_values)(const RegisterDecoder& decoder, const Frame& frame,

@@ -12,6 +12,7 @@
 #include <span>
 #include <vector>
 
+#include "dialects/dialect_module.h"
 #include "dialects/modbus/station_dialects.h"
 #include "pvtap/statistics/bus_timing.h"
 #include "session/bus_tally.h"
@@ -73,11 +74,11 @@ struct BusSession::Impl {
     return *slot;
   }
 
-  // A Hybrid reply to a station last asked in the Modbus family is read again: only such a
-  // reply may fit both (a Hybrid station's replies cost one table look-up).
+  // A reply that may also read as the Modbus family's (Hybrid's), to a station last asked in
+  // the Modbus family, is read again (a Hybrid station's replies cost one table look-up).
   void on_frame(Direction direction, const FrameEvent& e) {
-    if (e.dialect != Dialect::Hybrid || e.role != Role::Response || e.bytes.empty() ||
-        !asked_in_modbus_family(e.bytes[0])) {
+    if (!detail::dialect_module(e.dialect).reply_may_be_modbus_family || e.role != Role::Response ||
+        e.bytes.empty() || !asked_in_modbus_family(e.bytes[0])) {
       on_frame(direction, e, e.bytes);
       return;
     }

@@ -40,6 +40,17 @@ TEST(DialectTable, EachDialectHasItsOwnCompleteRecord) {
   }
 }
 
+// The session reads a reply again as the Modbus family's only where that can differ: an RTU
+// frame of a dialect outside the family.
+TEST(DialectTable, OnlyRtuDialectsOutsideTheModbusFamilyReadRepliesAgain) {
+  for (const Dialect d : kAllDialects) {
+    const DialectModule& m = dialect_module(d);
+    if (!m.reply_may_be_modbus_family) continue;
+    EXPECT_TRUE(m.rtu_framed) << to_string(d);
+    EXPECT_FALSE(modbus_family(d)) << to_string(d);
+  }
+}
+
 // A read of each dialect, written by the codec, read back by the record and by the codec.
 TEST(DialectTable, TheCodecAndTheRecordReadAFrameAlike) {
   for (std::size_t i = 0; i < kDialectCount; ++i) {

@@ -73,6 +73,7 @@ extern const DialectModule kAsciiDialect{
     .decimal_register_ids = false,
     .register_address_step = 2,
     .answered_broadcast_station = -1,
+    .reply_may_be_modbus_family = false,
     .decode_values = ascii_values,
 };
 

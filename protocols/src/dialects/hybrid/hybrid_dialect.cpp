@@ -143,6 +143,7 @@ extern const DialectModule kHybridDialect{
     .decimal_register_ids = false,
     .register_address_step = 1,
     .answered_broadcast_station = fc::kHybridBroadcast,
+    .reply_may_be_modbus_family = true,
     .decode_values = hybrid_values,
 };
 

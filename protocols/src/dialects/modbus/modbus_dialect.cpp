@@ -253,6 +253,7 @@ extern const DialectModule kGslDialect{
     .decimal_register_ids = true,
     .register_address_step = 1,
     .answered_broadcast_station = -1,
+    .reply_may_be_modbus_family = false,
     .decode_values = modbus_family_values,
 };
 
@@ -285,6 +286,7 @@ extern const DialectModule kModbusDialect{
     .decimal_register_ids = false,
     .register_address_step = 1,
     .answered_broadcast_station = -1,
+    .reply_may_be_modbus_family = false,
     .decode_values = modbus_family_values,
 };
 
