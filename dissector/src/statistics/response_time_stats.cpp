@@ -28,10 +28,14 @@ std::string row_name(Dialect d, std::uint8_t f) {
   return name;
 }
 
-// The dialect that owns a function code in this protocol.
+// The dialect that owns a function code in this protocol: a protocol of frames of their own
+// holds one dialect.
 Dialect dialect_of(const InverterProtocol& p, std::uint8_t f) {
-  if (!p.dialects.rtu()) return Dialect::Ascii;
-  return fc::rtu_dialect_of(f).value_or(kDefaultDialect);
+  if (p.dialects.rtu()) return fc::rtu_dialect_of(f).value_or(kDefaultDialect);
+  for (const Dialect d : kAllDialects) {
+    if (p.dialects.contains(d)) return d;
+  }
+  return kDefaultDialect;
 }
 
 void init_table(register_srt_t* srt, GArray* srt_array) {
