@@ -32,6 +32,23 @@ class DatagramTransports(PluginTestCase, unittest.TestCase):
         # the RTU frame in it is shown by invrtu.
         self.assertEqual(rows[2][4], ["1"])
 
+    def test_a_station_that_turns_to_ascii_is_shown_without_invrtus_own_items(self):
+        # Fuzz finding 11: the dialect change of a frame that invascii shows named invrtu's
+        # expert info and field, which invascii never registered (a dissector bug).
+        pcap = Pcap()
+        gateway = ("10.0.0.5", 26001)
+        master = ("10.0.0.1", 40000)
+        udp_packet(pcap, 1.00, rtu_read_request(1, 0x03, 1056, 1), master, gateway)
+        udp_packet(pcap, 1.05, gsl_read_reply(1, [7]), gateway, master)
+        udp_packet(pcap, 2.00, ascii_request(1, 0x0050, 7), master, gateway)
+        udp_packet(pcap, 2.05, ascii_reply(1, 0x0050, [217, 0, 0, 65, 0, 0, 601]), gateway, master)
+        capture = self.tshark.write("turns_to_ascii.pcap", pcap)
+        shown = self.tshark.verbose(capture)
+        self.assertNotIn("Dissector bug", shown)
+        self.assertNotIn("Unregistered", shown)
+        rows = self.tshark.fields(capture, ["invascii.role", "invascii.line_frequency"])
+        self.assertEqual(rows[3], [["1"], ["60.1"]])
+
     def test_rtac_serial_payloads_are_one_bus_reassembled_across_records(self):
         pcap = Pcap(LINKTYPE_RTAC_SERIAL)
         rtac_record(pcap, 2.00, 1, rtu_read_request(1, 0x03, 1056, 1))

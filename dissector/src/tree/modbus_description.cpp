@@ -125,8 +125,10 @@ void add_quantity_problem(Builder& b, const FrameRecord& r) {
                   std::to_string(r.quantity_min) + " to " + std::to_string(r.quantity_max));
 }
 
+// Only invrtu registers the change's field and expert (PVTAP_MODBUS_EXPERTS): a frame that
+// invascii shows leaves them out (fuzz finding 11: an unregistered expert info).
 void add_dialect_change(Builder& b, const FramePlan& plan, const FrameRecord& r) {
-  if (!r.dialect_changed) return;
+  if (!r.dialect_changed || !rtu_framed(plan.dialect)) return;
   const std::uint32_t item = add_generated(b, ModbusField::PreviousDialect,
                                            static_cast<std::uint32_t>(r.previous_dialect));
   b.expert_on(item, TreeExpert::DialectChanged,
