@@ -125,10 +125,8 @@ void add_quantity_problem(Builder& b, const FrameRecord& r) {
                   std::to_string(r.quantity_min) + " to " + std::to_string(r.quantity_max));
 }
 
-// Only invrtu registers the change's field and expert (PVTAP_MODBUS_EXPERTS): a frame that
-// invascii shows leaves them out (fuzz finding 11: an unregistered expert info).
 void add_dialect_change(Builder& b, const FramePlan& plan, const FrameRecord& r) {
-  if (!r.dialect_changed || !rtu_framed(plan.dialect)) return;
+  if (!r.dialect_changed) return;
   const std::uint32_t item = add_generated(b, ModbusField::PreviousDialect,
                                            static_cast<std::uint32_t>(r.previous_dialect));
   b.expert_on(item, TreeExpert::DialectChanged,
@@ -156,6 +154,10 @@ void add_modbus_fields(Builder& b, const FramePlan& plan) {
 }
 
 void add_station_findings(Builder& b, const FramePlan& plan, const FrameRecord& record) {
+  // All of them are invrtu's own items (PVTAP_MODBUS_FIELDS and _EXPERTS), which invascii
+  // never registers: a frame it shows gets none (fuzz finding 11, a station's change of
+  // dialect to ASCII named an unregistered expert info).
+  if (!rtu_framed(plan.dialect)) return;
   add_quantity_problem(b, record);
   if (record.broadcast_not_allowed) {
     b.expert_item(TreeExpert::BroadcastNotAllowed, FieldSpan{},

@@ -13,7 +13,8 @@ void add_station_name(Builder& b, const FramePlan& plan);
 // Coils, diagnostics, device identification, server ID, masks, FIFO, file records.
 void add_modbus_fields(Builder& b, const FramePlan& plan);
 
-// A request's quantity out of range, and a change of the station's dialect.
+// A request's quantity out of range, and a change of the station's dialect (RTU frames only:
+// invrtu's own items).
 void add_station_findings(Builder& b, const FramePlan& plan, const FrameRecord& record);
 
 }  // namespace pvtap::dissector
